@@ -1,0 +1,211 @@
+#include "solvers/petsc_call.hpp"
+#include "solvers/cli.hpp"
+
+#include "common/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace sartor {
+
+namespace {
+
+std::string database_key(const std::string& name) {
+  std::string key = "-" + name;
+  std::replace(key.begin(), key.end(), '-', '_');
+  key[0] = '-';
+  return key;
+}
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+const OptionSpec* lookup(const CommandSpec& spec, const std::string& name) {
+  for (const auto& option : spec.options) {
+    if (option.name == name) return &option;
+  }
+  return nullptr;
+}
+
+[[noreturn]] void unknown_option(const CommandSpec& spec, const std::string& name) {
+  std::string message = "sartor " + spec.name + ": unknown option --" + name;
+  const OptionSpec* closest = nullptr;
+  std::size_t best = 3;
+  for (const auto& option : spec.options) {
+    const std::size_t distance = edit_distance(name, option.name);
+    if (distance < best) {
+      best = distance;
+      closest = &option;
+    }
+  }
+  if (closest) message += " (did you mean --" + closest->name + "?)";
+  throw InputError(message + "; see `sartor " + spec.name + " --help`");
+}
+
+} // namespace
+
+ParsedCommandLine parse_command_line(const CommandSpec& spec, const std::string& program,
+                                     const std::vector<std::string>& arguments) {
+  ParsedCommandLine parsed;
+  parsed.petsc_arguments.push_back(program);
+  for (std::size_t i = 0; i < arguments.size(); ++i) {
+    const std::string& argument = arguments[i];
+    if (argument == "--help" || argument == "-h") {
+      parsed.help = true;
+    } else if (argument.rfind("--", 0) == 0 && argument.size() > 2) {
+      std::string name = argument.substr(2);
+      std::string value;
+      bool has_value = false;
+      if (const auto equals = name.find('='); equals != std::string::npos) {
+        value = name.substr(equals + 1);
+        name = name.substr(0, equals);
+        has_value = true;
+      }
+      const OptionSpec* option = lookup(spec, name);
+      if (!option) unknown_option(spec, name);
+      if (option->value_name.empty()) {
+        if (has_value) throw InputError("option --" + name + " takes no value");
+        value = "true";
+      } else if (!has_value) {
+        if (i + 1 == arguments.size()) {
+          throw InputError("option --" + name + " needs a value (" + option->value_name + ")");
+        }
+        value = arguments[++i];
+      }
+      parsed.petsc_arguments.push_back(database_key(name));
+      parsed.petsc_arguments.push_back(value);
+    } else if (argument.size() > 1 && argument[0] == '-') {
+      // A PETSc option; a following word that is not an option is its value.
+      parsed.petsc_arguments.push_back(argument);
+      if (i + 1 < arguments.size() && arguments[i + 1].rfind('-', 0) != 0) {
+        parsed.petsc_arguments.push_back(arguments[++i]);
+      }
+    } else {
+      parsed.positionals.push_back(argument);
+    }
+  }
+  if (!parsed.help && parsed.positionals.size() != spec.positionals) {
+    throw InputError("sartor " + spec.name + " takes " + std::to_string(spec.positionals) +
+                     " argument(s), got " + std::to_string(parsed.positionals.size()) +
+                     "; usage: " + spec.usage);
+  }
+  return parsed;
+}
+
+std::string help_text(const CommandSpec& spec) {
+  std::ostringstream out;
+  out << "usage: " << spec.usage << "\n\n" << spec.description << "\n\noptions:\n";
+  for (const auto& option : spec.options) {
+    std::string left = "  --" + option.name;
+    if (!option.value_name.empty()) left += " " + option.value_name;
+    out << left;
+    if (left.size() < 30) {
+      out << std::string(30 - left.size(), ' ');
+    } else {
+      out << "\n" << std::string(30, ' ');
+    }
+    out << option.help;
+    if (!option.fallback.empty()) out << " [" << option.fallback << "]";
+    out << "\n";
+  }
+  out << "  -h, --help                  this text\n\n"
+         "Options can also come from a YAML file (-options_file_yaml FILE, keys without\n"
+         "dashes, e.g. load_duration: 3600). PETSc options (-log_view, -options_view,\n"
+         "-tao_monitor, ...) are accepted as well.\n";
+  return out.str();
+}
+
+const OptionSpec& Options::find(const std::string& name) const {
+  const OptionSpec* option = lookup(spec_, name);
+  if (!option) throw std::logic_error("option --" + name + " is not declared");
+  return *option;
+}
+
+bool Options::is_set(const std::string& name) const {
+  find(name);
+  PetscBool set = PETSC_FALSE;
+  SartorPetscCall(PetscOptionsHasName(nullptr, nullptr, database_key(name).c_str(), &set));
+  return set == PETSC_TRUE;
+}
+
+std::string Options::text(const std::string& name) const {
+  const OptionSpec& option = find(name);
+  char buffer[PETSC_MAX_PATH_LEN] = "";
+  PetscBool set = PETSC_FALSE;
+  SartorPetscCall(PetscOptionsGetString(nullptr, nullptr, database_key(name).c_str(), buffer,
+                                       sizeof buffer, &set));
+  if (!set) return option.fallback;
+  if (buffer[0] == '\0' && !option.value_name.empty()) {
+    throw InputError("option --" + name + " needs a value (" + option.value_name + ")");
+  }
+  return buffer;
+}
+
+double Options::real(const std::string& name) const {
+  const std::string value = text(name);
+  try {
+    std::size_t used = 0;
+    const double number = std::stod(value, &used);
+    if (used == value.size() && std::isfinite(number)) return number;
+  } catch (const std::exception&) {
+  }
+  throw InputError("option --" + name + ": '" + value + "' is not a finite number");
+}
+
+double Options::positive_real(const std::string& name) const {
+  const double value = real(name);
+  if (value <= 0.0) throw InputError("option --" + name + ": must be > 0, got " + text(name));
+  return value;
+}
+
+double Options::nonnegative_real(const std::string& name) const {
+  const double value = real(name);
+  if (value < 0.0) throw InputError("option --" + name + ": must be >= 0, got " + text(name));
+  return value;
+}
+
+long Options::integer(const std::string& name) const {
+  const std::string value = text(name);
+  try {
+    std::size_t used = 0;
+    const long number = std::stol(value, &used);
+    if (used == value.size()) return number;
+  } catch (const std::exception&) {
+  }
+  throw InputError("option --" + name + ": '" + value + "' is not an integer");
+}
+
+bool Options::flag(const std::string& name) const {
+  if (!is_set(name)) return false;
+  const std::string value = text(name);
+  if (value.empty() || value == "true" || value == "1" || value == "yes") return true;
+  if (value == "false" || value == "0" || value == "no") return false;
+  throw InputError("option --" + name + ": '" + value + "' is not true or false");
+}
+
+std::vector<std::pair<std::string, std::string>> Options::effective() const {
+  std::vector<std::pair<std::string, std::string>> values;
+  for (const auto& option : spec_.options) {
+    if (option.value_name.empty()) {
+      values.emplace_back(option.name, flag(option.name) ? "true" : "false");
+    } else if (is_set(option.name) || !option.fallback.empty()) {
+      values.emplace_back(option.name, text(option.name));
+    }
+  }
+  return values;
+}
+
+} // namespace sartor

@@ -1,1 +1,132 @@
-int main() { return 0; }
+// sartor: finite-element statics of non-elastic cloth. One executable, one
+// command per capability; `sartor --help` lists them.
+
+#include "common/error.hpp"
+#include "solvers/commands.hpp"
+
+#include <petscsys.h>
+
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+namespace {
+
+using sartor::Command;
+
+const std::vector<Command>& commands() {
+  static const std::vector<Command> all = {
+      {sartor::creep_command, sartor::run_creep},
+      {sartor::fit_command, sartor::run_fit},
+      {sartor::synth_command, sartor::run_synth},
+      {sartor::fabrics_command, sartor::run_fabrics},
+  };
+  return all;
+}
+
+void print_overview() {
+  std::printf("sartor %s: finite-element statics of non-elastic cloth\n\n"
+              "usage: sartor COMMAND [options]\n\ncommands:\n",
+              SARTOR_VERSION);
+  for (const auto& command : commands()) {
+    std::printf("  %-10s %s\n", command.spec().name.c_str(), command.spec().summary.c_str());
+  }
+  std::printf("\n`sartor COMMAND --help` describes a command; docs/user-guide.md has the rest.\n");
+}
+
+const Command* find_command(const std::string& name) {
+  for (const auto& command : commands()) {
+    if (command.spec().name == name) return &command;
+  }
+  return nullptr;
+}
+
+// Options that had no effect are most often typos (in a YAML case, say).
+PetscErrorCode warn_about_unused_options() {
+  PetscInt count = 0;
+  char** names = nullptr;
+  char** values = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsLeftGet(nullptr, &count, &names, &values));
+  for (PetscInt i = 0; i < count; ++i) {
+    if (std::string(names[i]) == "options_left") continue;
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "sartor: warning: option -%s%s%s was not used\n",
+                          names[i], values[i] ? " " : "", values[i] ? values[i] : ""));
+  }
+  PetscCall(PetscOptionsLeftRestore(nullptr, &count, &names, &values));
+  PetscFunctionReturn(0);
+}
+
+int run_with_petsc(const Command& command, sartor::ParsedCommandLine parsed,
+                   std::vector<std::string> arguments) {
+  std::vector<char*> petsc_argv;
+  for (auto& argument : parsed.petsc_arguments) petsc_argv.push_back(argument.data());
+  petsc_argv.push_back(nullptr);
+  int argc = int(petsc_argv.size()) - 1;
+  char** argv = petsc_argv.data();
+  PetscCall(PetscInitialize(&argc, &argv, nullptr, nullptr));
+
+  int status = 1;
+  try {
+    const sartor::Invocation invocation{std::move(parsed), sartor::Options(command.spec()),
+                                        std::move(arguments)};
+    status = command.run(invocation);
+  } catch (const sartor::InputError& error) {
+    // Inputs are read on every rank, so every rank gets here: one report.
+    if (sartor::is_root()) {
+      std::fprintf(stderr, "sartor %s: error: %s\n", command.spec().name.c_str(), error.what());
+    }
+    status = 1;
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "sartor %s: internal error: %s\n", command.spec().name.c_str(),
+                 error.what());
+    PetscMPIInt size = 1;
+    MPI_Comm_size(PETSC_COMM_WORLD, &size);
+    if (size > 1) MPI_Abort(PETSC_COMM_WORLD, 1);
+    status = 1;
+  }
+  if (status == 0) PetscCall(warn_about_unused_options());
+  PetscCall(PetscFinalize());
+  return status;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  const std::vector<std::string> arguments(argv + 1, argv + argc);
+  if (arguments.empty() || arguments[0] == "--help" || arguments[0] == "-h" ||
+      arguments[0] == "help") {
+    if (arguments.size() > 1) {
+      if (const Command* command = find_command(arguments[1])) {
+        std::fputs(sartor::help_text(command->spec()).c_str(), stdout);
+        return 0;
+      }
+    }
+    print_overview();
+    return arguments.empty() ? 2 : 0;
+  }
+  if (arguments[0] == "--version") {
+    std::printf("sartor %s\n", SARTOR_VERSION);
+    return 0;
+  }
+  const Command* command = find_command(arguments[0]);
+  if (!command) {
+    std::fprintf(stderr, "sartor: unknown command '%s'; `sartor --help` lists them\n",
+                 arguments[0].c_str());
+    return 2;
+  }
+  const std::vector<std::string> rest(arguments.begin() + 1, arguments.end());
+  sartor::ParsedCommandLine parsed;
+  try {
+    parsed = sartor::parse_command_line(command->spec(), argv[0], rest);
+  } catch (const sartor::InputError& error) {
+    std::fprintf(stderr, "%s\n", error.what());
+    return 2;
+  }
+  if (parsed.help) {
+    std::fputs(sartor::help_text(command->spec()).c_str(), stdout);
+    return 0;
+  }
+  return run_with_petsc(*command, std::move(parsed), arguments);
+}

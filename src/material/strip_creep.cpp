@@ -67,15 +67,15 @@ std::vector<double> log_sample_times(const TensionHistory& history, double first
                                      int per_decade) {
   std::vector<double> times;
   const auto& points = history.points();
+  const auto slope = [&points](std::size_t i) {
+    return (points[i + 1].tension - points[i].tension) / (points[i + 1].time - points[i].time);
+  };
   for (std::size_t i = 0; i + 1 < points.size(); ++i) {
-    const bool changes = i == 0 || points[i].tension != points[i - 1].tension ||
-                         points[i].time == points[i - 1].time;
-    if (!changes) continue;
-    // The next change of slope or value ends this run of samples.
-    std::size_t next = i + 1;
-    while (next + 1 < points.size() && points[next].time == points[i].time) ++next;
+    if (points[i + 1].time == points[i].time) continue; // a jump: sample after its last point
+    const bool after_jump = i > 0 && points[i - 1].time == points[i].time;
+    if (i > 0 && !after_jump && slope(i) == slope(i - 1)) continue;
     const double start = points[i].time;
-    const double stop = points[next].time;
+    const double stop = history.end_time();
     for (int k = 0;; ++k) {
       const double t = start + first_offset * std::pow(10.0, double(k) / per_decade);
       if (t >= stop) break;
@@ -83,6 +83,7 @@ std::vector<double> log_sample_times(const TensionHistory& history, double first
     }
   }
   std::sort(times.begin(), times.end());
+  times.erase(std::unique(times.begin(), times.end()), times.end());
   return times;
 }
 

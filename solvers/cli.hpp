@@ -1,0 +1,68 @@
+#pragma once
+// Command-line plumbing shared by the `sartor` commands.
+//
+// Application options are written `--name value` (or `--name=value`); they are
+// stored in the PETSc options database as `-name value` (dashes inside a name
+// become underscores), so a case can set them in a YAML options file
+// (`-options_file_yaml case.yaml`, key `name: value`) next to any PETSc option
+// (`-tao_monitor`, `-log_view`, ...). Values are read back here, checked, and
+// rejected with a message naming the option when they make no sense.
+
+#include <petscsys.h>
+
+#include <string>
+#include <vector>
+
+namespace sartor {
+
+struct OptionSpec {
+  std::string name;        // long name without dashes, e.g. "load-duration"
+  std::string value_name;  // e.g. "SECONDS"; empty for a flag
+  std::string fallback;    // default value as text; empty: no default
+  std::string help;        // one line, with units
+};
+
+struct CommandSpec {
+  std::string name;
+  std::string summary;     // one line for `sartor --help`
+  std::string usage;       // e.g. "sartor fit DATA.csv [options]"
+  std::string description; // paragraphs printed by --help before the options
+  std::vector<OptionSpec> options;
+  std::size_t positionals = 0; // required positional arguments
+};
+
+// The command line of one command, split into what is ours and what PETSc gets.
+struct ParsedCommandLine {
+  std::vector<std::string> positionals;
+  std::vector<std::string> petsc_arguments; // argv for PetscInitialize, program name first
+  bool help = false;
+};
+
+// Throws InputError for an unknown `--option` (with a suggestion) or a missing value.
+ParsedCommandLine parse_command_line(const CommandSpec& spec, const std::string& program,
+                                     const std::vector<std::string>& arguments);
+
+std::string help_text(const CommandSpec& spec);
+
+// Typed access to a command's options after PetscInitialize. Every getter
+// throws InputError naming the option when the value is malformed.
+class Options {
+public:
+  explicit Options(const CommandSpec& spec) : spec_(spec) {}
+
+  bool is_set(const std::string& name) const;
+  std::string text(const std::string& name) const;
+  double real(const std::string& name) const;
+  double positive_real(const std::string& name) const;
+  double nonnegative_real(const std::string& name) const;
+  long integer(const std::string& name) const;
+  bool flag(const std::string& name) const;
+  // The options as given (or defaulted), for the run's metadata.
+  std::vector<std::pair<std::string, std::string>> effective() const;
+
+private:
+  const OptionSpec& find(const std::string& name) const;
+  const CommandSpec& spec_;
+};
+
+} // namespace sartor

@@ -1,0 +1,43 @@
+#pragma once
+// The `sartor` commands: each has a spec (options, help) and a run function.
+
+#include "solvers/cli.hpp"
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <string>
+#include <vector>
+
+namespace sartor {
+
+struct Invocation {
+  ParsedCommandLine command_line;
+  Options options;
+  std::vector<std::string> arguments; // as typed, for the run's metadata
+};
+
+struct Command {
+  const CommandSpec& (*spec)();
+  int (*run)(const Invocation&); // exit status
+};
+
+const CommandSpec& creep_command();
+int run_creep(const Invocation&);
+const CommandSpec& fit_command();
+int run_fit(const Invocation&);
+const CommandSpec& synth_command();
+int run_synth(const Invocation&);
+const CommandSpec& fabrics_command();
+int run_fabrics(const Invocation&);
+
+// Metadata every output JSON carries: version, command line, options used.
+nlohmann::json run_metadata(const Invocation& invocation, const std::string& command);
+
+// Runs postproc/SCRIPT on `directory` with /usr/bin/python3 (or $SARTOR_PYTHON)
+// on rank 0. Throws InputError, on every rank, when the plot could not be made.
+void make_plot(const std::string& script, const std::string& directory);
+
+// Rank 0 writes; everybody waits, and learns of a failure.
+bool is_root();
+
+} // namespace sartor

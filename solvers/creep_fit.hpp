@@ -1,0 +1,96 @@
+#pragma once
+// Fitting the creep law to a measured constant-force creep-and-recovery curve:
+// the thesis' procedure (§5.2.2) for a first estimate, then a joint nonlinear
+// least-squares refinement of all parameters with PETSc TAO, with standard
+// errors and confidence intervals from the Jacobian. docs/theory.md has the math.
+
+#include "material/creep_recovery_model.hpp"
+
+#include <petsctao.h>
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sartor {
+
+struct CreepTestData {
+  std::string path;
+  std::vector<double> time;   // s, non-decreasing
+  std::vector<double> strain; // elongation over the rest length
+  std::vector<long> line;     // file line of each sample, for messages
+  CreepTest test;
+  // How the tension and the load/unload times were obtained, for the report.
+  std::string tension_origin;
+  std::string load_time_origin;
+  std::string unload_time_origin;
+};
+
+// What the command line says about the test; anything left empty is read from
+// the file's force/tension column or detected from the strain.
+struct CreepTestDescription {
+  std::optional<double> tension; // N/m
+  std::optional<double> force;   // N, needs width
+  std::optional<double> width;   // m
+  std::optional<double> load_time;
+  std::optional<double> unload_time;
+};
+
+// Reads the CSV (docs/formats.md) and settles the test description.
+// Throws InputError with FILE:LINE for anything malformed or inconsistent.
+CreepTestData read_creep_test_data(const std::string& path, const CreepTestDescription& given);
+
+// The thesis' step-by-step determination (§5.2.2), assuming the test reached
+// saturation. Throws InputError when the data cannot support it.
+struct ThesisEstimate {
+  CreepTestParameters parameters;
+  double immediate_strain = 0.0;      // jump at load application
+  double nonelastic_at_unload = 0.0;  // eps_v + eps_p at the end of loading
+  double permanent_at_end = 0.0;      // strain at the end of recovery
+  std::vector<std::string> notes;
+};
+ThesisEstimate thesis_estimate(const CreepTestData& data);
+
+struct ParameterEstimate {
+  double value = 0.0;
+  double std_error = 0.0;
+  double ci_low = 0.0;
+  double ci_high = 0.0;
+};
+
+struct CreepFit {
+  CreepTestParameters parameters;
+  std::array<ParameterEstimate, creep_test_parameter_count> estimates; // K, E, alpha, l_l, l_u
+  std::array<std::array<double, creep_test_parameter_count>, creep_test_parameter_count>
+      correlation{};
+  double confidence_level = 0.95;
+  long samples = 0;
+  long degrees_of_freedom = 0;
+  double rmse = 0.0;
+  double r_squared = 0.0;
+  double residual_std = 0.0; // sqrt(RSS / dof)
+  // Thesis App. A: how close the test came to saturation and full recovery.
+  double loading_saturation = 0.0; // 1 - exp(-lambda_load * loading time)
+  double recovery_remaining = 0.0; // exp(-lambda_unload * recovery time)
+  bool loading_saturated = false;
+  bool recovery_relaxed = false;
+  std::vector<std::string> warnings;
+  // TAO
+  std::string solver;
+  std::string converged_reason;
+  bool converged = false;
+  long iterations = 0;
+};
+
+// Joint refinement from `start` on `comm` (the samples are spread over the
+// ranks). Solver options come from the options database with prefix "fit_"
+// (e.g. -fit_tao_monitor, -fit_tao_type).
+PetscErrorCode fit_creep_test(MPI_Comm comm, const CreepTestData& data,
+                              const CreepTestParameters& start, double confidence_level,
+                              CreepFit* fit);
+
+// The names used in fit.json and fabric files, in fit-variable order.
+const std::array<const char*, creep_test_parameter_count>& creep_test_parameter_names();
+
+} // namespace sartor

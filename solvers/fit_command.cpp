@@ -1,0 +1,216 @@
+// sartor fit: creep-law parameters from a measured creep-and-recovery curve.
+
+#include "common/csv.hpp"
+#include "common/error.hpp"
+#include "common/output.hpp"
+#include "solvers/petsc_call.hpp"
+#include "solvers/commands.hpp"
+#include "solvers/creep_fit.hpp"
+#include "material/fabric.hpp"
+
+#include <nlohmann/json.hpp>
+#include <petscsys.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+namespace sartor {
+
+const CommandSpec& fit_command() {
+  static const CommandSpec spec{
+      "fit",
+      "fit creep-law parameters to a measured creep-and-recovery curve",
+      "sartor fit DATA.csv [--force N --width M | --tension N/M] [options]",
+      "Determines the immediate-elastic modulus K and the creep parameters E, alpha,\n"
+      "lambda_load, lambda_unload from a constant-force creep-and-recovery test:\n"
+      "first by the thesis' step-by-step procedure (§5.2.2), then by a joint\n"
+      "nonlinear least-squares fit of all five (PETSc TAO, prefix -fit_), with\n"
+      "standard errors and confidence intervals. Warns when the test did not reach\n"
+      "saturation or full recovery (thesis App. A).\n\n"
+      "DATA.csv has columns time_s and strain, and optionally tension_N_per_m or\n"
+      "force_N (then the load and unload times are read from it); see\n"
+      "docs/formats.md. Without them the load is taken to start at the first sample\n"
+      "and the unloading is found as the largest strain drop.\n\n"
+      "Output in DIR: fit.json, fit.csv (data, fit, residual), fabric.yaml (usable\n"
+      "by sartor creep --fabric), fit.png.\n\n"
+      "examples:\n"
+      "  sartor fit cases/fit/cotton_twill_warp.csv\n"
+      "  sartor fit my_test.csv --force 196.1 --width 0.08 --unload-time 3600",
+      {
+          {"force", "N", "", "test force, N (with --width), when DATA has no tension column"},
+          {"width", "M", "", "specimen width, m"},
+          {"tension", "N/M", "", "test tension per unit width, N/m"},
+          {"load-time", "S", "", "time at which the load was applied, s"},
+          {"unload-time", "S", "", "time at which the load was removed, s"},
+          {"confidence", "LEVEL", "0.95", "confidence level of the intervals, in (0, 1)"},
+          {"name", "NAME", "", "fabric name in fabric.yaml [file name of DATA]"},
+          {"direction", "DIR", "warp", "fabric direction the test measured: warp or weft"},
+          {"output", "DIR", "out/fit", "output folder (created; files in it are replaced)"},
+          {"no-plot", "", "", "write data only, no PNG"},
+      },
+      1};
+  return spec;
+}
+
+namespace {
+
+std::optional<double> optional_positive(const Options& options, const std::string& name) {
+  if (!options.is_set(name)) return std::nullopt;
+  return options.positive_real(name);
+}
+
+std::optional<double> optional_real(const Options& options, const std::string& name) {
+  if (!options.is_set(name)) return std::nullopt;
+  return options.real(name);
+}
+
+nlohmann::json parameters_json(const CreepTestParameters& p) {
+  return {{"elastic_modulus_N_per_m", p.elastic_modulus},
+          {"E_N_per_m", p.creep_modulus},
+          {"alpha", p.alpha},
+          {"lambda_load_per_s", p.lambda_load},
+          {"lambda_unload_per_s", p.lambda_unload}};
+}
+
+std::string fit_csv(const CreepTestData& data, const CreepTestParameters& parameters) {
+  std::vector<double> model(data.time.size());
+  evaluate_creep_test(data.test, parameters, data.time.data(), data.time.size(), model.data());
+  std::ostringstream out;
+  out << "time_s,strain_measured,strain_fit,residual,phase\n";
+  for (std::size_t i = 0; i < model.size(); ++i) {
+    out << format_number(data.time[i]) << ',' << format_number(data.strain[i]) << ','
+        << format_number(model[i]) << ',' << format_number(data.strain[i] - model[i]) << ','
+        << int(data.test.phase(data.time[i])) << '\n';
+  }
+  return out.str();
+}
+
+std::string fabric_yaml(const std::string& name, const std::string& direction,
+                        const std::string& source, const CreepTestParameters& p) {
+  std::ostringstream out;
+  out << "# Written by sartor fit from " << source << "\n"
+      << "name: " << name << "\n"
+      << "source: \"sartor fit of " << source << "\"\n"
+      << direction << ":\n"
+      << "  E: " << format_number(p.creep_modulus) << "  # N/m\n"
+      << "  alpha: " << format_number(p.alpha) << "\n"
+      << "  lambda_load: " << format_number(p.lambda_load) << "  # 1/s\n"
+      << "  lambda_unload: " << format_number(p.lambda_unload) << "  # 1/s\n"
+      << "  elastic_modulus: " << format_number(p.elastic_modulus)
+      << "  # N/m, secant modulus at the test load\n";
+  return out.str();
+}
+
+} // namespace
+
+int run_fit(const Invocation& invocation) {
+  const Options& options = invocation.options;
+  const std::string path = invocation.command_line.positionals.at(0);
+  const double confidence = options.real("confidence");
+  if (!(confidence > 0.0 && confidence < 1.0)) {
+    throw InputError("option --confidence: must lie in (0, 1), got " + options.text("confidence"));
+  }
+  const std::string direction = options.text("direction");
+  parse_direction(direction, "option --direction");
+  const std::string name = options.is_set("name")
+                               ? options.text("name")
+                               : std::filesystem::path(path).stem().string();
+
+  CreepTestDescription given;
+  given.tension = optional_positive(options, "tension");
+  given.force = optional_positive(options, "force");
+  given.width = optional_positive(options, "width");
+  given.load_time = optional_real(options, "load-time");
+  given.unload_time = optional_real(options, "unload-time");
+
+  const auto started = std::chrono::steady_clock::now();
+  const CreepTestData data = read_creep_test_data(path, given);
+  const auto read = std::chrono::steady_clock::now();
+  const ThesisEstimate initial = thesis_estimate(data);
+  const auto estimated = std::chrono::steady_clock::now();
+  CreepFit fit;
+  SartorPetscCall(fit_creep_test(PETSC_COMM_WORLD, data, initial.parameters, confidence, &fit));
+  const auto fitted = std::chrono::steady_clock::now();
+
+  nlohmann::json report = run_metadata(invocation, "fit");
+  report["input"] = {{"file", path},
+                     {"samples", data.time.size()},
+                     {"tension_N_per_m", data.test.tension},
+                     {"tension_from", data.tension_origin},
+                     {"load_time_s", data.test.load_time},
+                     {"load_time_from", data.load_time_origin},
+                     {"unload_time_s", data.test.unload_time},
+                     {"unload_time_from", data.unload_time_origin},
+                     {"end_time_s", data.time.back()}};
+  report["thesis_estimate"] = parameters_json(initial.parameters);
+  report["thesis_estimate"]["immediate_strain"] = initial.immediate_strain;
+  report["thesis_estimate"]["nonelastic_strain_at_unload"] = initial.nonelastic_at_unload;
+  report["thesis_estimate"]["permanent_strain_at_end"] = initial.permanent_at_end;
+  report["thesis_estimate"]["notes"] = initial.notes;
+  report["confidence_level"] = confidence;
+  nlohmann::json parameters = nlohmann::json::object();
+  for (std::size_t j = 0; j < creep_test_parameter_count; ++j) {
+    const ParameterEstimate& e = fit.estimates[j];
+    parameters[creep_test_parameter_names()[j]] = {
+        {"value", e.value}, {"std_error", e.std_error}, {"ci_low", e.ci_low}, {"ci_high", e.ci_high}};
+  }
+  report["parameters"] = parameters;
+  report["correlation"] = {{"order", creep_test_parameter_names()}, {"matrix", fit.correlation}};
+  report["goodness"] = {{"rmse", fit.rmse},
+                        {"r_squared", fit.r_squared},
+                        {"residual_std", fit.residual_std},
+                        {"samples", fit.samples},
+                        {"degrees_of_freedom", fit.degrees_of_freedom}};
+  report["saturation"] = {{"loading_saturation_fraction", fit.loading_saturation},
+                          {"recovery_remaining_fraction", fit.recovery_remaining},
+                          {"loading_saturated", fit.loading_saturated},
+                          {"recovery_relaxed", fit.recovery_relaxed},
+                          {"warnings", fit.warnings}};
+  report["solver"] = {{"tao_type", fit.solver},
+                      {"converged", fit.converged},
+                      {"reason", fit.converged_reason},
+                      {"iterations", fit.iterations},
+                      {"read_time_s", std::chrono::duration<double>(read - started).count()},
+                      {"estimate_time_s", std::chrono::duration<double>(estimated - read).count()},
+                      {"refine_time_s", std::chrono::duration<double>(fitted - estimated).count()}};
+
+  const std::string directory = options.text("output");
+  if (is_root()) {
+    make_output_directory(directory);
+    write_json(directory + "/fit.json", report);
+    write_file_atomically(directory + "/fit.csv", fit_csv(data, fit.parameters));
+    if (fit.converged) {
+      write_file_atomically(directory + "/fabric.yaml",
+                            fabric_yaml(name, direction, path, fit.parameters));
+    }
+  }
+  if (!fit.converged) {
+    throw InputError("the least-squares refinement did not converge (TAO: " +
+                     fit.converged_reason + "); " + directory +
+                     "/fit.json holds the thesis estimate and the last iterate");
+  }
+
+  SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "sartor fit: %s, %zu samples, tension %.6g N/m\n",
+                              path.c_str(), data.time.size(),
+                              static_cast<double>(data.test.tension)));
+  for (std::size_t j = 0; j < creep_test_parameter_count; ++j) {
+    const ParameterEstimate& e = fit.estimates[j];
+    char line[200];
+    std::snprintf(line, sizeof line, "  %-24s %-12.6g +- %-10.3g (%.4g%% CI %.6g .. %.6g)\n",
+                  creep_test_parameter_names()[j], e.value, e.std_error, 100 * confidence,
+                  e.ci_low, e.ci_high);
+    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s", line));
+  }
+  SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "  RMSE %.3g, R^2 %.6f, %ld TAO iterations (%s)\n",
+                        fit.rmse, fit.r_squared, fit.iterations, fit.converged_reason.c_str()));
+  for (const auto& warning : fit.warnings) {
+    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "  warning: %s\n", warning.c_str()));
+  }
+  if (!options.flag("no-plot")) make_plot("plot_fit.py", directory);
+  SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "sartor fit: wrote %s\n", directory.c_str()));
+  return 0;
+}
+
+} // namespace sartor

@@ -1,0 +1,58 @@
+#include "common/error.hpp"
+#include "solvers/commands.hpp"
+
+#include <nlohmann/json.hpp>
+#include <petscsys.h>
+
+#include <cstdlib>
+#include <spawn.h>
+#include <sys/wait.h>
+
+extern char** environ;
+
+namespace sartor {
+
+bool is_root() {
+  PetscMPIInt rank = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  return rank == 0;
+}
+
+nlohmann::json run_metadata(const Invocation& invocation, const std::string& command) {
+  PetscMPIInt size = 1;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  nlohmann::json options = nlohmann::json::object();
+  for (const auto& [name, value] : invocation.options.effective()) options[name] = value;
+  return {{"sartor_version", SARTOR_VERSION},
+          {"command", command},
+          {"arguments", invocation.arguments},
+          {"options", options},
+          {"mpi_ranks", size}};
+}
+
+void make_plot(const std::string& script, const std::string& directory) {
+  int status = 0;
+  std::string problem;
+  if (is_root()) {
+    const char* override = std::getenv("SARTOR_PYTHON");
+    std::string python = override ? override : "/usr/bin/python3";
+    std::string path = std::string(SARTOR_POSTPROC_DIR) + "/" + script;
+    std::string target = directory;
+    char* argv[] = {python.data(), path.data(), target.data(), nullptr};
+    pid_t child = 0;
+    if (posix_spawn(&child, python.c_str(), nullptr, nullptr, argv, environ) != 0) {
+      status = -1;
+    } else if (waitpid(child, &status, 0) < 0) {
+      status = -1;
+    }
+    if (status != 0) {
+      problem = "plotting failed: `" + python + " " + path + " " + directory +
+                "` did not succeed (needs the Debian packages python3-numpy and "
+                "python3-matplotlib; use --no-plot to skip). The data files are complete.";
+    }
+  }
+  MPI_Bcast(&status, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+  if (status != 0) throw InputError(problem.empty() ? "plotting failed on rank 0" : problem);
+}
+
+} // namespace sartor
