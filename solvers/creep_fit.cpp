@@ -24,6 +24,7 @@ namespace {
 
 constexpr std::size_t minimum_phase_samples = 5;
 constexpr double saturation_threshold = 0.99; // thesis App. A: "full saturation"
+constexpr double log_parameter_range = 20.0;
 
 std::string describe_time(double t) { return format_number(t) + " s"; }
 
@@ -453,8 +454,10 @@ void fill_statistics(const CreepTestData& data, const FitSums& sums, CreepFit* f
     estimate.value = values[std::size_t(j)];
     const bool logarithmic = j != 2;
     estimate.std_error = logarithmic ? estimate.value * q_error : q_error;
-    estimate.ci_low = estimate.value - t * estimate.std_error;
-    estimate.ci_high = estimate.value + t * estimate.std_error;
+    // Intervals are symmetric in the fit variable: positive parameters keep
+    // positive limits.
+    estimate.ci_low = logarithmic ? estimate.value * std::exp(-t * q_error) : estimate.value - t * q_error;
+    estimate.ci_high = logarithmic ? estimate.value * std::exp(t * q_error) : estimate.value + t * q_error;
     for (long k = 0; k < p; ++k) {
       const double scale = std::sqrt(covariance(j, j) * covariance(k, k));
       fit->correlation[std::size_t(j)][std::size_t(k)] =
@@ -493,6 +496,14 @@ void fill_statistics(const CreepTestData& data, const FitSums& sums, CreepFit* f
   }
 }
 
+PetscErrorCode set_default_option(const char* name, const char* value) {
+  PetscBool chosen = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasName(nullptr, nullptr, name, &chosen));
+  if (!chosen) PetscCall(PetscOptionsSetValue(nullptr, name, value));
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode fit_creep_test(MPI_Comm comm, const CreepTestData& data,
@@ -523,8 +534,11 @@ PetscErrorCode fit_creep_test(MPI_Comm comm, const CreepTestData& data,
     const CreepTestVector q0 = to_fit_variables(start);
     for (PetscInt j = 0; j < p; ++j) {
       PetscCall(VecSetValue(x, j, q0[std::size_t(j)], INSERT_VALUES));
-      PetscCall(VecSetValue(lower, j, j == 2 ? 0.0 : PETSC_NINFINITY, INSERT_VALUES));
-      PetscCall(VecSetValue(upper, j, j == 2 ? 1.0 : PETSC_INFINITY, INSERT_VALUES));
+      // alpha lies in [0, 1]; the logarithms stay within a factor e^20 of the
+      // start, which keeps trial steps from overflowing exp().
+      const double q = q0[std::size_t(j)];
+      PetscCall(VecSetValue(lower, j, j == 2 ? 0.0 : q - log_parameter_range, INSERT_VALUES));
+      PetscCall(VecSetValue(upper, j, j == 2 ? 1.0 : q + log_parameter_range, INSERT_VALUES));
     }
   }
   for (Vec v : {x, lower, upper}) {
@@ -543,11 +557,25 @@ PetscErrorCode fit_creep_test(MPI_Comm comm, const CreepTestData& data,
   // the absolute gradient floors at round-off, which depends on the data.
   PetscCall(TaoSetTolerances(tao, 0.0, 1e-9, 1e-10));
   PetscCall(TaoSetMaximumIterations(tao, 200));
-  // With five unknowns, forming J^T J beats a matrix-free Hessian by far.
-  PetscBool chosen = PETSC_FALSE;
-  PetscCall(PetscOptionsHasName(nullptr, "fit_", "-tao_brgn_mat_explicit", &chosen));
-  if (!chosen) PetscCall(PetscOptionsSetValue(nullptr, "-fit_tao_brgn_mat_explicit", "true"));
+  // Exact data: stop once the misfit is round-off of the data themselves.
+  double largest_strain = 0.0;
+  for (double y : data.strain) largest_strain = std::max(largest_strain, std::abs(y));
+  const double round_off = 1e-14 * largest_strain;
+  const double misfit_floor = 0.5 * double(samples) * round_off * round_off;
+  PetscCall(TaoSetFunctionLowerBound(tao, misfit_floor));
+  // Levenberg-Marquardt damping: the default proximal term stalls the
+  // line search near the optimum. With five unknowns, forming J^T J beats a
+  // matrix-free Hessian by far.
+  PetscCall(set_default_option("-fit_tao_brgn_regularization_type", "lm"));
+  PetscCall(set_default_option("-fit_tao_brgn_mat_explicit", "true"));
   PetscCall(TaoSetFromOptions(tao));
+  PetscBool is_brgn = PETSC_FALSE;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(tao), TAOBRGN, &is_brgn));
+  if (is_brgn) {
+    Tao subsolver = nullptr;
+    PetscCall(TaoBRGNGetSubsolver(tao, &subsolver));
+    PetscCall(TaoSetFunctionLowerBound(subsolver, misfit_floor));
+  }
   PetscCall(TaoSolve(tao));
 
   TaoConvergedReason reason;

@@ -1,0 +1,37 @@
+// Run with mpiexec -n 2: the residual and Jacobian rows of the fit are spread
+// over the ranks; the result must equal the one-rank fit to solver tolerance.
+
+#include "solvers/creep_fit.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace sartor {
+namespace {
+
+TEST(CreepFitMpi, TwoRanksGiveTheOneRankResult) {
+  PetscMPIInt size = 1;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  ASSERT_GE(size, 2) << "run this test under mpiexec -n 2";
+  for (const char* name : {"cotton_twill_warp", "silk_weft", "polyester_warp"}) {
+    const CreepTestData data =
+        read_creep_test_data(std::string(SARTOR_CASES_DIR) + "/fit/" + name + ".csv", {});
+    const ThesisEstimate start = thesis_estimate(data);
+    CreepFit parallel, serial;
+    ASSERT_EQ(fit_creep_test(PETSC_COMM_WORLD, data, start.parameters, 0.95, &parallel), 0);
+    ASSERT_EQ(fit_creep_test(PETSC_COMM_SELF, data, start.parameters, 0.95, &serial), 0);
+    ASSERT_TRUE(parallel.converged && serial.converged) << name;
+    for (std::size_t j = 0; j < creep_test_parameter_count; ++j) {
+      const double a = parallel.estimates[j].value;
+      const double b = serial.estimates[j].value;
+      EXPECT_NEAR(a, b, 1e-8 * std::abs(b)) << name << " " << creep_test_parameter_names()[j];
+      EXPECT_NEAR(parallel.estimates[j].std_error, serial.estimates[j].std_error,
+                  1e-6 * serial.estimates[j].std_error);
+    }
+    EXPECT_NEAR(parallel.rmse, serial.rmse, 1e-10 * serial.rmse);
+  }
+}
+
+} // namespace
+} // namespace sartor
