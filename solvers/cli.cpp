@@ -1,5 +1,5 @@
-#include "solvers/petsc_call.hpp"
 #include "solvers/cli.hpp"
+#include "solvers/petsc_call.hpp"
 
 #include "common/error.hpp"
 
@@ -20,7 +20,8 @@ std::string database_key(const std::string& name) {
 
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t j = 0; j <= b.size(); ++j)
+    row[j] = j;
   for (std::size_t i = 1; i <= a.size(); ++i) {
     std::size_t diagonal = row[0];
     row[0] = i;
@@ -146,7 +147,7 @@ std::string Options::text(const std::string& name) const {
   char buffer[PETSC_MAX_PATH_LEN] = "";
   PetscBool set = PETSC_FALSE;
   SartorPetscCall(PetscOptionsGetString(nullptr, nullptr, database_key(name).c_str(), buffer,
-                                       sizeof buffer, &set));
+                                        sizeof buffer, &set));
   if (!set) return option.fallback;
   if (buffer[0] == '\0' && !option.value_name.empty()) {
     throw InputError("option --" + name + " needs a value (" + option.value_name + ")");

@@ -16,10 +16,10 @@
 namespace sartor {
 
 struct OptionSpec {
-  std::string name;        // long name without dashes, e.g. "load-duration"
-  std::string value_name;  // e.g. "SECONDS"; empty for a flag
-  std::string fallback;    // default value as text; empty: no default
-  std::string help;        // one line, with units
+  std::string name;       // long name without dashes, e.g. "load-duration"
+  std::string value_name; // e.g. "SECONDS"; empty for a flag
+  std::string fallback;   // default value as text; empty: no default
+  std::string help;       // one line, with units
 };
 
 struct CommandSpec {

@@ -4,16 +4,16 @@
 #include "common/error.hpp"
 #include "common/output.hpp"
 #include "material/strip_creep.hpp"
-#include "solvers/petsc_call.hpp"
 #include "solvers/commands.hpp"
+#include "solvers/petsc_call.hpp"
 
 #include <nlohmann/json.hpp>
 #include <petscsys.h>
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <sstream>
 
 namespace sartor {
@@ -65,19 +65,19 @@ std::string csv_text(const std::vector<StripState>& rows) {
   for (const auto& r : rows) {
     out << format_number(r.time) << ',' << format_number(r.tension) << ','
         << format_number(r.strain_total) << ',' << format_number(r.strain_elastic) << ','
-        << format_number(r.strain_viscoelastic) << ',' << format_number(r.strain_permanent)
-        << '\n';
+        << format_number(r.strain_viscoelastic) << ',' << format_number(r.strain_permanent) << '\n';
   }
   return out.str();
 }
 
 nlohmann::json material_json(const DirectionalMaterial& material) {
   nlohmann::json curve = nlohmann::json::array();
-  for (const auto& p : material.elastic.points()) curve.push_back({p.strain, p.tension});
-  nlohmann::json elastic = material.elastic.is_linear()
-                               ? nlohmann::json{{"modulus_N_per_m",
-                                                 material.elastic.initial_modulus()}}
-                               : nlohmann::json{{"curve_strain_tension", curve}};
+  for (const auto& p : material.elastic.points())
+    curve.push_back({p.strain, p.tension});
+  nlohmann::json elastic =
+      material.elastic.is_linear()
+          ? nlohmann::json{{"modulus_N_per_m", material.elastic.initial_modulus()}}
+          : nlohmann::json{{"curve_strain_tension", curve}};
   return {{"E_N_per_m", material.creep.creep_modulus},
           {"alpha", material.creep.alpha},
           {"lambda_load_per_s", material.creep.lambda_load},
@@ -104,8 +104,8 @@ nlohmann::json state_json(const StripState& s) {
 std::string file_label(const MaterialChoice& choice) {
   std::string label = choice.fabric.name + "_" + name_of(choice.direction);
   std::replace_if(
-      label.begin(), label.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)) && c != '_'; },
-      '_');
+      label.begin(), label.end(),
+      [](char c) { return !std::isalnum(static_cast<unsigned char>(c)) && c != '_'; }, '_');
   return label;
 }
 
@@ -119,7 +119,8 @@ int run_creep(const Invocation& invocation) {
     const double modulus = options.positive_real("elastic-modulus");
     for (auto& choice : choices) {
       const std::string context = choice.label() + " (--elastic-modulus)";
-      auto& material = choice.direction == Direction::warp ? choice.fabric.warp : choice.fabric.weft;
+      auto& material =
+          choice.direction == Direction::warp ? choice.fabric.warp : choice.fabric.weft;
       material->elastic = TensionCurve::linear(modulus, context);
     }
   }
@@ -160,7 +161,8 @@ int run_creep(const Invocation& invocation) {
   summary["runs"] = nlohmann::json::array();
   for (const auto& choice : choices) {
     const std::vector<StripState> rows = simulate_strip(choice.material(), history, times);
-    const std::string csv = choices.size() == 1 ? "creep.csv" : "creep_" + file_label(choice) + ".csv";
+    const std::string csv =
+        choices.size() == 1 ? "creep.csv" : "creep_" + file_label(choice) + ".csv";
     if (is_root()) write_file_atomically(directory + "/" + csv, csv_text(rows));
     nlohmann::json run = {{"name", choice.label()},
                           {"fabric", choice.fabric.name},
@@ -178,16 +180,17 @@ int run_creep(const Invocation& invocation) {
       run["end_of_loading"] = state_json(state_at(rows, std::nextafter(unload, 0.0)));
     }
     summary["runs"].push_back(run);
-    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "  %-22s total strain %.4f%% at t = %s s (%zu rows)\n",
-                          choice.label().c_str(), 100.0 * rows.back().strain_total,
-                          format_number(rows.back().time).c_str(), rows.size()));
+    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                                "  %-22s total strain %.4f%% at t = %s s (%zu rows)\n",
+                                choice.label().c_str(), 100.0 * rows.back().strain_total,
+                                format_number(rows.back().time).c_str(), rows.size()));
   }
   summary["wall_time_s"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   if (is_root()) write_json(directory + "/summary.json", summary);
   if (!options.flag("no-plot")) make_plot("plot_creep.py", directory);
-  SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "sartor creep: wrote %s (%zu run%s)\n", directory.c_str(),
-                        choices.size(), choices.size() == 1 ? "" : "s"));
+  SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "sartor creep: wrote %s (%zu run%s)\n",
+                              directory.c_str(), choices.size(), choices.size() == 1 ? "" : "s"));
   return 0;
 }
 

@@ -15,8 +15,7 @@ namespace sartor {
 
 const std::array<const char*, creep_test_parameter_count>& creep_test_parameter_names() {
   static const std::array<const char*, creep_test_parameter_count> names = {
-      "elastic_modulus_N_per_m", "E_N_per_m", "alpha", "lambda_load_per_s",
-      "lambda_unload_per_s"};
+      "elastic_modulus_N_per_m", "E_N_per_m", "alpha", "lambda_load_per_s", "lambda_unload_per_s"};
   return names;
 }
 
@@ -26,7 +25,9 @@ constexpr std::size_t minimum_phase_samples = 5;
 constexpr double saturation_threshold = 0.99; // thesis App. A: "full saturation"
 constexpr double log_parameter_range = 20.0;
 
-std::string describe_time(double t) { return format_number(t) + " s"; }
+std::string describe_time(double t) {
+  return format_number(t) + " s";
+}
 
 double mean_of(const std::vector<double>& values, std::size_t begin, std::size_t end) {
   return std::accumulate(values.begin() + long(begin), values.begin() + long(end), 0.0) /
@@ -52,15 +53,18 @@ void settle_times_from_tension(CreepTestData& data, const CsvTable& table, std::
   const double peak = *std::max_element(values.begin(), values.end()) * scale;
   if (!(peak > 0.0)) throw InputError(data.path + ": the " + what + " column is never positive");
   std::size_t on = 0;
-  while (on < values.size() && values[on] * scale < 0.5 * peak) ++on;
+  while (on < values.size() && values[on] * scale < 0.5 * peak)
+    ++on;
   std::size_t off = on;
-  while (off < values.size() && values[off] * scale >= 0.5 * peak) ++off;
+  while (off < values.size() && values[off] * scale >= 0.5 * peak)
+    ++off;
   if (off == values.size()) {
     throw InputError(data.path + ": the " + what +
                      " column never drops after loading; a creep-and-recovery test is needed");
   }
   std::vector<double> loaded(values.begin() + long(on), values.begin() + long(off));
-  for (double& v : loaded) v *= scale;
+  for (double& v : loaded)
+    v *= scale;
   const double mean = mean_of(loaded, 0, loaded.size());
   double worst = 0.0;
   std::size_t worst_row = on;
@@ -82,8 +86,8 @@ void settle_times_from_tension(CreepTestData& data, const CsvTable& table, std::
   if (!data.load_time_origin.empty() && !data.unload_time_origin.empty()) return;
   if (data.load_time_origin.empty()) {
     data.test.load_time = data.time[on];
-    data.load_time_origin = "first sample (line " + std::to_string(table.lines[on]) +
-                            ") where the " + what + " is on";
+    data.load_time_origin =
+        "first sample (line " + std::to_string(table.lines[on]) + ") where the " + what + " is on";
   }
   if (data.unload_time_origin.empty()) {
     data.test.unload_time = data.time[off];
@@ -208,7 +212,8 @@ double fit_exponential_rate(const std::vector<double>& tau, const std::vector<do
   double log_rate = std::log(std::log(2.0) / std::max(half_time, shortest));
   std::vector<double> decay(tau.size());
   const auto compute_decay = [&](double rate) {
-    for (std::size_t i = 0; i < tau.size(); ++i) decay[i] = rate * tau[i];
+    for (std::size_t i = 0; i < tau.size(); ++i)
+      decay[i] = rate * tau[i];
     exp_of_negative(decay.data(), decay.data(), decay.size());
   };
   const auto misfit = [&](double lr) {
@@ -337,10 +342,9 @@ struct FitContext {
 PetscErrorCode parameters_of(FitContext* context, Vec x, CreepTestParameters* parameters) {
   const PetscScalar* q = nullptr;
   PetscFunctionBeginUser;
-  PetscCall(VecScatterBegin(context->to_all, x, context->everywhere, INSERT_VALUES,
-                            SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(context->to_all, x, context->everywhere, INSERT_VALUES,
-                          SCATTER_FORWARD));
+  PetscCall(
+      VecScatterBegin(context->to_all, x, context->everywhere, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(context->to_all, x, context->everywhere, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecGetArrayRead(context->everywhere, &q));
   CreepTestVector values;
   std::copy(q, q + creep_test_parameter_count, values.begin());
@@ -360,7 +364,8 @@ PetscErrorCode evaluate_residual(Tao, Vec x, Vec residual, void* pointer) {
   evaluate_creep_test(context->data->test, parameters, context->data->time.data() + context->begin,
                       count, r);
   const double* measured = context->data->strain.data() + context->begin;
-  for (std::size_t i = 0; i < count; ++i) r[i] -= measured[i];
+  for (std::size_t i = 0; i < count; ++i)
+    r[i] -= measured[i];
   PetscCall(VecRestoreArray(residual, &r));
   PetscFunctionReturn(0);
 }
@@ -400,14 +405,15 @@ PetscErrorCode sum_statistics(MPI_Comm comm, FitContext* context,
   const double* measured = context->data->strain.data() + context->begin;
   std::vector<double> model(count);
   std::vector<double> jacobian(count * creep_test_parameter_count);
-  evaluate_creep_test(context->data->test, parameters, times, count, model.data(),
-                      jacobian.data(), count);
+  evaluate_creep_test(context->data->test, parameters, times, count, model.data(), jacobian.data(),
+                      count);
   constexpr std::size_t p = creep_test_parameter_count;
   double local[p * p + 3] = {};
   for (std::size_t a = 0; a < p; ++a) {
     for (std::size_t b = 0; b < p; ++b) {
       double sum = 0.0;
-      for (std::size_t i = 0; i < count; ++i) sum += jacobian[a * count + i] * jacobian[b * count + i];
+      for (std::size_t i = 0; i < count; ++i)
+        sum += jacobian[a * count + i] * jacobian[b * count + i];
       local[a * p + b] = sum;
     }
   }
@@ -420,7 +426,8 @@ PetscErrorCode sum_statistics(MPI_Comm comm, FitContext* context,
   double global[p * p + 3];
   PetscCallMPI(MPIU_Allreduce(local, global, int(p * p + 3), MPI_DOUBLE, MPI_SUM, comm));
   for (std::size_t a = 0; a < p; ++a) {
-    for (std::size_t b = 0; b < p; ++b) sums->normal(long(a), long(b)) = global[a * p + b];
+    for (std::size_t b = 0; b < p; ++b)
+      sums->normal(long(a), long(b)) = global[a * p + b];
   }
   sums->squared_residual = global[p * p];
   sums->strain = global[p * p + 1];
@@ -443,8 +450,8 @@ void fill_statistics(const CreepTestData& data, const FitSums& sums, CreepFit* f
   // fitted through its logarithm, se(value) = value * se(log value).
   const Eigen::Matrix<double, p, p> covariance =
       variance * sums.normal.completeOrthogonalDecomposition().pseudoInverse();
-  const double t = student_t_quantile(0.5 + 0.5 * fit->confidence_level,
-                                      double(fit->degrees_of_freedom));
+  const double t =
+      student_t_quantile(0.5 + 0.5 * fit->confidence_level, double(fit->degrees_of_freedom));
   const CreepTestParameters& v = fit->parameters;
   const std::array<double, creep_test_parameter_count> values = {
       v.elastic_modulus, v.creep_modulus, v.alpha, v.lambda_load, v.lambda_unload};
@@ -456,8 +463,10 @@ void fill_statistics(const CreepTestData& data, const FitSums& sums, CreepFit* f
     estimate.std_error = logarithmic ? estimate.value * q_error : q_error;
     // Intervals are symmetric in the fit variable: positive parameters keep
     // positive limits.
-    estimate.ci_low = logarithmic ? estimate.value * std::exp(-t * q_error) : estimate.value - t * q_error;
-    estimate.ci_high = logarithmic ? estimate.value * std::exp(t * q_error) : estimate.value + t * q_error;
+    estimate.ci_low =
+        logarithmic ? estimate.value * std::exp(-t * q_error) : estimate.value - t * q_error;
+    estimate.ci_high =
+        logarithmic ? estimate.value * std::exp(t * q_error) : estimate.value + t * q_error;
     for (long k = 0; k < p; ++k) {
       const double scale = std::sqrt(covariance(j, j) * covariance(k, k));
       fit->correlation[std::size_t(j)][std::size_t(k)] =
@@ -472,11 +481,12 @@ void fill_statistics(const CreepTestData& data, const FitSums& sums, CreepFit* f
   fit->loading_saturated = fit->loading_saturation >= saturation_threshold;
   fit->recovery_relaxed = fit->recovery_remaining <= 1.0 - saturation_threshold;
   if (!fit->loading_saturated) {
-    fit->warnings.push_back(
-        "the loading reached only " + format_number(std::round(1000 * fit->loading_saturation) / 10) +
-        "% of saturation (lambda_load x loading time = " +
-        format_number(std::round(100 * v.lambda_load * loading) / 100) +
-        "): E and alpha rest on extrapolation of the creep curve (thesis App. A) and are uncertain");
+    fit->warnings.push_back("the loading reached only " +
+                            format_number(std::round(1000 * fit->loading_saturation) / 10) +
+                            "% of saturation (lambda_load x loading time = " +
+                            format_number(std::round(100 * v.lambda_load * loading) / 100) +
+                            "): E and alpha rest on extrapolation of the creep curve (thesis App. "
+                            "A) and are uncertain");
   }
   if (!fit->recovery_relaxed) {
     fit->warnings.push_back(
@@ -559,7 +569,8 @@ PetscErrorCode fit_creep_test(MPI_Comm comm, const CreepTestData& data,
   PetscCall(TaoSetMaximumIterations(tao, 200));
   // Exact data: stop once the misfit is round-off of the data themselves.
   double largest_strain = 0.0;
-  for (double y : data.strain) largest_strain = std::max(largest_strain, std::abs(y));
+  for (double y : data.strain)
+    largest_strain = std::max(largest_strain, std::abs(y));
   const double round_off = 1e-14 * largest_strain;
   const double misfit_floor = 0.5 * double(samples) * round_off * round_off;
   PetscCall(TaoSetFunctionLowerBound(tao, misfit_floor));

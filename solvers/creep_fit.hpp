@@ -45,9 +45,9 @@ CreepTestData read_creep_test_data(const std::string& path, const CreepTestDescr
 // saturation. Throws InputError when the data cannot support it.
 struct ThesisEstimate {
   CreepTestParameters parameters;
-  double immediate_strain = 0.0;      // jump at load application
-  double nonelastic_at_unload = 0.0;  // eps_v + eps_p at the end of loading
-  double permanent_at_end = 0.0;      // strain at the end of recovery
+  double immediate_strain = 0.0;     // jump at load application
+  double nonelastic_at_unload = 0.0; // eps_v + eps_p at the end of loading
+  double permanent_at_end = 0.0;     // strain at the end of recovery
   std::vector<std::string> notes;
 };
 ThesisEstimate thesis_estimate(const CreepTestData& data);

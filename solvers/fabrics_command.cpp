@@ -1,8 +1,8 @@
 // sartor fabrics: the built-in fabric parameter sets.
 
 #include "material/fabric.hpp"
-#include "solvers/petsc_call.hpp"
 #include "solvers/commands.hpp"
+#include "solvers/petsc_call.hpp"
 
 #include <nlohmann/json.hpp>
 #include <petscsys.h>
@@ -26,8 +26,9 @@ const CommandSpec& fabrics_command() {
 int run_fabrics(const Invocation& invocation) {
   nlohmann::json list = nlohmann::json::array();
   if (!invocation.options.flag("json")) {
-    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "%-20s %10s %7s %12s %14s %16s\n", "name", "E (N/m)",
-                          "alpha", "lambda_load", "lambda_unload", "elastic (N/m)"));
+    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "%-20s %10s %7s %12s %14s %16s\n", "name",
+                                "E (N/m)", "alpha", "lambda_load", "lambda_unload",
+                                "elastic (N/m)"));
   }
   for (const auto& preset : fabric_presets()) {
     const Fabric fabric = preset_fabric(preset.name);
@@ -42,17 +43,17 @@ int run_fabrics(const Invocation& invocation) {
                       {"elastic_modulus_N_per_m", m.elastic.initial_modulus()}});
       if (!invocation.options.flag("json")) {
         SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "%-20s %10.0f %7.3f %12.4g %14.4g %16.0f\n",
-                              name.c_str(), m.creep.creep_modulus, m.creep.alpha,
-                              m.creep.lambda_load, m.creep.lambda_unload,
-                              m.elastic.initial_modulus()));
+                                    name.c_str(), m.creep.creep_modulus, m.creep.alpha,
+                                    m.creep.lambda_load, m.creep.lambda_unload,
+                                    m.elastic.initial_modulus()));
       }
     }
   }
   if (invocation.options.flag("json")) {
     SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s\n", list.dump(2).c_str()));
   } else {
-    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD,
-                          "\ncreep: thesis Table 5.1; elastic: assumed 2E (not in the thesis)\n"));
+    SartorPetscCall(PetscPrintf(
+        PETSC_COMM_WORLD, "\ncreep: thesis Table 5.1; elastic: assumed 2E (not in the thesis)\n"));
   }
   return 0;
 }

@@ -3,10 +3,10 @@
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
-#include "solvers/petsc_call.hpp"
+#include "material/fabric.hpp"
 #include "solvers/commands.hpp"
 #include "solvers/creep_fit.hpp"
-#include "material/fabric.hpp"
+#include "solvers/petsc_call.hpp"
 
 #include <nlohmann/json.hpp>
 #include <petscsys.h>
@@ -114,9 +114,8 @@ int run_fit(const Invocation& invocation) {
   }
   const std::string direction = options.text("direction");
   parse_direction(direction, "option --direction");
-  const std::string name = options.is_set("name")
-                               ? options.text("name")
-                               : std::filesystem::path(path).stem().string();
+  const std::string name =
+      options.is_set("name") ? options.text("name") : std::filesystem::path(path).stem().string();
 
   CreepTestDescription given;
   given.tension = optional_positive(options, "tension");
@@ -153,8 +152,10 @@ int run_fit(const Invocation& invocation) {
   nlohmann::json parameters = nlohmann::json::object();
   for (std::size_t j = 0; j < creep_test_parameter_count; ++j) {
     const ParameterEstimate& e = fit.estimates[j];
-    parameters[creep_test_parameter_names()[j]] = {
-        {"value", e.value}, {"std_error", e.std_error}, {"ci_low", e.ci_low}, {"ci_high", e.ci_high}};
+    parameters[creep_test_parameter_names()[j]] = {{"value", e.value},
+                                                   {"std_error", e.std_error},
+                                                   {"ci_low", e.ci_low},
+                                                   {"ci_high", e.ci_high}};
   }
   report["parameters"] = parameters;
   report["correlation"] = {{"order", creep_test_parameter_names()}, {"matrix", fit.correlation}};
@@ -187,8 +188,8 @@ int run_fit(const Invocation& invocation) {
     }
   }
   if (!fit.converged) {
-    throw InputError("the least-squares refinement did not converge (TAO: " +
-                     fit.converged_reason + "); " + directory +
+    throw InputError("the least-squares refinement did not converge (TAO: " + fit.converged_reason +
+                     "); " + directory +
                      "/fit.json holds the thesis estimate and the last iterate");
   }
 
@@ -199,12 +200,13 @@ int run_fit(const Invocation& invocation) {
     const ParameterEstimate& e = fit.estimates[j];
     char line[200];
     std::snprintf(line, sizeof line, "  %-24s %-12.6g +- %-10.3g (%.4g%% CI %.6g .. %.6g)\n",
-                  creep_test_parameter_names()[j], e.value, e.std_error, 100 * confidence,
-                  e.ci_low, e.ci_high);
+                  creep_test_parameter_names()[j], e.value, e.std_error, 100 * confidence, e.ci_low,
+                  e.ci_high);
     SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s", line));
   }
   SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "  RMSE %.3g, R^2 %.6f, %ld TAO iterations (%s)\n",
-                        fit.rmse, fit.r_squared, fit.iterations, fit.converged_reason.c_str()));
+                              fit.rmse, fit.r_squared, fit.iterations,
+                              fit.converged_reason.c_str()));
   for (const auto& warning : fit.warnings) {
     SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "  warning: %s\n", warning.c_str()));
   }

@@ -61,7 +61,8 @@ PetscErrorCode warn_about_unused_options() {
 int run_with_petsc(const Command& command, sartor::ParsedCommandLine parsed,
                    std::vector<std::string> arguments) {
   std::vector<char*> petsc_argv;
-  for (auto& argument : parsed.petsc_arguments) petsc_argv.push_back(argument.data());
+  for (auto& argument : parsed.petsc_arguments)
+    petsc_argv.push_back(argument.data());
   petsc_argv.push_back(nullptr);
   int argc = int(petsc_argv.size()) - 1;
   char** argv = petsc_argv.data();

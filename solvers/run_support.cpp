@@ -22,7 +22,8 @@ nlohmann::json run_metadata(const Invocation& invocation, const std::string& com
   PetscMPIInt size = 1;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   nlohmann::json options = nlohmann::json::object();
-  for (const auto& [name, value] : invocation.options.effective()) options[name] = value;
+  for (const auto& [name, value] : invocation.options.effective())
+    options[name] = value;
   return {{"sartor_version", SARTOR_VERSION},
           {"command", command},
           {"arguments", invocation.arguments},

@@ -6,8 +6,8 @@
 #include "common/output.hpp"
 #include "material/creep_recovery_model.hpp"
 #include "material/fabric.hpp"
-#include "solvers/petsc_call.hpp"
 #include "solvers/commands.hpp"
+#include "solvers/petsc_call.hpp"
 
 #include <petscsys.h>
 
@@ -29,7 +29,8 @@ const CommandSpec& synth_command() {
       "Twister seeded with --seed, so files are reproducible). The file is labelled\n"
       "synthetic in its header and reads back with `sartor fit`.",
       {
-          {"fabric", "SPEC", "cotton_twill:warp", "one fabric direction: preset:dir or FILE.yaml:dir"},
+          {"fabric", "SPEC", "cotton_twill:warp",
+           "one fabric direction: preset:dir or FILE.yaml:dir"},
           {"force", "N", "196.133", "test force (20 kgf)"},
           {"width", "M", "0.08", "strip width, m"},
           {"tension", "N/M", "", "test tension per unit width, N/m (instead of force/width)"},
@@ -77,8 +78,7 @@ int run_synth(const Invocation& invocation) {
   const Options& options = invocation.options;
   const auto choices = resolve_fabrics(options.text("fabric"));
   if (choices.size() != 1) {
-    throw InputError("option --fabric: synth needs one direction, e.g. " +
-                     choices.front().label());
+    throw InputError("option --fabric: synth needs one direction, e.g. " + choices.front().label());
   }
   const MaterialChoice& choice = choices.front();
   const double tension = options.is_set("tension")
@@ -87,7 +87,8 @@ int run_synth(const Invocation& invocation) {
   const double load_duration = options.positive_real("load-duration");
   const double recovery_duration = options.positive_real("recovery-duration");
   const long samples = options.integer("samples");
-  if (samples < 10) throw InputError("option --samples: need at least 10, got " + options.text("samples"));
+  if (samples < 10)
+    throw InputError("option --samples: need at least 10, got " + options.text("samples"));
   const double noise = options.nonnegative_real("noise");
   const long seed = options.integer("seed");
 
@@ -103,7 +104,8 @@ int run_synth(const Invocation& invocation) {
 
   const double duration = load_duration + recovery_duration;
   std::vector<double> times(static_cast<std::size_t>(samples));
-  for (long i = 0; i < samples; ++i) times[std::size_t(i)] = double(i) * duration / double(samples);
+  for (long i = 0; i < samples; ++i)
+    times[std::size_t(i)] = double(i) * duration / double(samples);
   std::vector<double> strain(times.size());
   evaluate_creep_test(test, parameters, times.data(), times.size(), strain.data());
   GaussianNoise gaussian(static_cast<unsigned long long>(seed));
@@ -117,8 +119,8 @@ int run_synth(const Invocation& invocation) {
       << " alpha=" << format_number(parameters.alpha)
       << " lambda_load_per_s=" << format_number(parameters.lambda_load)
       << " lambda_unload_per_s=" << format_number(parameters.lambda_unload) << "\n"
-      << "# test: tension " << format_number(tension) << " N/m applied at t = 0 s, removed at t = "
-      << format_number(load_duration) << " s\n"
+      << "# test: tension " << format_number(tension)
+      << " N/m applied at t = 0 s, removed at t = " << format_number(load_duration) << " s\n"
       << "# noise: strain + N(0, " << format_number(noise) << "^2), independent, seed " << seed
       << " (Box-Muller on mt19937_64)\n"
       << "time_s,tension_N_per_m,strain\n";
@@ -134,7 +136,7 @@ int run_synth(const Invocation& invocation) {
     write_file_atomically(path, out.str());
   }
   SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "sartor synth: wrote %s (%ld samples of %s)\n",
-                        path.c_str(), samples, choice.label().c_str()));
+                              path.c_str(), samples, choice.label().c_str()));
   return 0;
 }
 

@@ -53,9 +53,11 @@ std::size_t CsvTable::require(const std::vector<std::string>& accepted,
                               const std::string& meaning) const {
   if (const auto column = find(accepted)) return *column;
   std::string expected;
-  for (const auto& name : accepted) expected += (expected.empty() ? "'" : " or '") + name + "'";
+  for (const auto& name : accepted)
+    expected += (expected.empty() ? "'" : " or '") + name + "'";
   std::string present;
-  for (const auto& name : names) present += (present.empty() ? "" : ", ") + name;
+  for (const auto& name : names)
+    present += (present.empty() ? "" : ", ") + name;
   throw InputError(path + ": missing column " + expected + " (" + meaning +
                    "); the header has: " + present);
 }

@@ -6,7 +6,8 @@ namespace sartor {
 
 void exp_of_negative(const double* x, double* out, std::size_t count) {
 #pragma omp simd
-  for (std::size_t i = 0; i < count; ++i) out[i] = std::exp(-x[i]);
+  for (std::size_t i = 0; i < count; ++i)
+    out[i] = std::exp(-x[i]);
 }
 
 } // namespace sartor

@@ -60,8 +60,7 @@ double advance_viscoelastic(double strain, double target, double slope, double r
 }
 
 // Permanent strain: creeps up towards its target at `rate` and never recovers.
-double advance_permanent(double strain, double target, double slope, double rate,
-                         double duration) {
+double advance_permanent(double strain, double target, double slope, double rate, double duration) {
   double elapsed = 0.0;
   for (int branch_change = 0; branch_change < 3; ++branch_change) {
     const double target_now = target + slope * elapsed;
@@ -85,15 +84,14 @@ double advance_permanent(double strain, double target, double slope, double rate
 }
 
 CreepState advance_without_sign_change(const CreepParameters& p, const CreepState& state,
-                                       double tension_begin, double tension_end,
-                                       double duration) {
+                                       double tension_begin, double tension_end, double duration) {
   if (duration <= 0.0) return state;
   const double saturation_begin = saturation_strain(p, tension_begin);
   const double saturation_slope = (saturation_strain(p, tension_end) - saturation_begin) / duration;
   CreepState next;
-  next.viscoelastic = advance_viscoelastic(
-      state.viscoelastic, (1.0 - p.alpha) * saturation_begin, (1.0 - p.alpha) * saturation_slope,
-      p.lambda_load, p.lambda_unload, duration);
+  next.viscoelastic = advance_viscoelastic(state.viscoelastic, (1.0 - p.alpha) * saturation_begin,
+                                           (1.0 - p.alpha) * saturation_slope, p.lambda_load,
+                                           p.lambda_unload, duration);
   next.permanent = advance_permanent(state.permanent, p.alpha * saturation_begin,
                                      p.alpha * saturation_slope, p.lambda_load, duration);
   return next;
@@ -108,8 +106,8 @@ void validate(const CreepParameters& p, const std::string& context) {
           "must lie in [0, 1]");
   require(std::isfinite(p.lambda_load) && p.lambda_load > 0.0, context, "lambda_load (1/s)",
           p.lambda_load, "must be a finite number > 0");
-  require(std::isfinite(p.lambda_unload) && p.lambda_unload > 0.0, context,
-          "lambda_unload (1/s)", p.lambda_unload, "must be a finite number > 0");
+  require(std::isfinite(p.lambda_unload) && p.lambda_unload > 0.0, context, "lambda_unload (1/s)",
+          p.lambda_unload, "must be a finite number > 0");
 }
 
 double saturation_strain(const CreepParameters& p, double tension) {

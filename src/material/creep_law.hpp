@@ -38,7 +38,7 @@ double saturation_strain(const CreepParameters& parameters, double tension);
 
 // Advances `state` over `duration` seconds while the tension (N/m) goes
 // linearly from `tension_begin` to `tension_end`.
-CreepState advance(const CreepParameters& parameters, const CreepState& state,
-                   double tension_begin, double tension_end, double duration);
+CreepState advance(const CreepParameters& parameters, const CreepState& state, double tension_begin,
+                   double tension_end, double duration);
 
 } // namespace sartor

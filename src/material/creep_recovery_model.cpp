@@ -8,8 +8,8 @@
 namespace sartor {
 
 CreepTestVector to_fit_variables(const CreepTestParameters& p) {
-  return {std::log(p.elastic_modulus), std::log(p.creep_modulus), p.alpha,
-          std::log(p.lambda_load), std::log(p.lambda_unload)};
+  return {std::log(p.elastic_modulus), std::log(p.creep_modulus), p.alpha, std::log(p.lambda_load),
+          std::log(p.lambda_unload)};
 }
 
 CreepTestParameters from_fit_variables(const CreepTestVector& q) {
@@ -53,8 +53,8 @@ void evaluate_creep_test(const CreepTest& test, const CreepTestParameters& p, co
       column(0)[i] = -elastic * (1.0 + creep);
       column(1)[i] = -(1.0 + elastic) * creep;
       column(2)[i] = 0.0;
-      column(3)[i] = (1.0 + elastic) * saturation * (times[i] - test.load_time) * p.lambda_load *
-                     remaining;
+      column(3)[i] =
+          (1.0 + elastic) * saturation * (times[i] - test.load_time) * p.lambda_load * remaining;
       column(4)[i] = 0.0;
     }
   }

@@ -75,8 +75,8 @@ public:
     if (!root.IsMap()) fail(root, "a fabric file is a mapping with keys name, warp, weft");
     check_keys(root, {"name", "source", "warp", "weft"});
     Fabric fabric;
-    fabric.name = root["name"] ? scalar(root["name"], "name")
-                               : std::filesystem::path(path_).stem().string();
+    fabric.name =
+        root["name"] ? scalar(root["name"], "name") : std::filesystem::path(path_).stem().string();
     fabric.source = root["source"] ? scalar(root["source"], "source") : path_;
     if (root["warp"]) fabric.warp = direction(root["warp"], fabric.name + ":warp");
     if (root["weft"]) fabric.weft = direction(root["weft"], fabric.name + ":weft");
@@ -94,7 +94,8 @@ private:
       const std::string key = entry.first.as<std::string>();
       if (allowed.count(key) == 0) {
         std::string list;
-        for (const auto& k : allowed) list += (list.empty() ? "" : ", ") + k;
+        for (const auto& k : allowed)
+          list += (list.empty() ? "" : ", ") + k;
         fail(entry.first, "unknown key '" + key + "' (expected one of: " + list + ")");
       }
     }
@@ -118,8 +119,8 @@ private:
 
   DirectionalMaterial direction(const YAML::Node& node, const std::string& context) const {
     if (!node.IsMap()) fail(node, context + " must be a mapping of parameters");
-    check_keys(node, {"E", "alpha", "lambda_load", "lambda_unload", "elastic_modulus",
-                      "elastic_curve"});
+    check_keys(node,
+               {"E", "alpha", "lambda_load", "lambda_unload", "elastic_modulus", "elastic_curve"});
     for (const char* key : {"E", "alpha", "lambda_load", "lambda_unload"}) {
       if (!node[key]) fail(node, context + ": missing '" + key + "'");
     }
@@ -173,7 +174,9 @@ Fabric preset_fabric(const std::string& name) {
                    "; or give a fabric file ending in .yaml)");
 }
 
-Fabric load_fabric_file(const std::string& path) { return FabricFileReader(path).read(); }
+Fabric load_fabric_file(const std::string& path) {
+  return FabricFileReader(path).read();
+}
 
 std::vector<MaterialChoice> resolve_fabrics(const std::string& spec) {
   std::vector<MaterialChoice> choices;
@@ -183,7 +186,8 @@ std::vector<MaterialChoice> resolve_fabrics(const std::string& spec) {
     }
   };
   if (spec == "all") {
-    for (const auto& preset : fabric_presets()) add_both(preset_fabric(preset.name));
+    for (const auto& preset : fabric_presets())
+      add_both(preset_fabric(preset.name));
     return choices;
   }
   std::string name = spec;

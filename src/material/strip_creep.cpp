@@ -91,7 +91,8 @@ std::vector<double> uniform_sample_times(const TensionHistory& history, double i
   std::vector<double> times;
   const double span = history.end_time() - history.start_time();
   const auto count = static_cast<long>(std::floor(span / interval));
-  for (long k = 1; k <= count; ++k) times.push_back(history.start_time() + double(k) * interval);
+  for (long k = 1; k <= count; ++k)
+    times.push_back(history.start_time() + double(k) * interval);
   return times;
 }
 

@@ -44,9 +44,9 @@ private:
 
 struct StripState {
   double time = 0.0;
-  double tension = 0.0;         // N/m
+  double tension = 0.0; // N/m
   double strain_total = 0.0;
-  double strain_elastic = 0.0;  // immediate-elastic elongation over the rest length
+  double strain_elastic = 0.0; // immediate-elastic elongation over the rest length
   double strain_viscoelastic = 0.0;
   double strain_permanent = 0.0;
 };

@@ -79,7 +79,9 @@ double TensionCurve::tension(double strain) const {
   return points_[i].tension + slopes_[i] * (strain - points_[i].strain);
 }
 
-double TensionCurve::stiffness(double strain) const { return slopes_[segment_of_strain(strain)]; }
+double TensionCurve::stiffness(double strain) const {
+  return slopes_[segment_of_strain(strain)];
+}
 
 double TensionCurve::energy_density(double strain) const {
   const std::size_t i = segment_of_strain(strain);
@@ -88,9 +90,8 @@ double TensionCurve::energy_density(double strain) const {
 }
 
 double TensionCurve::strain_at_tension(double tension) const {
-  const auto upper =
-      std::upper_bound(points_.begin() + 1, points_.end() - 1, tension,
-                       [](double t, const CurvePoint& p) { return t < p.tension; });
+  const auto upper = std::upper_bound(points_.begin() + 1, points_.end() - 1, tension,
+                                      [](double t, const CurvePoint& p) { return t < p.tension; });
   const std::size_t i = static_cast<std::size_t>(upper - points_.begin()) - 1;
   return points_[i].strain + (tension - points_[i].tension) / slopes_[i];
 }

@@ -29,10 +29,12 @@ CreepTestData make_data(const CreepTest& test, const CreepTestParameters& p, std
   data.test = test;
   std::mt19937_64 generator(seed);
   std::normal_distribution<double> gaussian(0.0, 1.0);
-  for (std::size_t i = 0; i < samples; ++i) data.time.push_back(end_time * double(i) / double(samples));
+  for (std::size_t i = 0; i < samples; ++i)
+    data.time.push_back(end_time * double(i) / double(samples));
   data.strain.resize(samples);
   evaluate_creep_test(test, p, data.time.data(), samples, data.strain.data());
-  for (double& s : data.strain) s += noise * gaussian(generator);
+  for (double& s : data.strain)
+    s += noise * gaussian(generator);
   data.line.assign(samples, 0);
   return data;
 }
@@ -51,7 +53,8 @@ std::array<double, 5> values_of(const CreepTestParameters& p) {
 
 TEST(CreepTestModel, JacobianMatchesFiniteDifferences) {
   std::vector<double> times;
-  for (double t : {-1.0, 0.0, 0.5, 3.0, 40.0, 3599.0, 3600.0, 3601.0, 5000.0, 7199.0}) times.push_back(t);
+  for (double t : {-1.0, 0.0, 0.5, 3.0, 40.0, 3599.0, 3600.0, 3601.0, 5000.0, 7199.0})
+    times.push_back(t);
   const std::size_t n = times.size();
   std::vector<double> strain(n), jacobian(5 * n);
   evaluate_creep_test(thesis_test, cotton_twill_warp, times.data(), n, strain.data(),
@@ -113,13 +116,14 @@ TEST(CreepFit, RecoversTheShippedSyntheticCasesWithinTheirConfidenceIntervals) {
   // cases/fit/*.csv were made by `sartor synth` from Table 5.1 with noise 2e-4.
   const std::regex parameter(R"((\w+)=([-+0-9.eE]+))");
   int outside_95 = 0;
-  for (const char* name : {"cotton_twill_warp", "cotton_twill_weft", "silk_warp", "silk_weft",
-                           "denim_warp", "denim_weft", "nylon_warp", "nylon_weft",
-                           "polyester_warp", "polyester_weft"}) {
+  for (const char* name :
+       {"cotton_twill_warp", "cotton_twill_weft", "silk_warp", "silk_weft", "denim_warp",
+        "denim_weft", "nylon_warp", "nylon_weft", "polyester_warp", "polyester_weft"}) {
     const std::string path = std::string(SARTOR_CASES_DIR) + "/fit/" + name + ".csv";
     std::ifstream in(path);
     std::string header, line;
-    for (int i = 0; i < 3 && std::getline(in, line); ++i) header += line;
+    for (int i = 0; i < 3 && std::getline(in, line); ++i)
+      header += line;
     std::map<std::string, double> truth;
     for (std::sregex_iterator it(header.begin(), header.end(), parameter), end; it != end; ++it) {
       truth[(*it)[1]] = std::stod((*it)[2]);
@@ -151,7 +155,8 @@ TEST(CreepFit, ConfidenceIntervalsHaveTheirNominalCoverage) {
     const CreepTestData data = make_data(thesis_test, truth, 2400, 7200.0, 2e-4, unsigned(100 + r));
     const CreepFit fit = fit_data(data, PETSC_COMM_SELF);
     for (std::size_t j = 0; j < 5; ++j) {
-      covered[j] += expected[j] >= fit.estimates[j].ci_low && expected[j] <= fit.estimates[j].ci_high;
+      covered[j] +=
+          expected[j] >= fit.estimates[j].ci_low && expected[j] <= fit.estimates[j].ci_high;
     }
   }
   for (std::size_t j = 0; j < 5; ++j) {
@@ -196,18 +201,21 @@ void expect_data_error(const std::string& content, const CreepTestDescription& g
 TEST(CreepFitData, RejectsDataThatCannotDetermineTheParameters) {
   std::ostringstream loading_only;
   loading_only << "time_s,strain\n";
-  for (int i = 0; i < 20; ++i) loading_only << i << "," << 0.03 + 0.001 * (1 - std::exp(-0.1 * i)) << "\n";
+  for (int i = 0; i < 20; ++i)
+    loading_only << i << "," << 0.03 + 0.001 * (1 - std::exp(-0.1 * i)) << "\n";
   expect_data_error(loading_only.str(), {2450.0, {}, {}, {}, {}}, "cannot find the unloading");
   expect_data_error(loading_only.str(), {2450.0, {}, {}, {}, 17.0}, "3 during recovery");
   expect_data_error("time_s,strain\n0,0.1\n1,0.1\n", {2450.0, {}, {}, {}, {}}, "too few");
   std::ostringstream no_tension;
   no_tension << "time_s,strain\n";
-  for (int i = 0; i < 20; ++i) no_tension << i << ",0.01\n";
+  for (int i = 0; i < 20; ++i)
+    no_tension << i << ",0.01\n";
   expect_data_error(no_tension.str(), {}, "no tension");
   expect_data_error(no_tension.str(), {std::nullopt, 100.0, std::nullopt, {}, {}}, "--width");
   std::ostringstream varying;
   varying << "time_s,tension_N_per_m,strain\n";
-  for (int i = 0; i < 20; ++i) varying << i << "," << (i < 10 ? 1000 + 100 * i : 0) << ",0.01\n";
+  for (int i = 0; i < 20; ++i)
+    varying << i << "," << (i < 10 ? 1000 + 100 * i : 0) << ",0.01\n";
   expect_data_error(varying.str(), {}, "constant-force test");
 }
 
