@@ -58,8 +58,8 @@ std::size_t CsvTable::require(const std::vector<std::string>& accepted,
   std::string present;
   for (const auto& name : names)
     present += (present.empty() ? "" : ", ") + name;
-  throw InputError(path + ": missing column " + expected + " (" + meaning +
-                   "); the header has: " + present);
+  throw InputError(path, header_line,
+                   "missing column " + expected + " (" + meaning + "); the header has: " + present);
 }
 
 CsvTable read_csv(const std::string& path) {
@@ -92,6 +92,7 @@ CsvTable read_csv(const std::string& path) {
         }
       }
       table.names = fields;
+      table.header_line = number;
       table.columns.assign(fields.size(), {});
       have_header = true;
       continue;

@@ -14,6 +14,7 @@ struct CsvTable {
   std::vector<std::string> names;           // lower-case, trimmed
   std::vector<std::vector<double>> columns; // columns[c][row]
   std::vector<long> lines;                  // file line of each row (1-based)
+  long header_line = 0;                     // file line of the header (1-based)
 
   std::size_t rows() const { return lines.size(); }
   std::optional<std::size_t> find(const std::vector<std::string>& accepted) const;

@@ -23,64 +23,70 @@ void require(bool ok, const std::string& context, const char* name, double value
   throw InputError(message.str());
 }
 
-// Gap g = eps - tau of a Kelvin element whose target tau moves with constant
-// `slope` (1/s), after `time` seconds at rate `rate`:
-//   dg/dt = -rate g - slope.
-double relaxed_gap(double gap, double slope, double rate, double time) {
-  const double decay = std::exp(-rate * time);
-  return gap * decay + (slope / rate) * std::expm1(-rate * time);
+// x + expm1(-x) = x^2/2 - x^3/6 + ..., without cancellation for small x.
+double expm1_negative_plus(double x) {
+  if (x > 0.1) return std::expm1(-x) + x;
+  double term = x * x / 2.0;
+  double sum = term;
+  for (int k = 3; k < 20 && std::abs(term) > 1e-17 * sum; ++k) {
+    term *= -x / k;
+    sum += term;
+  }
+  return sum;
 }
 
-// Time at which that gap reaches zero, or `never`.
+// A Kelvin element eps' = rate (tau - eps) whose target tau starts at
+// `target` and moves with `slope` (1/s), after `time` seconds. Two algebraically
+// equal forms: the first keeps full precision when rate*time is small (it
+// adds a small change to eps), the second when it is large (it adds a small
+// remainder to the target).
+double kelvin_update(double strain, double target, double slope, double rate, double time) {
+  const double x = rate * time;
+  const double gap = strain - target;
+  if (x < std::log(2.0)) {
+    return strain + gap * std::expm1(-x) + slope * expm1_negative_plus(x) / rate;
+  }
+  return target + slope * time + gap * std::exp(-x) + (slope / rate) * std::expm1(-x);
+}
+
+// Time at which the gap eps - tau of that element reaches zero, or `never`:
+// the gap obeys g' = -rate g - slope, so it is monotone and closes at most once.
 double gap_closing_time(double gap, double slope, double rate) {
   if (gap * slope <= 0.0) return never;
   return std::log1p(gap * rate / slope) / rate;
 }
 
-// Viscoelastic strain: two-rate Kelvin element, rate_below while under its
-// target and rate_above at or over it. The gap is monotone within a step of
-// constant slope, so it changes branch at most once.
+// Viscoelastic strain: rate_below while under its target, rate_above at or
+// over it. Once the gap closes the element follows the other branch, whose gap
+// moves away from zero for the rest of the step: at most one switch.
 double advance_viscoelastic(double strain, double target, double slope, double rate_below,
                             double rate_above, double duration) {
-  double gap = strain - target;
-  double elapsed = 0.0;
-  for (int branch_change = 0; branch_change < 2; ++branch_change) {
-    const bool below = gap < 0.0 || (gap == 0.0 && slope > 0.0);
-    const double rate = below ? rate_below : rate_above;
-    const double remaining = duration - elapsed;
-    const double closing = gap_closing_time(gap, slope, rate);
-    if (closing >= remaining) {
-      gap = relaxed_gap(gap, slope, rate, remaining);
-      break;
-    }
-    elapsed += closing;
-    gap = 0.0;
-  }
-  return target + slope * duration + gap;
+  const double gap = strain - target;
+  const bool below = gap < 0.0 || (gap == 0.0 && slope > 0.0);
+  const double rate = below ? rate_below : rate_above;
+  const double closing = gap_closing_time(gap, slope, rate);
+  if (closing >= duration) return kelvin_update(strain, target, slope, rate, duration);
+  const double target_at_switch = target + slope * closing;
+  return kelvin_update(target_at_switch, target_at_switch, slope, below ? rate_above : rate_below,
+                       duration - closing);
 }
 
-// Permanent strain: creeps up towards its target at `rate` and never recovers.
+// Permanent strain: creeps up towards its target at `rate`, never recovers.
+// A falling target that the strain catches freezes it for the rest of the
+// step; a rising target that catches a frozen strain makes it creep for the
+// rest of the step: again at most one switch.
 double advance_permanent(double strain, double target, double slope, double rate, double duration) {
-  double elapsed = 0.0;
-  for (int branch_change = 0; branch_change < 3; ++branch_change) {
-    const double target_now = target + slope * elapsed;
-    const double gap = strain - target_now;
-    const double remaining = duration - elapsed;
-    const bool creeping = gap < 0.0 || (gap == 0.0 && slope > 0.0);
-    if (creeping) {
-      const double closing = gap_closing_time(gap, slope, rate);
-      if (closing >= remaining) {
-        return target + slope * duration + relaxed_gap(gap, slope, rate, remaining);
-      }
-      elapsed += closing;
-      strain = target + slope * elapsed;
-    } else {
-      const double reached = slope > 0.0 ? gap / slope : never;
-      if (reached >= remaining) return strain;
-      elapsed += reached;
-    }
+  const double gap = strain - target;
+  const bool creeping = gap < 0.0 || (gap == 0.0 && slope > 0.0);
+  if (creeping) {
+    const double closing = gap_closing_time(gap, slope, rate);
+    if (closing >= duration) return kelvin_update(strain, target, slope, rate, duration);
+    return target + slope * closing;
   }
-  return strain;
+  const double reached = slope > 0.0 ? gap / slope : never;
+  if (reached >= duration) return strain;
+  const double target_at_switch = target + slope * reached;
+  return kelvin_update(target_at_switch, target_at_switch, slope, rate, duration - reached);
 }
 
 CreepState advance_without_sign_change(const CreepParameters& p, const CreepState& state,

@@ -51,15 +51,16 @@ struct StripState {
   double strain_permanent = 0.0;
 };
 
-// Sample times strictly between the breakpoints: `per_decade` log-spaced times
-// after every change of the history, from `first_offset` seconds on.
+// `per_decade` log-spaced times after every change of the history's value or
+// slope, from `first_offset` seconds on, to its end; sorted, no repeats.
 std::vector<double> log_sample_times(const TensionHistory& history, double first_offset,
                                      int per_decade);
 // Every `interval` seconds from the start of the history.
 std::vector<double> uniform_sample_times(const TensionHistory& history, double interval);
 
 // The response at every breakpoint (both sides of a jump) and at `sample_times`
-// (sorted). Exact: the creep law is integrated in closed form between rows.
+// (sorted; a time equal to a breakpoint's adds no row). Exact: the creep law
+// is integrated in closed form between rows.
 std::vector<StripState> simulate_strip(const DirectionalMaterial& material,
                                        const TensionHistory& history,
                                        const std::vector<double>& sample_times);
