@@ -337,52 +337,67 @@ struct FitContext {
   PetscInt end = 0;
   VecScatter to_all = nullptr;
   Vec everywhere = nullptr; // the fit variables, replicated
+  // TAO asks for the residual and the Jacobian at the same points; both come
+  // from one pass over the samples, kept for the last point asked.
+  CreepTestVector cached_at{};
+  bool cache_valid = false;
+  std::vector<double> model;    // this rank's model strains
+  std::vector<double> jacobian; // column-major, leading dimension end - begin
 };
 
-PetscErrorCode parameters_of(FitContext* context, Vec x, CreepTestParameters* parameters) {
-  const PetscScalar* q = nullptr;
+PetscErrorCode fit_variables_of(FitContext* context, Vec x, CreepTestVector* q) {
+  const PetscScalar* values = nullptr;
   PetscFunctionBeginUser;
   PetscCall(
       VecScatterBegin(context->to_all, x, context->everywhere, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(context->to_all, x, context->everywhere, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGetArrayRead(context->everywhere, &q));
-  CreepTestVector values;
-  std::copy(q, q + creep_test_parameter_count, values.begin());
-  *parameters = from_fit_variables(values);
-  PetscCall(VecRestoreArrayRead(context->everywhere, &q));
+  PetscCall(VecGetArrayRead(context->everywhere, &values));
+  std::copy(values, values + creep_test_parameter_count, q->begin());
+  PetscCall(VecRestoreArrayRead(context->everywhere, &values));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode evaluate_model(FitContext* context, Vec x) {
+  CreepTestVector q;
+  PetscFunctionBeginUser;
+  PetscCall(fit_variables_of(context, x, &q));
+  if (context->cache_valid && q == context->cached_at) PetscFunctionReturn(0);
+  const auto count = std::size_t(context->end - context->begin);
+  context->model.resize(count);
+  context->jacobian.resize(count * creep_test_parameter_count);
+  evaluate_creep_test(context->data->test, from_fit_variables(q),
+                      context->data->time.data() + context->begin, count, context->model.data(),
+                      context->jacobian.data(), count);
+  context->cached_at = q;
+  context->cache_valid = true;
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode evaluate_residual(Tao, Vec x, Vec residual, void* pointer) {
   auto* context = static_cast<FitContext*>(pointer);
-  CreepTestParameters parameters;
   PetscScalar* r = nullptr;
   PetscFunctionBeginUser;
-  PetscCall(parameters_of(context, x, &parameters));
+  PetscCall(evaluate_model(context, x));
   PetscCall(VecGetArray(residual, &r));
-  const auto count = std::size_t(context->end - context->begin);
-  evaluate_creep_test(context->data->test, parameters, context->data->time.data() + context->begin,
-                      count, r);
   const double* measured = context->data->strain.data() + context->begin;
-  for (std::size_t i = 0; i < count; ++i)
-    r[i] -= measured[i];
+  for (std::size_t i = 0; i < context->model.size(); ++i)
+    r[i] = context->model[i] - measured[i];
   PetscCall(VecRestoreArray(residual, &r));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode evaluate_jacobian(Tao, Vec x, Mat jacobian, Mat, void* pointer) {
   auto* context = static_cast<FitContext*>(pointer);
-  CreepTestParameters parameters;
   PetscScalar* entries = nullptr;
   PetscInt leading = 0;
   PetscFunctionBeginUser;
-  PetscCall(parameters_of(context, x, &parameters));
+  PetscCall(evaluate_model(context, x));
   PetscCall(MatDenseGetLDA(jacobian, &leading));
   PetscCall(MatDenseGetArrayWrite(jacobian, &entries));
-  const auto count = std::size_t(context->end - context->begin);
-  std::vector<double> model(count);
-  evaluate_creep_test(context->data->test, parameters, context->data->time.data() + context->begin,
-                      count, model.data(), entries, std::size_t(leading));
+  const std::size_t count = context->model.size();
+  for (std::size_t j = 0; j < creep_test_parameter_count; ++j) {
+    std::copy_n(context->jacobian.data() + j * count, count, entries + j * std::size_t(leading));
+  }
   PetscCall(MatDenseRestoreArrayWrite(jacobian, &entries));
   PetscCall(MatAssemblyBegin(jacobian, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(jacobian, MAT_FINAL_ASSEMBLY));
@@ -397,16 +412,13 @@ struct FitSums {
   double squared_strain = 0.0;
 };
 
-PetscErrorCode sum_statistics(MPI_Comm comm, FitContext* context,
-                              const CreepTestParameters& parameters, FitSums* sums) {
+PetscErrorCode sum_statistics(MPI_Comm comm, FitContext* context, Vec x, FitSums* sums) {
   PetscFunctionBeginUser;
-  const auto count = std::size_t(context->end - context->begin);
-  const double* times = context->data->time.data() + context->begin;
+  PetscCall(evaluate_model(context, x));
+  const std::size_t count = context->model.size();
   const double* measured = context->data->strain.data() + context->begin;
-  std::vector<double> model(count);
-  std::vector<double> jacobian(count * creep_test_parameter_count);
-  evaluate_creep_test(context->data->test, parameters, times, count, model.data(), jacobian.data(),
-                      count);
+  const std::vector<double>& model = context->model;
+  const std::vector<double>& jacobian = context->jacobian;
   constexpr std::size_t p = creep_test_parameter_count;
   double local[p * p + 3] = {};
   for (std::size_t a = 0; a < p; ++a) {
@@ -600,9 +612,11 @@ PetscErrorCode fit_creep_test(MPI_Comm comm, const CreepTestData& data,
   fit->iterations = iterations;
   fit->solver = type;
 
-  PetscCall(parameters_of(&context, x, &fit->parameters));
+  CreepTestVector solution;
+  PetscCall(fit_variables_of(&context, x, &solution));
+  fit->parameters = from_fit_variables(solution);
   FitSums sums;
-  PetscCall(sum_statistics(comm, &context, fit->parameters, &sums));
+  PetscCall(sum_statistics(comm, &context, x, &sums));
   PetscCallCXX(fill_statistics(data, sums, fit));
 
   PetscCall(TaoDestroy(&tao));
