@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 namespace sartor {
@@ -78,16 +79,23 @@ ParsedCommandLine parse_command_line(const CommandSpec& spec, const std::string&
       const OptionSpec* option = lookup(spec, name);
       if (!option) unknown_option(spec, name);
       if (option->value_name.empty()) {
-        if (has_value) throw InputError("option --" + name + " takes no value");
+        if (has_value) {
+          throw InputError("sartor " + spec.name + ": option --" + name + " takes no value");
+        }
         value = "true";
       } else if (!has_value) {
         if (i + 1 == arguments.size()) {
-          throw InputError("option --" + name + " needs a value (" + option->value_name + ")");
+          throw InputError("sartor " + spec.name + ": option --" + name + " needs a value (" +
+                           option->value_name + ")");
         }
         value = arguments[++i];
       }
       parsed.petsc_arguments.push_back(database_key(name));
       parsed.petsc_arguments.push_back(value);
+    } else if ((argument == "-options_file_yaml" || argument == "-options_file") &&
+               i + 1 < arguments.size() && !std::ifstream(arguments[i + 1])) {
+      throw InputError("sartor " + spec.name + ": " + arguments[i + 1] +
+                       ": cannot open options file (" + argument + ")");
     } else if (argument.size() > 1 && argument[0] == '-') {
       // A PETSc option; a following word that is not an option is its value.
       parsed.petsc_arguments.push_back(argument);

@@ -85,11 +85,10 @@ nlohmann::json material_json(const DirectionalMaterial& material) {
           {"elastic", elastic}};
 }
 
-// The state at the last row at or before `time` (after any jump there).
-const StripState& state_at(const std::vector<StripState>& rows, double time) {
-  const auto after = std::upper_bound(rows.begin(), rows.end(), time,
-                                      [](double t, const StripState& r) { return t < r.time; });
-  return *(after - 1);
+// The first row at `time`: at a jump, the state just before it.
+const StripState& first_row_at(const std::vector<StripState>& rows, double time) {
+  return *std::lower_bound(rows.begin(), rows.end(), time,
+                           [](const StripState& r, double t) { return r.time < t; });
 }
 
 nlohmann::json state_json(const StripState& s) {
@@ -127,6 +126,16 @@ int run_creep(const Invocation& invocation) {
 
   nlohmann::json load;
   const bool from_file = options.is_set("tension-history");
+  for (const char* test_option :
+       {"force", "width", "tension", "load-duration", "recovery-duration"}) {
+    if (from_file && options.is_set(test_option)) {
+      throw InputError(std::string("--tension-history replaces the constant-force test; drop --") +
+                       test_option);
+    }
+  }
+  if (options.is_set("tension") && (options.is_set("force") || options.is_set("width"))) {
+    throw InputError("give --tension or --force with --width, not both");
+  }
   const TensionHistory history = [&] {
     if (from_file) {
       const std::string path = options.text("tension-history");
@@ -177,7 +186,7 @@ int run_creep(const Invocation& invocation) {
       const double tension = load["tension_N_per_m"];
       const double unload = load["load_duration_s"];
       run["saturation_creep_strain"] = saturation_strain(choice.material().creep, tension);
-      run["end_of_loading"] = state_json(state_at(rows, std::nextafter(unload, 0.0)));
+      run["end_of_loading"] = state_json(first_row_at(rows, unload));
     }
     summary["runs"].push_back(run);
     SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD,

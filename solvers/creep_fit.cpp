@@ -158,10 +158,12 @@ CreepTestData read_creep_test_data(const std::string& path, const CreepTestDescr
   if (const auto column = table.find({"tension_n_per_m", "tension"})) {
     settle_times_from_tension(data, table, *column, 1.0, "tension");
   } else if (const auto force = table.find({"force_n", "force"})) {
-    if (!given.width) {
+    if (!given.width && !given.tension) {
       throw InputError(path + ": the force column needs --width (m), the specimen width");
     }
-    settle_times_from_tension(data, table, *force, 1.0 / *given.width, "force / width");
+    // With --tension the column only tells when the load was on.
+    const double to_tension = given.width ? 1.0 / *given.width : 1.0;
+    settle_times_from_tension(data, table, *force, to_tension, "force / width");
   } else {
     if (!data.test.tension) {
       throw InputError(path + ": no tension: give --tension (N/m), or --force (N) and --width "

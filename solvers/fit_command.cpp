@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 #include <petscsys.h>
+#include <yaml-cpp/yaml.h>
 
 #include <chrono>
 #include <cstdio>
@@ -89,18 +90,18 @@ std::string fit_csv(const CreepTestData& data, const CreepTestParameters& parame
 
 std::string fabric_yaml(const std::string& name, const std::string& direction,
                         const std::string& source, const CreepTestParameters& p) {
-  std::ostringstream out;
-  out << "# Written by sartor fit from " << source << "\n"
-      << "name: " << name << "\n"
-      << "source: \"sartor fit of " << source << "\"\n"
-      << direction << ":\n"
-      << "  E: " << format_number(p.creep_modulus) << "  # N/m\n"
-      << "  alpha: " << format_number(p.alpha) << "\n"
-      << "  lambda_load: " << format_number(p.lambda_load) << "  # 1/s\n"
-      << "  lambda_unload: " << format_number(p.lambda_unload) << "  # 1/s\n"
-      << "  elastic_modulus: " << format_number(p.elastic_modulus)
-      << "  # N/m, secant modulus at the test load\n";
-  return out.str();
+  YAML::Emitter out;
+  out.SetDoublePrecision(17);
+  out << YAML::Comment("Written by sartor fit; loads with sartor creep --fabric FILE")
+      << YAML::BeginMap << YAML::Key << "name" << YAML::Value << name << YAML::Key << "source"
+      << YAML::Value << "sartor fit of " + source << YAML::Key << direction << YAML::Value
+      << YAML::BeginMap << YAML::Key << "E" << YAML::Value << p.creep_modulus
+      << YAML::Comment("N/m") << YAML::Key << "alpha" << YAML::Value << p.alpha << YAML::Key
+      << "lambda_load" << YAML::Value << p.lambda_load << YAML::Comment("1/s") << YAML::Key
+      << "lambda_unload" << YAML::Value << p.lambda_unload << YAML::Comment("1/s") << YAML::Key
+      << "elastic_modulus" << YAML::Value << p.elastic_modulus
+      << YAML::Comment("N/m, secant modulus at the test load") << YAML::EndMap << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
 }
 
 } // namespace

@@ -3,11 +3,13 @@
 
 #include "common/error.hpp"
 #include "solvers/commands.hpp"
+#include "solvers/petsc_call.hpp"
 
 #include <petscsys.h>
 
 #include <cstdio>
 #include <exception>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -42,6 +44,33 @@ const Command* find_command(const std::string& name) {
   return nullptr;
 }
 
+// PETSc's message alone for a bad option value or input; its full traceback
+// for anything else, which is a bug worth reporting.
+PetscErrorCode report_petsc_error(MPI_Comm comm, int line, const char* function, const char* file,
+                                  PetscErrorCode code, PetscErrorType type, const char* message,
+                                  void* context) {
+  if (!sartor::is_petsc_user_error(code)) {
+    return PetscTraceBackErrorHandler(comm, line, function, file, code, type, message, context);
+  }
+  if (type == PETSC_ERROR_INITIAL && message) {
+    PetscMPIInt rank = 0;
+    MPI_Comm_rank(comm, &rank);
+    if (rank == 0) std::fprintf(stderr, "PETSc: %s\n", message);
+  }
+  return code;
+}
+
+// A bug, not a user's mistake. Other ranks may be waiting in a collective
+// call, so a parallel run is aborted.
+int report_internal_error(const Command& command, const std::exception& error) {
+  std::fprintf(stderr, "sartor %s: internal error: %s\n", command.spec().name.c_str(),
+               error.what());
+  PetscMPIInt size = 1;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  if (size > 1) MPI_Abort(PETSC_COMM_WORLD, 1);
+  return 1;
+}
+
 // Options that had no effect are most often typos (in a YAML case, say).
 PetscErrorCode warn_about_unused_options() {
   PetscInt count = 0;
@@ -50,7 +79,10 @@ PetscErrorCode warn_about_unused_options() {
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsLeftGet(nullptr, &count, &names, &values));
   for (PetscInt i = 0; i < count; ++i) {
-    if (std::string(names[i]) == "options_left") continue;
+    // PETSc reads these itself, in PetscFinalize.
+    static const std::set<std::string> read_at_exit = {
+        "options_left", "options_view", "malloc_dump", "memory_view", "objects_dump"};
+    if (read_at_exit.count(names[i])) continue;
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "sartor: warning: option -%s%s%s was not used\n",
                           names[i], values[i] ? " " : "", values[i] ? values[i] : ""));
   }
@@ -67,6 +99,7 @@ int run_with_petsc(const Command& command, sartor::ParsedCommandLine parsed,
   int argc = int(petsc_argv.size()) - 1;
   char** argv = petsc_argv.data();
   PetscCall(PetscInitialize(&argc, &argv, nullptr, nullptr));
+  PetscCall(PetscPushErrorHandler(report_petsc_error, nullptr));
 
   int status = 1;
   try {
@@ -79,13 +112,18 @@ int run_with_petsc(const Command& command, sartor::ParsedCommandLine parsed,
       std::fprintf(stderr, "sartor %s: error: %s\n", command.spec().name.c_str(), error.what());
     }
     status = 1;
+  } catch (const sartor::PetscFailure& error) {
+    if (error.is_user_error()) {
+      if (sartor::is_root()) {
+        std::fprintf(stderr, "sartor %s: error: PETSc rejected an option or input (above)\n",
+                     command.spec().name.c_str());
+      }
+      status = 1;
+    } else {
+      status = report_internal_error(command, error);
+    }
   } catch (const std::exception& error) {
-    std::fprintf(stderr, "sartor %s: internal error: %s\n", command.spec().name.c_str(),
-                 error.what());
-    PetscMPIInt size = 1;
-    MPI_Comm_size(PETSC_COMM_WORLD, &size);
-    if (size > 1) MPI_Abort(PETSC_COMM_WORLD, 1);
-    status = 1;
+    status = report_internal_error(command, error);
   }
   if (status == 0) PetscCall(warn_about_unused_options());
   PetscCall(PetscFinalize());

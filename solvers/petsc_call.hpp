@@ -11,11 +11,24 @@
 
 namespace sartor {
 
+// Errors PETSc raises for a bad option value or input, not for a bug.
+inline bool is_petsc_user_error(PetscErrorCode code) {
+  return code == PETSC_ERR_ARG_UNKNOWN_TYPE || code == PETSC_ERR_ARG_WRONG ||
+         code == PETSC_ERR_ARG_OUTOFRANGE || code == PETSC_ERR_ARG_INCOMP ||
+         code == PETSC_ERR_USER_INPUT || code == PETSC_ERR_USER || code == PETSC_ERR_FILE_OPEN ||
+         code == PETSC_ERR_FILE_READ || code == PETSC_ERR_FILE_UNEXPECTED;
+}
+
 class PetscFailure : public std::runtime_error {
 public:
   PetscFailure(PetscErrorCode code, const char* file, int line)
       : std::runtime_error("PETSc error " + std::to_string(int(code)) + " at " + file + ":" +
-                           std::to_string(line)) {}
+                           std::to_string(line)),
+        code_(code) {}
+  bool is_user_error() const { return is_petsc_user_error(code_); }
+
+private:
+  PetscErrorCode code_;
 };
 
 } // namespace sartor

@@ -81,6 +81,9 @@ int run_synth(const Invocation& invocation) {
     throw InputError("option --fabric: synth needs one direction, e.g. " + choices.front().label());
   }
   const MaterialChoice& choice = choices.front();
+  if (options.is_set("tension") && (options.is_set("force") || options.is_set("width"))) {
+    throw InputError("give --tension or --force with --width, not both");
+  }
   const double tension = options.is_set("tension")
                              ? options.positive_real("tension")
                              : options.positive_real("force") / options.positive_real("width");

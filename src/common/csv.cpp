@@ -34,7 +34,7 @@ std::vector<std::string> split_fields(const std::string& line) {
 bool parse_number(const std::string& text, double& value) {
   const char* begin = text.data();
   const char* end = begin + text.size();
-  if (begin != end && *begin == '+') ++begin;
+  if (end - begin > 1 && *begin == '+' && begin[1] != '-') ++begin;
   const auto result = std::from_chars(begin, end, value);
   return result.ec == std::errc() && result.ptr == end && std::isfinite(value);
 }
@@ -76,6 +76,10 @@ CsvTable read_csv(const std::string& path) {
     if (content.empty() || content[0] == '#') continue;
     std::vector<std::string> fields = split_fields(content);
     if (!have_header) {
+      if (fields.size() == 1 && content.find_first_of(";\t") != std::string::npos) {
+        throw InputError(path, number,
+                         "columns must be separated by commas, got '" + content + "'");
+      }
       std::set<std::string> seen;
       for (auto& name : fields) {
         std::transform(name.begin(), name.end(), name.begin(),
@@ -107,7 +111,7 @@ CsvTable read_csv(const std::string& path) {
       if (!parse_number(fields[c], value)) {
         throw InputError(path, number,
                          "column '" + table.names[c] + "': '" + fields[c] +
-                             "' is not a finite number");
+                             "' is not a finite number within double range");
       }
       table.columns[c].push_back(value);
     }

@@ -197,8 +197,11 @@ std::vector<MaterialChoice> resolve_fabrics(const std::string& spec) {
     name = spec.substr(0, colon);
     direction = spec.substr(colon + 1);
   }
-  const bool is_file = name.size() > 5 && (name.substr(name.size() - 5) == ".yaml" ||
-                                           name.substr(name.size() - 4) == ".yml");
+  const auto ends_with = [&name](const std::string& suffix) {
+    return name.size() > suffix.size() &&
+           name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  const bool is_file = ends_with(".yaml") || ends_with(".yml");
   const Fabric fabric = is_file ? load_fabric_file(name) : preset_fabric(name);
   if (direction.empty()) {
     add_both(fabric);
