@@ -18,8 +18,6 @@ Needs only numpy and matplotlib; run it with /usr/bin/python3.
 """
 
 import argparse
-import csv
-import json
 import math
 import os
 import sys
@@ -31,12 +29,15 @@ try:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
     import matplotlib.ticker
 except ImportError as missing:  # pragma: no cover - depends on the interpreter
     sys.exit(
         "plot_fit.py: error: %s. This script needs numpy and matplotlib; run it with "
         "/usr/bin/python3 (Debian packages python3-numpy, python3-matplotlib)." % missing
     )
+
+from sartor_plotio import PlotError, read_csv_columns, read_json, save_figure, time_unit
 
 PROGRAM = "plot_fit.py"
 DPI = 150
@@ -56,62 +57,8 @@ LOAD_COLOUR = "tab:blue"
 RECOVERY_COLOUR = "tab:orange"
 
 
-class PlotError(Exception):
-    """An error the user can act on; printed without a traceback."""
-
-
 # --------------------------------------------------------------------------
 # Input
-
-
-def read_json(path):
-    if not os.path.isfile(path):
-        raise PlotError("%s: no such file" % path)
-    try:
-        with open(path, encoding="utf-8") as stream:
-            return json.load(stream)
-    except json.JSONDecodeError as error:
-        raise PlotError("%s:%d: not valid JSON: %s" % (path, error.lineno, error.msg))
-    except OSError as error:
-        raise PlotError("%s: cannot read: %s" % (path, error.strerror or error))
-
-
-def read_csv_columns(path, required):
-    """Columns of a numeric CSV file with a header line, as float arrays."""
-    if not os.path.isfile(path):
-        raise PlotError("%s: no such file" % path)
-    try:
-        with open(path, newline="", encoding="utf-8") as stream:
-            reader = csv.reader(stream)
-            header = next(reader, None)
-            if header is None:
-                raise PlotError("%s: empty file (expected a header line)" % path)
-            header = [name.strip() for name in header]
-            lowered = [name.lower() for name in header]
-            missing = [name for name in required if name.lower() not in lowered]
-            if missing:
-                raise PlotError(
-                    "%s:1: missing column(s) %s (header is: %s)"
-                    % (path, ", ".join(missing), ",".join(header))
-                )
-            index = [lowered.index(name.lower()) for name in required]
-            rows = []
-            for line, record in enumerate(reader, start=2):
-                if not record or all(not field.strip() for field in record):
-                    continue
-                try:
-                    rows.append([float(record[i]) for i in index])
-                except (ValueError, IndexError):
-                    raise PlotError(
-                        "%s:%d: expected %d numeric fields, got: %s"
-                        % (path, line, len(header), ",".join(record))
-                    )
-    except OSError as error:
-        raise PlotError("%s: cannot read: %s" % (path, error.strerror or error))
-    if not rows:
-        raise PlotError("%s: no data rows" % path)
-    data = np.array(rows, dtype=float)
-    return {name: data[:, k] for k, name in enumerate(required)}
 
 
 def number(value):
@@ -199,14 +146,6 @@ def format_like(value, error):
         step = 10.0 ** (-decimals)
         return "%.0f" % (round(value / step) * step)
     return "%.3g" % value
-
-
-def time_unit(span):
-    if span > 3 * 3600:
-        return 3600.0, "h"
-    if span > 3 * 60:
-        return 60.0, "min"
-    return 1.0, "s"
 
 
 # --------------------------------------------------------------------------
@@ -511,14 +450,9 @@ def main(argv=None):
     try:
         fit, data, csv_path = read_fit(args.outdir)
         output = args.output or os.path.join(args.outdir, "fit.png")
-        folder = os.path.dirname(os.path.abspath(output))
-        if not os.path.isdir(folder):
-            raise PlotError("%s: folder of the output file does not exist" % folder)
         fig = make_figure(fit, data, csv_path, args.max_points, args.title, args.no_estimate)
         try:
-            fig.savefig(output, dpi=DPI)
-        except OSError as error:
-            raise PlotError("%s: cannot write: %s" % (output, error.strerror or error))
+            save_figure(fig, output, DPI)
         finally:
             plt.close(fig)
     except PlotError as error:
