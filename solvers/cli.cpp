@@ -1,5 +1,5 @@
 #include "solvers/cli.hpp"
-#include "solvers/petsc_call.hpp"
+#include "fem/petsc_call.hpp"
 
 #include "common/error.hpp"
 
@@ -110,6 +110,13 @@ ParsedCommandLine parse_command_line(const CommandSpec& spec, const std::string&
     throw InputError("sartor " + spec.name + " takes " + std::to_string(spec.positionals) +
                      " argument(s), got " + std::to_string(parsed.positionals.size()) +
                      "; usage: " + spec.usage);
+  }
+  if (!parsed.help && spec.positional_is_options_file) {
+    const std::string& file = parsed.positionals.front();
+    if (!std::ifstream(file)) {
+      throw InputError("sartor " + spec.name + ": " + file + ": cannot open case file");
+    }
+    parsed.petsc_arguments.insert(parsed.petsc_arguments.begin() + 1, {"-options_file_yaml", file});
   }
   return parsed;
 }

@@ -29,6 +29,9 @@ struct CommandSpec {
   std::string description; // paragraphs printed by --help before the options
   std::vector<OptionSpec> options;
   std::size_t positionals = 0; // required positional arguments
+  // The first positional argument is a YAML options file (a case), read
+  // before the command line so that command-line options override it.
+  bool positional_is_options_file = false;
 };
 
 // The command line of one command, split into what is ours and what PETSc gets.

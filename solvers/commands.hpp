@@ -29,6 +29,8 @@ const CommandSpec& synth_command();
 int run_synth(const Invocation&);
 const CommandSpec& fabrics_command();
 int run_fabrics(const Invocation&);
+const CommandSpec& run_command();
+int run_run(const Invocation&);
 
 // Metadata every output JSON carries: version, command line, options used.
 nlohmann::json run_metadata(const Invocation& invocation, const std::string& command);

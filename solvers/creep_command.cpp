@@ -3,9 +3,9 @@
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
+#include "fem/petsc_call.hpp"
 #include "material/strip_creep.hpp"
 #include "solvers/commands.hpp"
-#include "solvers/petsc_call.hpp"
 
 #include <nlohmann/json.hpp>
 #include <petscsys.h>

@@ -1,8 +1,8 @@
 // sartor fabrics: the built-in fabric parameter sets.
 
+#include "fem/petsc_call.hpp"
 #include "material/fabric.hpp"
 #include "solvers/commands.hpp"
-#include "solvers/petsc_call.hpp"
 
 #include <nlohmann/json.hpp>
 #include <petscsys.h>

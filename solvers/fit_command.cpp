@@ -3,10 +3,10 @@
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
+#include "fem/petsc_call.hpp"
 #include "material/fabric.hpp"
 #include "solvers/commands.hpp"
 #include "solvers/creep_fit.hpp"
-#include "solvers/petsc_call.hpp"
 
 #include <nlohmann/json.hpp>
 #include <petscsys.h>

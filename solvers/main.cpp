@@ -2,8 +2,8 @@
 // command per capability; `sartor --help` lists them.
 
 #include "common/error.hpp"
+#include "fem/petsc_call.hpp"
 #include "solvers/commands.hpp"
-#include "solvers/petsc_call.hpp"
 
 #include <petscsys.h>
 
@@ -19,10 +19,9 @@ using sartor::Command;
 
 const std::vector<Command>& commands() {
   static const std::vector<Command> all = {
-      {sartor::creep_command, sartor::run_creep},
-      {sartor::fit_command, sartor::run_fit},
-      {sartor::synth_command, sartor::run_synth},
-      {sartor::fabrics_command, sartor::run_fabrics},
+      {sartor::creep_command, sartor::run_creep}, {sartor::fit_command, sartor::run_fit},
+      {sartor::synth_command, sartor::run_synth}, {sartor::fabrics_command, sartor::run_fabrics},
+      {sartor::run_command, sartor::run_run},
   };
   return all;
 }

@@ -4,10 +4,10 @@
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
+#include "fem/petsc_call.hpp"
 #include "material/creep_recovery_model.hpp"
 #include "material/fabric.hpp"
 #include "solvers/commands.hpp"
-#include "solvers/petsc_call.hpp"
 
 #include <petscsys.h>
 

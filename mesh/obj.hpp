@@ -1,0 +1,34 @@
+#pragma once
+// Wavefront OBJ for cloth meshes. The rest shape comes from the texture
+// coordinates: every face corner needs a vt, read as material (u, v) in
+// metres (times ObjReadOptions::uv_scale); v lines give the initial 3D
+// placement. Corners that share a v but not a vt keep their own uv, so a
+// closed tube's seam needs no duplicated vertices.
+//
+// Read: `v x y z [w | r g b]`, `vt u v [w]`, `f` with corners `a/b` or
+// `a/b/c` (normals ignored), 1-based or negative (relative) indices, polygons
+// fan-triangulated from their first corner; `#` comments, `\` line
+// continuations; `vn vp o g s usemtl mtllib l p` are ignored (material ids
+// are not read: the mesh comes back with none). Any other statement, a bad
+// number or index, a face without vt, a face that repeats a vertex, has no
+// material area or whose fan folds is an InputError at FILE:LINE; the result
+// passes validate().
+
+#include "mesh/triangle_mesh.hpp"
+
+#include <string>
+
+namespace sartor {
+
+struct ObjReadOptions {
+  double uv_scale = 1.0; // multiplies every vt: file units to metres
+};
+
+TriangleMesh read_obj(const std::string& path, const ObjReadOptions& options = {});
+
+// v per vertex, each distinct uv once as vt, f a/b per triangle, numbers in
+// the shortest form that reads back to the same double; written atomically
+// (complete or not at all). Material ids are not written.
+void write_obj(const std::string& path, const TriangleMesh& mesh);
+
+} // namespace sartor

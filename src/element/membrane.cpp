@@ -1,0 +1,227 @@
+#include "element/membrane.hpp"
+
+#include "common/error.hpp"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace sartor::element {
+
+namespace {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+
+// Material triangles flatter than this (|det| relative to the longest edge
+// squared) are rejected.
+constexpr double degenerate_ratio = 1e-12;
+// A column of F_e shorter than this has no direction (BW model).
+constexpr double min_stretch = 1e-12;
+
+// The elastic energy density W (J/m^2) as a function of the columns
+// a = F_e e1 and b = F_e e2, with its derivatives: gradient (dW/da, dW/db)
+// and the 3x3 blocks of the Hessian (Hab = d^2 W / da db^T).
+struct Density {
+  double energy = 0.0;
+  Vector3d grad_a = Vector3d::Zero();
+  Vector3d grad_b = Vector3d::Zero();
+  Matrix3d haa = Matrix3d::Zero();
+  Matrix3d hab = Matrix3d::Zero();
+  Matrix3d hbb = Matrix3d::Zero();
+};
+
+// The columns of F_e are linear in x: a = sum_i c_i x_i, b = sum_i d_i x_i.
+struct Columns {
+  Vector3d a;
+  Vector3d b;
+  Eigen::Vector3d c; // weights of x0, x1, x2 in a, 1/m
+  Eigen::Vector3d d; // weights of x0, x1, x2 in b, 1/m
+};
+
+Columns columns(const TriangleRest& rest, const NonelasticStrain& nonelastic, const Vector9& x) {
+  // F_e = [x1-x0 x2-x0] M^-1 diag(1+n_warp, 1+n_weft)^-1 = [x1-x0 x2-x0] B.
+  const Eigen::Matrix2d b_matrix =
+      rest.inverse_material *
+      Eigen::Vector2d(1.0 / (1.0 + nonelastic.warp), 1.0 / (1.0 + nonelastic.weft)).asDiagonal();
+  Columns k;
+  k.c << -(b_matrix(0, 0) + b_matrix(1, 0)), b_matrix(0, 0), b_matrix(1, 0);
+  k.d << -(b_matrix(0, 1) + b_matrix(1, 1)), b_matrix(0, 1), b_matrix(1, 1);
+  k.a = k.c(0) * x.segment<3>(0) + k.c(1) * x.segment<3>(3) + k.c(2) * x.segment<3>(6);
+  k.b = k.d(0) * x.segment<3>(0) + k.d(1) * x.segment<3>(3) + k.d(2) * x.segment<3>(6);
+  return k;
+}
+
+// Length of a column, its unit direction and the Hessian of the length,
+// (I - u u^T)/|v|; direction and Hessian are zero below min_stretch.
+struct Stretch {
+  double length = 0.0;
+  Vector3d unit = Vector3d::Zero();
+  Matrix3d hessian = Matrix3d::Zero();
+};
+
+Stretch stretch_of(const Vector3d& v) {
+  Stretch s;
+  s.length = v.norm();
+  if (s.length < min_stretch) return s;
+  s.unit = v / s.length;
+  s.hessian = (Matrix3d::Identity() - s.unit * s.unit.transpose()) / s.length;
+  return s;
+}
+
+// W = W_warp(|a| - 1) + W_weft(|b| - 1) + G (a.b)^2 / 2.
+Density baraff_witkin(const MembraneMaterial& material, const Vector3d& a, const Vector3d& b) {
+  const Stretch sa = stretch_of(a);
+  const Stretch sb = stretch_of(b);
+  const double eu = sa.length - 1.0;
+  const double ev = sb.length - 1.0;
+  const double g = a.dot(b);
+  const double shear = material.shear_modulus;
+  const double tu = material.warp.tension(eu);
+  const double tv = material.weft.tension(ev);
+  const double ku = material.warp.stiffness(eu);
+  const double kv = material.weft.stiffness(ev);
+
+  Density w;
+  w.energy =
+      material.warp.energy_density(eu) + material.weft.energy_density(ev) + 0.5 * shear * g * g;
+  w.grad_a = tu * sa.unit + shear * g * b;
+  w.grad_b = tv * sb.unit + shear * g * a;
+  w.haa = ku * sa.unit * sa.unit.transpose() + tu * sa.hessian + shear * b * b.transpose();
+  w.hbb = kv * sb.unit * sb.unit.transpose() + tv * sb.hessian + shear * a * a.transpose();
+  w.hab = shear * (b * a.transpose() + g * Matrix3d::Identity());
+  return w;
+}
+
+// c12 = poisson sqrt(k_warp k_weft), initial moduli.
+double coupling_modulus(const MembraneMaterial& material) {
+  return material.poisson *
+         std::sqrt(material.warp.initial_modulus() * material.weft.initial_modulus());
+}
+
+// W = W_warp(E11) + W_weft(E22) + c12 E11 E22 + G (a.b)^2 / 2, with
+// E11 = (a.a - 1)/2, E22 = (b.b - 1)/2 and a.b = 2 E12.
+Density saint_venant_kirchhoff(const MembraneMaterial& material, const Vector3d& a,
+                               const Vector3d& b) {
+  const double e11 = 0.5 * (a.squaredNorm() - 1.0);
+  const double e22 = 0.5 * (b.squaredNorm() - 1.0);
+  const double g = a.dot(b);
+  const double shear = material.shear_modulus;
+  const double c12 = coupling_modulus(material);
+  const double s11 = material.warp.tension(e11) + c12 * e22;
+  const double s22 = material.weft.tension(e22) + c12 * e11;
+  const double ku = material.warp.stiffness(e11);
+  const double kv = material.weft.stiffness(e22);
+  const Matrix3d identity = Matrix3d::Identity();
+
+  Density w;
+  w.energy = material.warp.energy_density(e11) + material.weft.energy_density(e22) +
+             c12 * e11 * e22 + 0.5 * shear * g * g;
+  w.grad_a = s11 * a + shear * g * b;
+  w.grad_b = s22 * b + shear * g * a;
+  w.haa = ku * a * a.transpose() + s11 * identity + shear * b * b.transpose();
+  w.hbb = kv * b * b.transpose() + s22 * identity + shear * a * a.transpose();
+  w.hab = c12 * a * b.transpose() + shear * (b * a.transpose() + g * identity);
+  return w;
+}
+
+Density density(MembraneModel model, const MembraneMaterial& material, const Vector3d& a,
+                const Vector3d& b) {
+  switch (model) {
+  case MembraneModel::baraff_witkin:
+    return baraff_witkin(material, a, b);
+  case MembraneModel::saint_venant_kirchhoff:
+    return saint_venant_kirchhoff(material, a, b);
+  }
+  return {};
+}
+
+std::string corners_text(const std::array<Eigen::Vector2d, 3>& uv) {
+  std::ostringstream text;
+  text.precision(10);
+  text << "(";
+  for (std::size_t i = 0; i < uv.size(); ++i) {
+    text << (i ? "), (" : "") << uv[i].x() << ", " << uv[i].y();
+  }
+  text << ")";
+  return text.str();
+}
+
+} // namespace
+
+TriangleRest triangle_rest(const std::array<Eigen::Vector2d, 3>& uv) {
+  const Eigen::Vector2d du1 = uv[1] - uv[0];
+  const Eigen::Vector2d du2 = uv[2] - uv[0];
+  Eigen::Matrix2d material;
+  material << du1, du2;
+  const double det = material.determinant();
+  const double longest =
+      std::max({du1.squaredNorm(), du2.squaredNorm(), (uv[2] - uv[1]).squaredNorm()});
+  if (!(std::abs(det) > degenerate_ratio * longest) || !std::isfinite(det)) {
+    throw InputError("degenerate triangle in material coordinates " + corners_text(uv) +
+                     " m: its corners must not be collinear or coincide");
+  }
+  TriangleRest rest;
+  rest.inverse_material = material.inverse();
+  rest.area = 0.5 * std::abs(det);
+  return rest;
+}
+
+Result<9> membrane(MembraneModel model, const MembraneMaterial& material, const TriangleRest& rest,
+                   const NonelasticStrain& nonelastic, const Vector9& x, Want want) {
+  const Columns k = columns(rest, nonelastic, x);
+  const Density w = density(model, material, k.a, k.b);
+  const double unloaded_area = rest.area * (1.0 + nonelastic.warp) * (1.0 + nonelastic.weft);
+
+  Result<9> result;
+  result.energy = unloaded_area * w.energy;
+  result.gradient.setZero();
+  result.hessian.setZero();
+  if (want == Want::energy) return result;
+
+  for (int i = 0; i < 3; ++i) {
+    result.gradient.segment<3>(3 * i) = unloaded_area * (k.c(i) * w.grad_a + k.d(i) * w.grad_b);
+  }
+  if (want == Want::gradient) return result;
+
+  // Block (i, j) = c_i c_j Haa + c_i d_j Hab + d_i c_j Hab^T + d_i d_j Hbb,
+  // symmetrised to the last bit.
+  Eigen::Matrix<double, 9, 9> h;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      h.block<3, 3>(3 * i, 3 * j) = k.c(i) * k.c(j) * w.haa + k.c(i) * k.d(j) * w.hab +
+                                    k.d(i) * k.c(j) * w.hab.transpose() + k.d(i) * k.d(j) * w.hbb;
+    }
+  }
+  result.hessian = (0.5 * unloaded_area) * (h + h.transpose());
+  return result;
+}
+
+MembraneStrain membrane_strain(MembraneModel model, const MembraneMaterial& material,
+                               const TriangleRest& rest, const NonelasticStrain& nonelastic,
+                               const Vector9& x) {
+  const Columns k = columns(rest, nonelastic, x);
+  MembraneStrain strain;
+  strain.shear = k.a.dot(k.b);
+  switch (model) {
+  case MembraneModel::baraff_witkin:
+    strain.warp = k.a.norm() - 1.0;
+    strain.weft = k.b.norm() - 1.0;
+    strain.tension_warp = material.warp.tension(strain.warp);
+    strain.tension_weft = material.weft.tension(strain.weft);
+    break;
+  case MembraneModel::saint_venant_kirchhoff: {
+    strain.warp = 0.5 * (k.a.squaredNorm() - 1.0);
+    strain.weft = 0.5 * (k.b.squaredNorm() - 1.0);
+    const double c12 = coupling_modulus(material);
+    strain.tension_warp = (material.warp.tension(strain.warp) + c12 * strain.weft) * k.a.norm();
+    strain.tension_weft = (material.weft.tension(strain.weft) + c12 * strain.warp) * k.b.norm();
+    break;
+  }
+  }
+  return strain;
+}
+
+} // namespace sartor::element

@@ -1,0 +1,80 @@
+#pragma once
+// Constant-strain membrane triangles, orthotropic in warp (u) and weft (v).
+//
+// Kinematics (thesis eq. 5.11, DESIGN.md): F = [w_u w_v] = [dx1 dx2][du dv]^-1
+// (3x2). The creep state enters through the unloaded lengths: the elastic
+// part is F_e = F diag(1 + n_warp, 1 + n_weft)^-1, and energies are per unit
+// unloaded area A_ul = A (1 + n_warp)(1 + n_weft), A the material area.
+//
+// Two strain measures behind one interface:
+//  * baraff_witkin: e_u = |F_e e1| - 1, e_v = |F_e e2| - 1, shear
+//    g = (F_e e1).(F_e e2);  W = W_warp(e_u) + W_weft(e_v) + G g^2 / 2.
+//  * saint_venant_kirchhoff: Green strain E = (F_e^T F_e - I)/2;
+//    W = W_warp(E11) + W_weft(E22) + c12 E11 E22 + 2 G E12^2,
+//    c12 = poisson * sqrt(k_warp k_weft) with the curves' initial moduli.
+// W_warp, W_weft are the energies of the piecewise-linear tension-strain
+// curves (TensionCurve::energy_density), so tension is force per unit width
+// (N/m). Energy = A_ul W. Compression stabilisation (Sensitive Couture §5) is
+// the PSD projection of the Hessian, chosen by the caller.
+//
+// Both models share the shear term: 2 G E12^2 = G g^2 / 2 with g = 2 E12.
+// In the Baraff-Witkin model a column of F_e shorter than 1e-12 (a triangle
+// collapsed along u or v) has no direction: its stretch then contributes its
+// energy but no gradient and no Hessian, so the results stay finite.
+
+#include "element/element.hpp"
+#include "material/tension_curve.hpp"
+
+#include <Eigen/Core>
+
+#include <array>
+
+namespace sartor::element {
+
+using Vector9 = Eigen::Matrix<double, 9, 1>;
+
+// Rest data of a triangle from its material coordinates (counter-clockwise or
+// not: the area is taken positive). Throws InputError when degenerate.
+struct TriangleRest {
+  Eigen::Matrix2d inverse_material; // [u1-u0 u2-u0; v1-v0 v2-v0]^-1, 1/m
+  double area = 0.0;                // material area, m^2
+};
+TriangleRest triangle_rest(const std::array<Eigen::Vector2d, 3>& uv);
+
+enum class MembraneModel { baraff_witkin, saint_venant_kirchhoff };
+
+struct MembraneMaterial {
+  TensionCurve warp;
+  TensionCurve weft;
+  double shear_modulus = 0.0; // G, N/m
+  double poisson = 0.0;       // warp-weft coupling of the StVK model, dimensionless
+};
+
+// The creep state of the element: non-elastic strain per direction, each
+// > -1 (the unloaded length 1 + n times the material length).
+struct NonelasticStrain {
+  double warp = 0.0;
+  double weft = 0.0;
+};
+
+Result<9> membrane(MembraneModel model, const MembraneMaterial& material, const TriangleRest& rest,
+                   const NonelasticStrain& nonelastic, const Vector9& x, Want want);
+
+// Elastic strains and tensions of the element, for output and for the creep
+// law: tension_warp = dW/de_u (BW) or S11 |F_e e1| (StVK), N/m per unit
+// unloaded width. The strains are each model's own measure, the argument of
+// its tension-strain curves: e_u, e_v (BW) or E11, E22 (StVK); shear is
+// g = (F_e e1).(F_e e2) = 2 E12 in both (the engineering shear strain for
+// small strains).
+struct MembraneStrain {
+  double warp = 0.0;         // e_u or E11
+  double weft = 0.0;         // e_v or E22
+  double shear = 0.0;        // g = 2 E12
+  double tension_warp = 0.0; // N/m
+  double tension_weft = 0.0; // N/m
+};
+MembraneStrain membrane_strain(MembraneModel model, const MembraneMaterial& material,
+                               const TriangleRest& rest, const NonelasticStrain& nonelastic,
+                               const Vector9& x);
+
+} // namespace sartor::element

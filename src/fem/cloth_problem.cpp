@@ -1,0 +1,518 @@
+#include "fem/cloth_problem.hpp"
+
+#include "common/error.hpp"
+#include "element/pressure.hpp"
+#include "fem/petsc_call.hpp"
+
+#include <algorithm>
+
+namespace sartor {
+
+namespace {
+
+constexpr PetscInt dofs_per_vertex = 3;
+
+// Mesh index of every local point: cells as c >= 0, vertices as -(v + 1).
+// `migration` maps the serial mesh's points (on rank 0) to the distributed
+// ones; without it (one rank) the numbering is the serial one.
+PetscErrorCode original_points(DM serial, PetscSF migration, DM distributed,
+                               std::vector<PetscInt>* original) {
+  PetscInt serial_start = 0, serial_end = 0, cell_end = 0, vertex_start = 0, vertex_end = 0;
+  PetscInt chart_start = 0, chart_end = 0;
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetChart(serial, &serial_start, &serial_end));
+  PetscCall(DMPlexGetHeightStratum(serial, 0, nullptr, &cell_end));
+  PetscCall(DMPlexGetDepthStratum(serial, 0, &vertex_start, &vertex_end));
+  // Edges keep a value no cell or vertex has; only cells and vertices are asked for.
+  std::vector<PetscInt> serial_ids(std::size_t(serial_end - serial_start), PETSC_MAX_INT);
+  for (PetscInt c = 0; c < cell_end; ++c)
+    serial_ids[std::size_t(c)] = c;
+  for (PetscInt p = vertex_start; p < vertex_end; ++p) {
+    serial_ids[std::size_t(p)] = -(p - vertex_start + 1);
+  }
+  PetscCall(DMPlexGetChart(distributed, &chart_start, &chart_end));
+  original->assign(std::size_t(chart_end - chart_start), 0);
+  if (!migration) {
+    *original = serial_ids;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(
+      PetscSFBcastBegin(migration, MPIU_INT, serial_ids.data(), original->data(), MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd(migration, MPIU_INT, serial_ids.data(), original->data(), MPI_REPLACE));
+  PetscFunctionReturn(0);
+}
+
+// Points this rank does not own are the leaves of the point SF.
+PetscErrorCode foreign_points(DM dm, std::vector<bool>* foreign) {
+  PetscSF sf = nullptr;
+  PetscInt roots = 0, leaves = 0, start = 0, end = 0;
+  const PetscInt* local = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetChart(dm, &start, &end));
+  foreign->assign(std::size_t(end - start), false);
+  PetscCall(DMGetPointSF(dm, &sf));
+  PetscCall(PetscSFGetGraph(sf, &roots, &leaves, &local, nullptr));
+  if (roots < 0) PetscFunctionReturn(0); // graph not set: one rank
+  for (PetscInt i = 0; i < leaves; ++i)
+    (*foreign)[std::size_t(local ? local[i] : i)] = true;
+  PetscFunctionReturn(0);
+}
+
+template <int N>
+void scatter_add(PetscScalar* f, const std::array<PetscInt, N>& dofs,
+                 const Eigen::Matrix<double, N, 1>& values) {
+  for (int i = 0; i < N; ++i)
+    f[dofs[std::size_t(i)]] += values[i];
+}
+
+template <int N>
+Eigen::Matrix<double, N, 1> gather(const PetscScalar* x, const std::array<PetscInt, N>& dofs) {
+  Eigen::Matrix<double, N, 1> values;
+  for (int i = 0; i < N; ++i)
+    values[i] = x[dofs[std::size_t(i)]];
+  return values;
+}
+
+template <int N>
+PetscErrorCode add_block(Mat J, const std::array<PetscInt, N>& dofs,
+                         const Eigen::Matrix<double, N, N>& block) {
+  PetscFunctionBeginUser;
+  const Eigen::Matrix<double, N, N, Eigen::RowMajor> row_major = block;
+  PetscCall(MatSetValuesLocal(J, N, dofs.data(), N, dofs.data(), row_major.data(), ADD_VALUES));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh, const ClothMaterial& material,
+                           const std::vector<int>& pinned)
+    : comm_(comm), mesh_(mesh), material_(material), pinned_(pinned) {
+  validate(mesh, "cloth mesh");
+  PetscMPIInt rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  nonelastic.assign(mesh.triangle_count(), {});
+  for (int v : pinned) {
+    if (v < 0 || std::size_t(v) >= mesh.vertex_count()) {
+      throw InputError("pinned vertex " + std::to_string(v) + " is not in the mesh (0.." +
+                       std::to_string(mesh.vertex_count() - 1) + ")");
+    }
+    pin_positions_.push_back(mesh.positions[std::size_t(v)]);
+  }
+
+  // The serial mesh lives on rank 0; DMPlexDistribute partitions it and adds
+  // one layer of overlap so that every owned hinge sees both its triangles.
+  std::vector<PetscInt> cells;
+  std::vector<PetscReal> coordinates;
+  if (rank == 0) {
+    for (const auto& t : mesh.triangles)
+      cells.insert(cells.end(), {t[0], t[1], t[2]});
+    for (const auto& p : mesh.positions)
+      coordinates.insert(coordinates.end(), {p[0], p[1], p[2]});
+  }
+  DM serial = nullptr;
+  SartorPetscCall(
+      DMPlexCreateFromCellListPetsc(comm, 2, rank == 0 ? PetscInt(mesh.triangle_count()) : 0,
+                                    rank == 0 ? PetscInt(mesh.vertex_count()) : 0, 3, PETSC_TRUE,
+                                    cells.data(), 3, coordinates.data(), &serial));
+  SartorPetscCall(PetscObjectSetName(reinterpret_cast<PetscObject>(serial), "cloth"));
+  // Only the partitioner is configurable here (-petscpartitioner_type):
+  // DMSetFromOptions would already distribute the mesh, losing its numbering.
+  PetscPartitioner partitioner = nullptr;
+  SartorPetscCall(DMPlexGetPartitioner(serial, &partitioner));
+  SartorPetscCall(PetscPartitionerSetFromOptions(partitioner));
+  // Partition first, then add the overlap, carrying the mesh numbering of
+  // every point through both migrations.
+  DM distributed = nullptr, overlapping = nullptr;
+  PetscSF migration = nullptr, overlap = nullptr;
+  SartorPetscCall(DMPlexDistribute(serial, 0, &migration, &distributed));
+  std::vector<PetscInt> original;
+  SartorPetscCall(
+      original_points(serial, migration, distributed ? distributed : serial, &original));
+  if (distributed) {
+    SartorPetscCall(DMDestroy(&serial));
+    SartorPetscCall(DMPlexDistributeOverlap(distributed, 1, &overlap, &overlapping));
+    std::vector<PetscInt> partitioned = std::move(original);
+    PetscInt start = 0, end = 0;
+    SartorPetscCall(DMPlexGetChart(overlapping, &start, &end));
+    original.assign(std::size_t(end - start), PETSC_MAX_INT);
+    SartorPetscCall(
+        PetscSFBcastBegin(overlap, MPIU_INT, partitioned.data(), original.data(), MPI_REPLACE));
+    SartorPetscCall(
+        PetscSFBcastEnd(overlap, MPIU_INT, partitioned.data(), original.data(), MPI_REPLACE));
+    SartorPetscCall(DMDestroy(&distributed));
+    dm_ = overlapping;
+  } else {
+    dm_ = serial;
+  }
+  SartorPetscCall(PetscSFDestroy(&migration));
+  SartorPetscCall(PetscSFDestroy(&overlap));
+
+  std::vector<bool> foreign;
+  SartorPetscCall(foreign_points(dm_, &foreign));
+  PetscInt cell_start = 0, cell_end = 0, vertex_start = 0, vertex_end = 0;
+  SartorPetscCall(DMPlexGetHeightStratum(dm_, 0, &cell_start, &cell_end));
+  SartorPetscCall(DMPlexGetDepthStratum(dm_, 0, &vertex_start, &vertex_end));
+
+  // Three dofs per vertex; pinned vertices are constrained, so the global
+  // system holds the free dofs only.
+  std::vector<bool> is_pinned(mesh.vertex_count(), false);
+  for (int v : pinned)
+    is_pinned[std::size_t(v)] = true;
+  PetscSection section = nullptr;
+  SartorPetscCall(PetscSectionCreate(comm, &section));
+  PetscInt chart_start = 0, chart_end = 0;
+  SartorPetscCall(DMPlexGetChart(dm_, &chart_start, &chart_end));
+  SartorPetscCall(PetscSectionSetChart(section, chart_start, chart_end));
+  for (PetscInt p = vertex_start; p < vertex_end; ++p) {
+    SartorPetscCall(PetscSectionSetDof(section, p, dofs_per_vertex));
+    const PetscInt v = -original[std::size_t(p)] - 1;
+    if (is_pinned[std::size_t(v)]) SartorPetscCall(PetscSectionSetConstraintDof(section, p, 3));
+  }
+  SartorPetscCall(PetscSectionSetUp(section));
+  const PetscInt all[3] = {0, 1, 2};
+  for (PetscInt p = vertex_start; p < vertex_end; ++p) {
+    const PetscInt v = -original[std::size_t(p)] - 1;
+    if (is_pinned[std::size_t(v)])
+      SartorPetscCall(PetscSectionSetConstraintIndices(section, p, all));
+  }
+  SartorPetscCall(DMSetLocalSection(dm_, section));
+  SartorPetscCall(PetscSectionDestroy(&section));
+  SartorPetscCall(DMCreateLocalVector(dm_, &local_x_));
+  SartorPetscCall(VecDuplicate(local_x_, &local_f_));
+  Vec global = nullptr;
+  SartorPetscCall(DMGetGlobalVector(dm_, &global));
+  SartorPetscCall(VecGetSize(global, &global_dofs_));
+  SartorPetscCall(DMRestoreGlobalVector(dm_, &global));
+
+  PetscSection local_section = nullptr;
+  SartorPetscCall(DMGetLocalSection(dm_, &local_section));
+  vertex_dof_.assign(mesh.vertex_count(), -1);
+  vertex_owned_.assign(mesh.vertex_count(), false);
+  for (PetscInt p = vertex_start; p < vertex_end; ++p) {
+    const auto v = std::size_t(-original[std::size_t(p)] - 1);
+    SartorPetscCall(PetscSectionGetOffset(local_section, p, &vertex_dof_[v]));
+    vertex_owned_[v] = !foreign[std::size_t(p)];
+  }
+
+  // Owned triangles, and the hinges of the owned triangle with the lower index.
+  std::vector<bool> triangle_owned(mesh.triangle_count(), false);
+  for (PetscInt c = cell_start; c < cell_end; ++c) {
+    if (foreign[std::size_t(c)]) continue;
+    const auto t = std::size_t(original[std::size_t(c)]);
+    triangle_owned[t] = true;
+    LocalTriangle local;
+    local.index = int(t);
+    local.rest = element::triangle_rest(mesh.material_uv[t]);
+    for (std::size_t k = 0; k < 3; ++k) {
+      const PetscInt offset = vertex_dof_[std::size_t(mesh.triangles[t][k])];
+      if (offset < 0) throw std::logic_error("a vertex of an owned triangle is not local");
+      for (std::size_t d = 0; d < 3; ++d)
+        local.dofs[3 * k + d] = offset + PetscInt(d);
+    }
+    triangles_.push_back(local);
+  }
+  if (material_.bending_stiffness > 0.0) {
+    for (const Hinge& hinge : interior_edges(mesh)) {
+      const auto first = std::size_t(std::min(hinge.triangles[0], hinge.triangles[1]));
+      if (!triangle_owned[first]) continue;
+      LocalHinge local;
+      for (std::size_t k = 0; k < 4; ++k) {
+        const PetscInt offset = vertex_dof_[std::size_t(hinge.vertices[k])];
+        if (offset < 0) throw std::logic_error("a vertex of an owned hinge is not local");
+        for (std::size_t d = 0; d < 3; ++d)
+          local.dofs[3 * k + d] = offset + PetscInt(d);
+      }
+      std::array<std::array<Eigen::Vector2d, 3>, 2> uv;
+      for (std::size_t side = 0; side < 2; ++side) {
+        const auto& corners = mesh.material_uv[std::size_t(hinge.triangles[side])];
+        for (std::size_t k = 0; k < 3; ++k)
+          uv[side][k] = corners[std::size_t(hinge.corners[side][k])];
+      }
+      local.rest = element::hinge_rest(uv[0], uv[1]);
+      hinges_.push_back(local);
+    }
+  }
+}
+
+ClothProblem::~ClothProblem() {
+  VecDestroy(&local_x_);
+  VecDestroy(&local_f_);
+  DMDestroy(&dm_);
+}
+
+void ClothProblem::set_pin_position(std::size_t index, const Eigen::Vector3d& position) {
+  pin_positions_.at(index) = position;
+}
+
+PetscErrorCode ClothProblem::create_solution(Vec* x) const {
+  PetscScalar* values = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(VecSet(local_x_, 0.0));
+  PetscCall(VecGetArray(local_x_, &values));
+  for (std::size_t v = 0; v < mesh_.vertex_count(); ++v) {
+    if (vertex_dof_[v] < 0) continue;
+    for (std::size_t d = 0; d < 3; ++d)
+      values[vertex_dof_[v] + PetscInt(d)] = mesh_.positions[v][long(d)];
+  }
+  PetscCall(VecRestoreArray(local_x_, &values));
+  PetscCall(DMCreateGlobalVector(dm_, x));
+  PetscCall(VecSetBlockSize(*x, dofs_per_vertex));
+  PetscCall(DMLocalToGlobal(dm_, local_x_, INSERT_VALUES, *x));
+  PetscFunctionReturn(0);
+}
+
+// The local positions: free dofs from x, pinned ones from their prescribed place.
+PetscErrorCode ClothProblem::to_local(Vec x) {
+  PetscScalar* values = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(DMGlobalToLocal(dm_, x, INSERT_VALUES, local_x_));
+  PetscCall(VecGetArray(local_x_, &values));
+  for (std::size_t i = 0; i < pinned_.size(); ++i) {
+    const PetscInt offset = vertex_dof_[std::size_t(pinned_[i])];
+    if (offset < 0) continue;
+    const Eigen::Vector3d place = pin_positions_[i] + load_factor * pin_motion;
+    for (std::size_t d = 0; d < 3; ++d)
+      values[offset + PetscInt(d)] = place[long(d)];
+  }
+  PetscCall(VecRestoreArray(local_x_, &values));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::energy(Vec x, ClothEnergy* result) {
+  const PetscScalar* values = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(to_local(x));
+  PetscCall(VecGetArrayRead(local_x_, &values));
+  double local[3] = {0.0, 0.0, 0.0};
+  for (const LocalTriangle& t : triangles_) {
+    const element::Vector9 xe = gather<9>(values, t.dofs);
+    local[0] += element::membrane(material_.membrane_model, material_.membrane, t.rest,
+                                  nonelastic[std::size_t(t.index)], xe, element::Want::energy)
+                    .energy;
+    const double mass = material_.areal_density * t.rest.area / 3.0;
+    for (int k = 0; k < 3; ++k)
+      local[2] -= load_factor * mass * loads.gravity.dot(xe.segment<3>(3 * k));
+  }
+  for (const LocalHinge& h : hinges_) {
+    local[1] += element::bending(material_.bending_model, material_.bending_stiffness, h.rest,
+                                 gather<12>(values, h.dofs), element::Want::energy)
+                    .energy;
+  }
+  for (const auto& [v, force] : loads.point_forces) {
+    if (!vertex_owned_[std::size_t(v)]) continue;
+    const PetscInt offset = vertex_dof_[std::size_t(v)];
+    local[2] -= load_factor *
+                force.dot(Eigen::Vector3d(values[offset], values[offset + 1], values[offset + 2]));
+  }
+  PetscCall(VecRestoreArrayRead(local_x_, &values));
+  double total[3];
+  PetscCallMPI(MPIU_Allreduce(local, total, 3, MPI_DOUBLE, MPI_SUM, comm_));
+  *result = {total[0], total[1], total[2]};
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::residual(Vec x, Vec f) {
+  const PetscScalar* values = nullptr;
+  PetscScalar* forces = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(to_local(x));
+  PetscCall(VecSet(local_f_, 0.0));
+  PetscCall(VecGetArrayRead(local_x_, &values));
+  PetscCall(VecGetArray(local_f_, &forces));
+  for (const LocalTriangle& t : triangles_) {
+    const element::Vector9 xe = gather<9>(values, t.dofs);
+    scatter_add<9>(forces, t.dofs,
+                   element::membrane(material_.membrane_model, material_.membrane, t.rest,
+                                     nonelastic[std::size_t(t.index)], xe, element::Want::gradient)
+                       .gradient);
+    element::Vector9 external = element::Vector9::Zero();
+    const double mass = material_.areal_density * t.rest.area / 3.0;
+    for (int k = 0; k < 3; ++k)
+      external.segment<3>(3 * k) = mass * loads.gravity;
+    if (loads.pressure != 0.0) external += element::follower_pressure(loads.pressure, xe).force;
+    scatter_add<9>(forces, t.dofs, element::Vector9(-load_factor * external));
+  }
+  for (const LocalHinge& h : hinges_) {
+    scatter_add<12>(forces, h.dofs,
+                    element::bending(material_.bending_model, material_.bending_stiffness, h.rest,
+                                     gather<12>(values, h.dofs), element::Want::gradient)
+                        .gradient);
+  }
+  for (const auto& [v, force] : loads.point_forces) {
+    if (!vertex_owned_[std::size_t(v)]) continue;
+    const PetscInt offset = vertex_dof_[std::size_t(v)];
+    for (int d = 0; d < 3; ++d)
+      forces[offset + d] -= load_factor * force[d];
+  }
+  PetscCall(VecRestoreArray(local_f_, &forces));
+  PetscCall(VecRestoreArrayRead(local_x_, &values));
+  PetscCall(VecSet(f, 0.0));
+  PetscCall(DMLocalToGlobal(dm_, local_f_, ADD_VALUES, f));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::jacobian(Vec x, Mat J) {
+  const PetscScalar* values = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(to_local(x));
+  PetscCall(MatZeroEntries(J));
+  PetscCall(VecGetArrayRead(local_x_, &values));
+  for (const LocalTriangle& t : triangles_) {
+    const element::Vector9 xe = gather<9>(values, t.dofs);
+    auto result = element::membrane(material_.membrane_model, material_.membrane, t.rest,
+                                    nonelastic[std::size_t(t.index)], xe, element::Want::hessian);
+    if (material_.project_membrane) element::project_to_psd<9>(result.hessian);
+    if (loads.pressure != 0.0) {
+      result.hessian -= load_factor * element::follower_pressure(loads.pressure, xe).jacobian;
+    }
+    PetscCall(add_block<9>(J, t.dofs, result.hessian));
+  }
+  for (const LocalHinge& h : hinges_) {
+    auto result = element::bending(material_.bending_model, material_.bending_stiffness, h.rest,
+                                   gather<12>(values, h.dofs), element::Want::hessian);
+    if (material_.project_bending) element::project_to_psd<12>(result.hessian);
+    PetscCall(add_block<12>(J, h.dofs, result.hessian));
+  }
+  PetscCall(VecRestoreArrayRead(local_x_, &values));
+  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::create_jacobian(Mat* J) {
+  Mat pattern = nullptr;
+  ISLocalToGlobalMapping map = nullptr;
+  PetscInt local_size = 0;
+  Vec global = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(dm_, &global));
+  PetscCall(VecGetLocalSize(global, &local_size));
+  PetscCall(DMRestoreGlobalVector(dm_, &global));
+  PetscCall(DMGetLocalToGlobalMapping(dm_, &map));
+  PetscCall(MatCreate(comm_, &pattern));
+  PetscCall(MatSetType(pattern, MATPREALLOCATOR));
+  PetscCall(MatSetSizes(pattern, local_size, local_size, global_dofs_, global_dofs_));
+  PetscCall(MatSetLocalToGlobalMapping(pattern, map, map));
+  PetscCall(MatSetUp(pattern));
+  const Eigen::Matrix<double, 9, 9> zeros9 = Eigen::Matrix<double, 9, 9>::Zero();
+  const Eigen::Matrix<double, 12, 12> zeros12 = Eigen::Matrix<double, 12, 12>::Zero();
+  for (const LocalTriangle& t : triangles_)
+    PetscCall(add_block<9>(pattern, t.dofs, zeros9));
+  for (const LocalHinge& h : hinges_)
+    PetscCall(add_block<12>(pattern, h.dofs, zeros12));
+  PetscCall(MatAssemblyBegin(pattern, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(pattern, MAT_FINAL_ASSEMBLY));
+
+  PetscCall(MatCreate(comm_, J));
+  PetscCall(MatSetSizes(*J, local_size, local_size, global_dofs_, global_dofs_));
+  PetscCall(MatSetBlockSize(*J, dofs_per_vertex));
+  PetscCall(MatSetType(*J, MATAIJ));
+  PetscCall(MatSetOptionsPrefix(*J, "jacobian_"));
+  PetscCall(MatSetFromOptions(*J));
+  PetscCall(MatSetLocalToGlobalMapping(*J, map, map));
+  PetscCall(MatPreallocatorPreallocate(pattern, PETSC_TRUE, *J));
+  PetscCall(MatDestroy(&pattern));
+  PetscCall(MatSetOption(*J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::gather_positions(Vec x, std::vector<Eigen::Vector3d>* positions) {
+  Vec natural = nullptr, root = nullptr;
+  VecScatter to_root = nullptr;
+  const PetscScalar* values = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(to_local(x));
+  const auto n = PetscInt(mesh_.vertex_count());
+  PetscCall(VecCreateMPI(comm_, PETSC_DECIDE, 3 * n, &natural));
+  PetscCall(VecGetArrayRead(local_x_, &values));
+  for (std::size_t v = 0; v < mesh_.vertex_count(); ++v) {
+    if (!vertex_owned_[v]) continue;
+    const PetscInt rows[3] = {3 * PetscInt(v), 3 * PetscInt(v) + 1, 3 * PetscInt(v) + 2};
+    PetscCall(VecSetValues(natural, 3, rows, values + vertex_dof_[v], INSERT_VALUES));
+  }
+  PetscCall(VecRestoreArrayRead(local_x_, &values));
+  PetscCall(VecAssemblyBegin(natural));
+  PetscCall(VecAssemblyEnd(natural));
+  PetscCall(VecScatterCreateToZero(natural, &to_root, &root));
+  PetscCall(VecScatterBegin(to_root, natural, root, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(to_root, natural, root, INSERT_VALUES, SCATTER_FORWARD));
+  PetscInt size = 0;
+  PetscCall(VecGetLocalSize(root, &size));
+  positions->clear();
+  PetscCall(VecGetArrayRead(root, &values));
+  for (PetscInt v = 0; v < size / 3; ++v) {
+    positions->emplace_back(values[3 * v], values[3 * v + 1], values[3 * v + 2]);
+  }
+  PetscCall(VecRestoreArrayRead(root, &values));
+  PetscCall(VecScatterDestroy(&to_root));
+  PetscCall(VecDestroy(&root));
+  PetscCall(VecDestroy(&natural));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::gather_strains(Vec x, std::vector<element::MembraneStrain>* strains) {
+  constexpr PetscInt fields = 5;
+  Vec natural = nullptr, root = nullptr;
+  VecScatter to_root = nullptr;
+  const PetscScalar* values = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(to_local(x));
+  PetscCall(VecCreateMPI(comm_, PETSC_DECIDE, fields * PetscInt(mesh_.triangle_count()), &natural));
+  PetscCall(VecGetArrayRead(local_x_, &values));
+  for (const LocalTriangle& t : triangles_) {
+    const auto s =
+        element::membrane_strain(material_.membrane_model, material_.membrane, t.rest,
+                                 nonelastic[std::size_t(t.index)], gather<9>(values, t.dofs));
+    const PetscScalar row[fields] = {s.warp, s.weft, s.shear, s.tension_warp, s.tension_weft};
+    PetscInt rows[fields];
+    for (PetscInt k = 0; k < fields; ++k)
+      rows[k] = fields * t.index + k;
+    PetscCall(VecSetValues(natural, fields, rows, row, INSERT_VALUES));
+  }
+  PetscCall(VecRestoreArrayRead(local_x_, &values));
+  PetscCall(VecAssemblyBegin(natural));
+  PetscCall(VecAssemblyEnd(natural));
+  PetscCall(VecScatterCreateToZero(natural, &to_root, &root));
+  PetscCall(VecScatterBegin(to_root, natural, root, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(to_root, natural, root, INSERT_VALUES, SCATTER_FORWARD));
+  PetscInt size = 0;
+  PetscCall(VecGetLocalSize(root, &size));
+  strains->clear();
+  PetscCall(VecGetArrayRead(root, &values));
+  for (PetscInt t = 0; t < size / fields; ++t) {
+    const PetscScalar* r = values + fields * t;
+    strains->push_back({r[0], r[1], r[2], r[3], r[4]});
+  }
+  PetscCall(VecRestoreArrayRead(root, &values));
+  PetscCall(VecScatterDestroy(&to_root));
+  PetscCall(VecDestroy(&root));
+  PetscCall(VecDestroy(&natural));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::pin_reaction(Vec x, Eigen::Vector3d* reaction) {
+  const PetscScalar* forces = nullptr;
+  Vec f = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(dm_, &f));
+  PetscCall(residual(x, f)); // fills local_f_ including the constrained dofs
+  PetscCall(DMRestoreGlobalVector(dm_, &f));
+  // Each triangle is assembled on one rank only, so summing every rank's
+  // local contributions at the pinned dofs counts each exactly once. At
+  // equilibrium the pin supplies R = grad E - f_ext there.
+  double local[3] = {0.0, 0.0, 0.0};
+  PetscCall(VecGetArrayRead(local_f_, &forces));
+  for (int v : pinned_) {
+    const PetscInt offset = vertex_dof_[std::size_t(v)];
+    if (offset < 0) continue;
+    for (int d = 0; d < 3; ++d)
+      local[d] += forces[offset + d];
+  }
+  PetscCall(VecRestoreArrayRead(local_f_, &forces));
+  double total[3];
+  PetscCallMPI(MPIU_Allreduce(local, total, 3, MPI_DOUBLE, MPI_SUM, comm_));
+  *reaction = Eigen::Vector3d(total[0], total[1], total[2]);
+  PetscFunctionReturn(0);
+}
+
+} // namespace sartor
