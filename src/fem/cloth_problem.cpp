@@ -5,6 +5,7 @@
 #include "fem/petsc_call.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace sartor {
 
@@ -238,6 +239,33 @@ ClothProblem::~ClothProblem() {
   VecDestroy(&local_x_);
   VecDestroy(&local_f_);
   DMDestroy(&dm_);
+}
+
+PetscErrorCode ClothProblem::lumped_mass(Vec mass) {
+  PetscScalar* values = nullptr;
+  PetscFunctionBeginUser;
+  const double density = material_.areal_density > 0.0 ? material_.areal_density : 1.0;
+  PetscCall(VecSet(local_f_, 0.0));
+  PetscCall(VecGetArray(local_f_, &values));
+  for (const LocalTriangle& t : triangles_) {
+    for (PetscInt dof : t.dofs)
+      values[dof] += density * t.rest.area / 3.0;
+  }
+  PetscCall(VecRestoreArray(local_f_, &values));
+  PetscCall(VecSet(mass, 0.0));
+  PetscCall(DMLocalToGlobal(dm_, local_f_, ADD_VALUES, mass));
+  PetscFunctionReturn(0);
+}
+
+double ClothProblem::force_scale() const {
+  double area = 0.0;
+  for (const auto& uv : mesh_.material_uv) {
+    area += 0.5 * std::abs((uv[1] - uv[0]).x() * (uv[2] - uv[0]).y() -
+                           (uv[2] - uv[0]).x() * (uv[1] - uv[0]).y());
+  }
+  const double modulus = std::max(material_.membrane.warp.initial_modulus(),
+                                  material_.membrane.weft.initial_modulus());
+  return modulus * std::sqrt(area);
 }
 
 void ClothProblem::set_pin_position(std::size_t index, const Eigen::Vector3d& position) {

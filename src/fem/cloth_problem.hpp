@@ -96,6 +96,14 @@ public:
   // Sum over all vertices of the force the pins exert on the cloth, N.
   PetscErrorCode pin_reaction(Vec x, Eigen::Vector3d* reaction);
 
+  // Lumped vertex masses (areal density x area / 3 from each triangle; unit
+  // density when the cloth has none) on the free dofs, kg.
+  PetscErrorCode lumped_mass(Vec mass);
+
+  // A force typical of the membrane, N: the largest initial modulus times the
+  // square root of the material area. Residuals below ~1e-12 of it are round-off.
+  double force_scale() const;
+
   PetscInt owned_triangle_count() const { return PetscInt(triangles_.size()); }
   PetscInt global_dof_count() const { return global_dofs_; }
 

@@ -1,11 +1,17 @@
 #pragma once
 // Static equilibrium of a cloth: Newton's method (PETSc SNES) with the loads
-// ramped up in steps; a step that fails is retried with half the increment,
-// and after `max_cutbacks` halvings the solve stops with SNES's reason.
+// ramped up in steps. A load step that Newton cannot solve from the previous
+// state is approached by pseudo-transient continuation: heavily damped
+// backward-Euler steps, each minimising
+//     E(x) - f.x + |x - x_k|^2_M / (2 dt^2)       (M: lumped masses)
+// with dt growing while steps succeed, until plain Newton converges
+// (Sensitive Couture §7's robust path from far-from-equilibrium starts). If
+// that fails too, the load increment is halved, up to `max_cutbacks` times,
+// and the solve stops with SNES's reason.
 //
 // Solver choices come from the options database (-snes_*, -ksp_*, -pc_*).
-// Defaults: Newton with a backtracking line search on the energy, and a
-// direct solve (MUMPS LU) of each Newton system.
+// Defaults: Newton with a backtracking line search on the energy, a direct
+// solve (MUMPS LU) of each Newton system.
 
 #include "fem/cloth_problem.hpp"
 
@@ -19,6 +25,8 @@ namespace sartor {
 struct StaticOptions {
   int load_steps = 1;
   int max_cutbacks = 8;
+  double initial_pseudo_step = 1e-2; // dt of the first continuation step, s
+  int max_pseudo_steps = 200;        // per load step
 };
 
 struct LoadStepReport {
@@ -27,6 +35,7 @@ struct LoadStepReport {
   std::string reason;
   PetscInt newton_iterations = 0;
   PetscInt linear_iterations = 0;
+  PetscInt pseudo_steps = 0; // continuation steps taken before the final Newton solve
   double residual_norm = 0.0;
 };
 
@@ -36,6 +45,7 @@ struct StaticReport {
   std::vector<LoadStepReport> steps;
   PetscInt newton_iterations = 0;
   PetscInt linear_iterations = 0;
+  PetscInt pseudo_steps = 0;
   double initial_residual_norm = 0.0;
   double final_residual_norm = 0.0;
   double solve_seconds = 0.0;
