@@ -31,6 +31,8 @@ const CommandSpec& fabrics_command();
 int run_fabrics(const Invocation&);
 const CommandSpec& run_command();
 int run_run(const Invocation&);
+const CommandSpec& converge_command();
+int run_converge(const Invocation&);
 
 // Metadata every output JSON carries: version, command line, options used.
 nlohmann::json run_metadata(const Invocation& invocation, const std::string& command);

@@ -1,0 +1,78 @@
+#pragma once
+// The pipeline of a static cloth case, shared by `sartor run` (one solve) and
+// `sartor converge` (the same case on a sequence of refined meshes): build the
+// mesh, material, pins and loads that the options describe, solve static
+// equilibrium, and collect what the outputs report.
+
+#include "element/membrane.hpp"
+#include "fem/cloth_problem.hpp"
+#include "fem/statics.hpp"
+#include "mesh/triangle_mesh.hpp"
+#include "solvers/cli.hpp"
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sartor {
+
+// The options of a case (mesh, material, loads, pins, probe, load steps),
+// without --output: every command that solves a case declares these.
+const std::vector<OptionSpec>& case_option_specs();
+
+struct CaseProbe {
+  std::size_t vertex = 0;           // nearest mesh vertex to the --probe point
+  Eigen::Vector3d point;            // the --probe point, m
+  Eigen::Vector3d initial_position; // of the vertex, m
+  Eigen::Vector3d displacement;     // of the vertex, m
+};
+
+struct CaseResult {
+  int mesh_refine = 0; // uniform refinements applied (the option's plus the extra ones)
+  TriangleMesh mesh;   // as solved: refined and placed
+  std::size_t pinned_vertices = 0;
+  PetscInt dofs = 0;
+  // Characteristic mesh size: the longest triangle edge in material (u, v)
+  // coordinates, m.
+  double h = 0.0;
+
+  bool converged = false;
+  double load_factor = 0.0; // reached (1 when converged)
+  StaticReport report;
+  ClothEnergy energy;
+  Eigen::Vector3d pin_reaction = Eigen::Vector3d::Zero();
+  double max_displacement = 0.0;  // m
+  std::optional<CaseProbe> probe; // when --probe is given
+
+  // Rank 0 only (empty elsewhere): final positions and per-triangle strains.
+  std::vector<Eigen::Vector3d> positions;
+  std::vector<element::MembraneStrain> strains;
+
+  double setup_seconds = 0.0; // mesh, material, problem
+  double solve_seconds = 0.0; // solve_static
+  double total_seconds = 0.0; // everything up to the gathered results
+};
+
+// Collective. Solves the case the options describe, with `extra_refinements`
+// uniform refinements on top of --mesh-refine. Throws InputError for a bad
+// option; a solve that does not converge is reported in the result, not
+// thrown. Every field but positions and strains is the same on every rank.
+CaseResult solve_case(const Options& options, int extra_refinements = 0);
+
+// The parts of `sartor run`'s summary.json that describe the solve: "mesh",
+// "converged", "solver", "load_steps", "energy_J", "pin_reaction_N",
+// "max_displacement_m", "probe" (when given) and "timing_s".
+void add_case_summary(const CaseResult& result, nlohmann::json& summary);
+
+// Rank 0: result.h5, result.xmf, final.obj and summary.json in `directory`.
+void write_case_results(const std::string& directory, const CaseResult& result,
+                        const nlohmann::json& summary);
+
+// Collective: every option in effect, to DIRECTORY/petsc_options.txt.
+void write_petsc_options(const std::string& directory);
+
+} // namespace sartor
