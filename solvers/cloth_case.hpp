@@ -1,19 +1,24 @@
 #pragma once
-// The pipeline of a static cloth case, shared by `sartor run` (one solve) and
+// The pipeline of a cloth case, shared by `sartor run` (one solve) and
 // `sartor converge` (the same case on a sequence of refined meshes): build the
 // mesh, material, pins and loads that the options describe, solve static
-// equilibrium, and collect what the outputs report.
+// equilibrium (or, with --analysis dynamic, step through time), and collect
+// what the outputs report.
 
 #include "element/membrane.hpp"
 #include "fem/cloth_problem.hpp"
+#include "fem/dynamics.hpp"
 #include "fem/statics.hpp"
 #include "mesh/triangle_mesh.hpp"
 #include "solvers/cli.hpp"
+#include "solvers/contact_case.hpp"
+#include "solvers/seam_case.hpp"
 
 #include <nlohmann/json_fwd.hpp>
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,19 +46,25 @@ struct CaseResult {
   double h = 0.0;
 
   bool converged = false;
-  double load_factor = 0.0; // reached (1 when converged)
-  StaticReport report;
+  double load_factor = 0.0;              // reached (1 when converged)
+  StaticReport report;                   // --analysis static
+  std::optional<DynamicReport> dynamics; // --analysis dynamic
   ClothEnergy energy;
   Eigen::Vector3d pin_reaction = Eigen::Vector3d::Zero();
-  double max_displacement = 0.0;  // m
-  std::optional<CaseProbe> probe; // when --probe is given
+  double max_displacement = 0.0;   // m
+  std::optional<CaseProbe> probe;  // when --probe is given
+  CaseContact contact;             // bodies, reactions, drape (solvers/contact_case.hpp)
+  std::optional<SeamReport> seams; // when the case has seams
+  // Dynamic runs with --probe: its displacement at every state of
+  // dynamics->steps, m.
+  std::vector<Eigen::Vector3d> probe_history;
 
   // Rank 0 only (empty elsewhere): final positions and per-triangle strains.
   std::vector<Eigen::Vector3d> positions;
   std::vector<element::MembraneStrain> strains;
 
   double setup_seconds = 0.0; // mesh, material, problem
-  double solve_seconds = 0.0; // solve_static
+  double solve_seconds = 0.0; // solve_static or solve_dynamic
   double total_seconds = 0.0; // everything up to the gathered results
 };
 
@@ -61,11 +72,17 @@ struct CaseResult {
 // uniform refinements on top of --mesh-refine. Throws InputError for a bad
 // option; a solve that does not converge is reported in the result, not
 // thrown. Every field but positions and strains is the same on every rank.
-CaseResult solve_case(const Options& options, int extra_refinements = 0);
+// With --analysis dynamic, `observe` (when given) is called collectively
+// with the initial state and after every accepted time step.
+using CaseStepObserver =
+    std::function<void(ClothProblem& problem, Vec x, const DynamicStepReport& step)>;
+CaseResult solve_case(const Options& options, int extra_refinements = 0,
+                      const CaseStepObserver& observe = {});
 
 // The parts of `sartor run`'s summary.json that describe the solve: "mesh",
-// "converged", "solver", "load_steps", "energy_J", "pin_reaction_N",
-// "max_displacement_m", "probe" (when given) and "timing_s".
+// "converged", "solver", "load_steps" (statics) or "dynamics" (time stepping),
+// "energy_J", "pin_reaction_N", "max_displacement_m", "probe" (when given) and
+// "timing_s".
 void add_case_summary(const CaseResult& result, nlohmann::json& summary);
 
 // Rank 0: result.h5, result.xmf, final.obj and summary.json in `directory`.

@@ -33,6 +33,10 @@ const CommandSpec& run_command();
 int run_run(const Invocation&);
 const CommandSpec& converge_command();
 int run_converge(const Invocation&);
+const CommandSpec& pattern_command();
+int run_pattern(const Invocation&);
+const CommandSpec& body_command();
+int run_body(const Invocation&);
 
 // Metadata every output JSON carries: version, command line, options used.
 nlohmann::json run_metadata(const Invocation& invocation, const std::string& command);

@@ -4,6 +4,7 @@
 #include "common/error.hpp"
 #include "common/statistics.hpp"
 #include "common/vector_math.hpp"
+#include "fem/petsc_options.hpp"
 
 #include <Eigen/Dense>
 
@@ -518,14 +519,6 @@ void fill_statistics(const CreepTestData& data, const FitSums& sums, CreepFit* f
                               format_number(e.value) + ")");
     }
   }
-}
-
-PetscErrorCode set_default_option(const char* name, const char* value) {
-  PetscBool chosen = PETSC_FALSE;
-  PetscFunctionBeginUser;
-  PetscCall(PetscOptionsHasName(nullptr, nullptr, name, &chosen));
-  if (!chosen) PetscCall(PetscOptionsSetValue(nullptr, name, value));
-  PetscFunctionReturn(0);
 }
 
 } // namespace

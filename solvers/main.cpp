@@ -19,9 +19,14 @@ using sartor::Command;
 
 const std::vector<Command>& commands() {
   static const std::vector<Command> all = {
-      {sartor::creep_command, sartor::run_creep}, {sartor::fit_command, sartor::run_fit},
-      {sartor::synth_command, sartor::run_synth}, {sartor::fabrics_command, sartor::run_fabrics},
-      {sartor::run_command, sartor::run_run},     {sartor::converge_command, sartor::run_converge},
+      {sartor::creep_command, sartor::run_creep},
+      {sartor::fit_command, sartor::run_fit},
+      {sartor::synth_command, sartor::run_synth},
+      {sartor::fabrics_command, sartor::run_fabrics},
+      {sartor::run_command, sartor::run_run},
+      {sartor::converge_command, sartor::run_converge},
+      {sartor::pattern_command, sartor::run_pattern},
+      {sartor::body_command, sartor::run_body},
   };
   return all;
 }

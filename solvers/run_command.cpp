@@ -1,4 +1,5 @@
-// sartor run: static equilibrium of a cloth described by a YAML case file.
+// sartor run: static equilibrium, or implicit dynamics, of a cloth described
+// by a YAML case file.
 // The case pipeline itself (solve_case) is shared with `sartor converge`.
 
 #include "common/csv.hpp"
@@ -21,13 +22,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <sstream>
 
 namespace sartor {
 
 const std::vector<OptionSpec>& case_option_specs() {
   static const std::vector<OptionSpec> specs{
-      {"mesh", "KIND", "rectangle", "rectangle, disk, cylinder_band, sphere_cap or obj"},
+      {"mesh", "KIND", "rectangle",
+       "rectangle, disk, cylinder_band, sphere_cap, tube_panels or obj"},
       {"mesh-file", "FILE", "", "OBJ file (mesh obj): texture coordinates give the rest shape"},
       {"mesh-width", "M", "1", "rectangle width (along warp), m"},
       {"mesh-height", "M", "1", "rectangle or band height (along weft), m"},
@@ -39,6 +42,9 @@ const std::vector<OptionSpec>& case_option_specs() {
       {"mesh-segments", "N", "32", "band segments around"},
       {"mesh-rows", "N", "8", "band rows along the axis"},
       {"mesh-cap-angle", "RAD", "0.5", "sphere cap half angle, rad"},
+      {"mesh-nx-front", "N", "", "tube_panels: front panel divisions around [mesh-nx]"},
+      {"mesh-ny-front", "N", "", "tube_panels: front panel divisions along the height [mesh-ny]"},
+      {"mesh-gap", "M", "0.15", "tube_panels: distance the two panels start apart, m"},
       {"mesh-refine", "N", "0", "uniform refinements (each splits triangles in four)"},
       {"mesh-snap-boundary", "", "",
        "disk: put refined boundary vertices back on the circle (position and uv)"},
@@ -62,8 +68,40 @@ const std::vector<OptionSpec>& case_option_specs() {
       {"pin-boundary", "", "", "pin every boundary vertex"},
       {"pin-vertices", "I,J,...", "", "pin these vertices"},
       {"pin-move", "X,Y,Z", "0,0,0", "move the pins by this much as the load ramps, m"},
+      {"pin-motion", "HISTORY", "",
+       "pins follow 'T:DX,DY,DZ[,DEG]; ...' (m, degrees; T: load factor, or time in s with "
+       "--analysis dynamic); groups separated by '|'"},
+      {"pin-motion-boxes", "I,..|J,..", "",
+       "the --pin-box boxes (numbered from 1) each --pin-motion group moves [all pins]"},
+      {"pin-rotation-axis", "X,Y,Z", "0,0,1", "axis of the --pin-motion angles"},
+      {"pin-rotation-center", "X,Y,Z", "0,0,0", "a point of that axis, m"},
       {"probe", "X,Y,Z", "", "report the displacement of the vertex nearest this point"},
+      {"body", "SPEC", "",
+       "a rigid body, e.g. \"sphere center=0,0,0 radius=0.3 mu=0.3\" (docs/contact.md)"},
+      {"body2", "SPEC", "", "a second body"},
+      {"body3", "SPEC", "", "a third body"},
+      {"body4", "SPEC", "", "a fourth body"},
+      {"contact-offset", "M", "0.001", "distance kept between cloth vertices and bodies, m"},
+      {"contact-stiffness", "N/M", "",
+       "penalty stiffness per vertex, N/m [factor * E_max * vertex area / h^2]"},
+      {"contact-stiffness-factor", "C", "1", "the factor of the automatic penalty stiffness"},
+      {"drape-support-radius", "M", "",
+       "report the Cusick drape coefficient for a support disk of this radius, m"},
       {"load-steps", "N", "1", "load increments (each halved up to 8 times on failure)"},
+      {"seams-file", "FILE", "", "seams to sew (JSON, docs/formats.md) [tube_panels: its own]"},
+      {"seam-stiffness", "N/M2", "", "seam stiffness per unit seam length, N/m^2 [automatic]"},
+      {"seam-penalty", "P", "100", "automatic seam stiffness: P x modulus / seam spacing"},
+      {"seam-merge", "", "", "sew, then merge matched seam vertices and solve again"},
+      {"seam-merge-gap", "M", "1e-4", "--seam-merge: largest seam gap accepted as closed, m"},
+      {"analysis", "KIND", "static", "static (equilibrium) or dynamic (implicit time stepping)"},
+      {"time-end", "S", "1", "dynamic: end time, s"},
+      {"time-step", "S", "0.01", "dynamic: time step, s (halved up to 8 times on failure)"},
+      {"damping", "1/S", "0", "dynamic: mass-proportional damping alpha (force -alpha M v), 1/s"},
+      {"kinetic-damping", "", "", "dynamic: zero every velocity at each kinetic-energy peak"},
+      {"rest-tolerance", "R", "0",
+       "dynamic: stop once the static residual is below R times its initial value (0: never)"},
+      {"output-interval", "S", "0",
+       "dynamic: time between the states written to series.h5, s (0: every step)"},
   };
   return specs;
 }
@@ -71,7 +109,7 @@ const std::vector<OptionSpec>& case_option_specs() {
 const CommandSpec& run_command() {
   static const CommandSpec spec{
       "run",
-      "static equilibrium of a cloth case (YAML options file)",
+      "static equilibrium or dynamics of a cloth case (YAML options file)",
       "sartor run CASE.yaml [--option value ...] [-petsc_option ...]",
       "Builds the mesh, material, pins and loads the case describes, solves static\n"
       "equilibrium with Newton's method (PETSc SNES; loads ramped in --load-steps,\n"
@@ -81,10 +119,18 @@ const CommandSpec& run_command() {
       "displacement, per-triangle strain and tension in warp and weft), final.obj,\n"
       "summary.json (energies, iterations, residuals, reactions, timings),\n"
       "petsc_options.txt (every option in effect).\n\n"
+      "With --analysis dynamic it steps through time instead (backward Euler with\n"
+      "lumped masses, from rest at the case's placement, pins following\n"
+      "--pin-motion in time), prints progress every 5 % of the simulated time and\n"
+      "also writes series.h5 + series.xmf (the states at --output-interval: open\n"
+      "series.xmf in ParaView as a time series) and dynamics.csv (time, kinetic and\n"
+      "potential energy, residual, iterations, probe displacement per step).\n\n"
       "examples:\n"
       "  sartor run cases/fe/hanging_sheet.yaml\n"
       "  sartor run cases/fe/hencky.yaml --mesh-rings 16 -snes_monitor\n"
-      "  mpiexec -n 2 sartor run cases/fe/hanging_sheet.yaml",
+      "  mpiexec -n 2 sartor run cases/fe/hanging_sheet.yaml\n"
+      "  sartor run cases/fe/hanging_sheet_dynamic.yaml --time-end 2 --output-interval 0.05\n"
+      "  sartor run cases/fe/cantilever_strip.yaml --pin-motion \"0:0,0,0; 1:0,0,0.1\"",
       [] {
         std::vector<OptionSpec> options = case_option_specs();
         options.push_back(
@@ -173,12 +219,14 @@ TriangleMesh build_mesh(const Options& options, int extra_refinements, int* refi
     cloth = mesh::sphere_cap(options.positive_real("mesh-radius"),
                              options.positive_real("mesh-cap-angle"),
                              count_option(options, "mesh-rings", 1));
+  } else if (kind == "tube_panels") {
+    cloth = tube_panels_mesh(options).mesh;
   } else if (kind == "obj") {
     if (!options.is_set("mesh-file")) throw InputError("mesh obj needs --mesh-file FILE.obj");
     cloth = read_obj(options.text("mesh-file"));
   } else {
     throw InputError("option --mesh: unknown kind '" + kind +
-                     "' (rectangle, disk, cylinder_band, sphere_cap, obj)");
+                     "' (rectangle, disk, cylinder_band, sphere_cap, tube_panels, obj)");
   }
   const bool snap = options.flag("mesh-snap-boundary");
   if (snap && kind != "disk") {
@@ -280,6 +328,108 @@ std::vector<int> pinned_vertices(const Options& options, const TriangleMesh& mes
   return pinned;
 }
 
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::stringstream stream(text);
+  std::string part;
+  while (std::getline(stream, part, separator))
+    parts.push_back(part);
+  return parts;
+}
+
+// The --pin-motion groups: histories separated by '|', each moving every pin
+// or, with --pin-motion-boxes, the pins in the listed --pin-box boxes.
+std::vector<PinGroupMotion> pin_groups(const Options& options, const TriangleMesh& mesh,
+                                       const std::vector<int>& pinned) {
+  std::vector<PinGroupMotion> groups;
+  if (!options.is_set("pin-motion")) {
+    if (options.is_set("pin-motion-boxes")) {
+      throw InputError("option --pin-motion-boxes: there is no --pin-motion to apply");
+    }
+    return groups;
+  }
+  if (pinned.empty()) throw InputError("option --pin-motion: no vertex is pinned");
+  const auto histories = split(options.text("pin-motion"), '|');
+  Eigen::Vector3d axis = vector3(options, "pin-rotation-axis");
+  if (axis.norm() == 0.0) throw InputError("option --pin-rotation-axis: the axis is zero");
+  axis.normalize();
+  for (std::size_t g = 0; g < histories.size(); ++g) {
+    PinGroupMotion group;
+    group.history = PinHistory::parse(
+        histories[g],
+        "option --pin-motion" +
+            (histories.size() > 1 ? " (group " + std::to_string(g + 1) + ")" : std::string()));
+    group.axis = axis;
+    group.center = vector3(options, "pin-rotation-center");
+    groups.push_back(group);
+  }
+  if (!options.is_set("pin-motion-boxes")) {
+    if (groups.size() > 1) {
+      throw InputError("option --pin-motion: " + std::to_string(groups.size()) +
+                       " groups need --pin-motion-boxes to say which pins each moves");
+    }
+    for (std::size_t i = 0; i < pinned.size(); ++i)
+      groups[0].pins.push_back(i);
+    return groups;
+  }
+  const auto selections = split(options.text("pin-motion-boxes"), '|');
+  if (selections.size() != groups.size()) {
+    throw InputError("option --pin-motion-boxes: " + std::to_string(selections.size()) +
+                     " group(s) of boxes for " + std::to_string(groups.size()) +
+                     " --pin-motion group(s)");
+  }
+  const auto boxes =
+      options.is_set("pin-box") ? numbers(options, "pin-box", 0) : std::vector<double>{};
+  const std::size_t box_count = boxes.size() / 6;
+  std::vector<int> group_of(pinned.size(), 0);
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    std::stringstream list(selections[g]);
+    std::string item;
+    while (std::getline(list, item, ',')) {
+      std::size_t used = 0;
+      long box = 0;
+      try {
+        box = std::stol(item, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || item.find_first_not_of(" \t", used) != std::string::npos || box < 1 ||
+          std::size_t(box) > box_count) {
+        throw InputError("option --pin-motion-boxes: '" + item +
+                         "' is not a box of --pin-box (1.." + std::to_string(box_count) + ")");
+      }
+      const double* b = &boxes[6 * std::size_t(box - 1)];
+      for (std::size_t i = 0; i < pinned.size(); ++i) {
+        const Eigen::Vector3d& p = mesh.positions[std::size_t(pinned[i])];
+        bool inside = true;
+        for (std::size_t d = 0; d < 3; ++d)
+          inside = inside && p[long(d)] >= b[2 * d] && p[long(d)] <= b[2 * d + 1];
+        if (!inside || group_of[i] == int(g + 1)) continue;
+        if (group_of[i] != 0) {
+          throw InputError("option --pin-motion-boxes: pinned vertex " + std::to_string(pinned[i]) +
+                           " is in groups " + std::to_string(group_of[i]) + " and " +
+                           std::to_string(g + 1));
+        }
+        group_of[i] = int(g + 1);
+        groups[g].pins.push_back(i);
+      }
+    }
+  }
+  return groups;
+}
+
+DynamicOptions dynamic_options(const Options& options) {
+  DynamicOptions dynamic;
+  dynamic.time_end = options.positive_real("time-end");
+  dynamic.time_step = options.positive_real("time-step");
+  dynamic.damping = options.nonnegative_real("damping");
+  dynamic.kinetic_damping = options.flag("kinetic-damping");
+  dynamic.rest_tolerance = options.nonnegative_real("rest-tolerance");
+  dynamic.output_interval = options.nonnegative_real("output-interval");
+  dynamic.print_progress = true;
+  return dynamic;
+}
+
 nlohmann::json vector_json(const Eigen::Vector3d& v) {
   return {v[0], v[1], v[2]};
 }
@@ -300,13 +450,22 @@ void broadcast(double* values, int count) {
 
 } // namespace
 
-CaseResult solve_case(const Options& options, int extra_refinements) {
+CaseResult solve_case(const Options& options, int extra_refinements,
+                      const CaseStepObserver& observe) {
   const auto started = std::chrono::steady_clock::now();
   CaseResult result;
   result.mesh = build_mesh(options, extra_refinements, &result.mesh_refine);
   const TriangleMesh& mesh = result.mesh;
   const ClothMaterial material = build_material(options);
-  const std::vector<int> pinned = pinned_vertices(options, mesh);
+  std::vector<int> pinned = pinned_vertices(options, mesh);
+  // Seams (solvers/seam_case.hpp): sewn by springs, or sewn first and merged.
+  const std::vector<Seam> seams = case_seams(options, mesh, result.mesh_refine);
+  if (!seams.empty()) result.seams = SeamReport{};
+  if (!seams.empty() && options.flag("seam-merge")) {
+    sew_and_merge(options, material, vector3(options, "gravity"),
+                  count_option(options, "load-steps", 1), seams, &result.mesh, &pinned,
+                  &*result.seams);
+  }
   result.pinned_vertices = pinned.size();
   result.h = longest_material_edge(mesh);
 
@@ -323,6 +482,24 @@ CaseResult solve_case(const Options& options, int extra_refinements) {
     problem.loads.point_forces.push_back({int(v), Eigen::Vector3d(f[1], f[2], f[3])});
   }
   problem.pin_motion = vector3(options, "pin-move");
+  problem.pin_groups = pin_groups(options, mesh, pinned);
+  set_up_contact(options, problem);
+  if (result.seams && !result.seams->merged) {
+    attach_seams(options, seams, material, problem, &*result.seams);
+  }
+  const std::string analysis = options.text("analysis");
+  if (analysis != "static" && analysis != "dynamic") {
+    throw InputError("option --analysis: unknown kind '" + analysis + "' (static, dynamic)");
+  }
+  const bool dynamic = analysis == "dynamic";
+  if (dynamic && problem.pin_motion != Eigen::Vector3d::Zero()) {
+    throw InputError("option --pin-move ramps the pins with the load in statics; with --analysis "
+                     "dynamic give a history in time: --pin-motion \"0:0,0,0; T:DX,DY,DZ\"");
+  }
+  if (dynamic && material.areal_density <= 0.0) {
+    throw InputError("option --density: --analysis dynamic needs a positive areal density, got " +
+                     options.text("density"));
+  }
   StaticOptions solve;
   solve.load_steps = count_option(options, "load-steps", 1);
   if (options.is_set("probe")) {
@@ -342,15 +519,47 @@ CaseResult solve_case(const Options& options, int extra_refinements) {
 
   Vec x = nullptr;
   SartorPetscCall(problem.create_solution(&x));
-  SartorPetscCall(solve_static(problem, x, solve, &result.report));
-  result.converged = result.report.converged;
+  if (dynamic) {
+    // Starts at rest; the probe is followed step by step for dynamics.csv.
+    Vec v = nullptr;
+    SartorPetscCall(VecDuplicate(x, &v));
+    SartorPetscCall(VecSet(v, 0.0));
+    const DynamicObserver follow = [&](const DynamicStepReport& step, Vec state,
+                                       Vec) -> PetscErrorCode {
+      if (result.probe) {
+        std::vector<Eigen::Vector3d> positions;
+        SartorPetscCall(problem.gather_positions(state, &positions));
+        double d[3] = {0.0, 0.0, 0.0};
+        if (is_root()) {
+          const std::size_t p = result.probe->vertex;
+          for (int k = 0; k < 3; ++k)
+            d[k] = positions[p][k] - mesh.positions[p][k];
+        }
+        broadcast(d, 3);
+        result.probe_history.emplace_back(d[0], d[1], d[2]);
+      }
+      if (observe) observe(problem, state, step);
+      return 0;
+    };
+    DynamicReport report;
+    SartorPetscCall(solve_dynamic(problem, x, v, dynamic_options(options), &report, follow));
+    SartorPetscCall(VecDestroy(&v));
+    result.converged = report.completed;
+    result.solve_seconds = report.solve_seconds;
+    result.dynamics = std::move(report);
+  } else {
+    SartorPetscCall(solve_static(problem, x, solve, &result.report));
+    result.converged = result.report.converged;
+    result.solve_seconds = result.report.solve_seconds;
+  }
   result.load_factor = problem.load_factor;
-  result.solve_seconds = result.report.solve_seconds;
 
   SartorPetscCall(problem.energy(x, &result.energy));
+  if (result.seams) SartorPetscCall(problem.seam_gap(x, &result.seams->gap));
   SartorPetscCall(problem.pin_reaction(x, &result.pin_reaction));
   SartorPetscCall(problem.gather_positions(x, &result.positions));
   SartorPetscCall(problem.gather_strains(x, &result.strains));
+  result.contact = measure_contact(options, problem, x, result.positions);
   SartorPetscCall(VecDestroy(&x));
 
   // Rank 0 holds the positions: it measures, everybody learns.
@@ -376,13 +585,9 @@ CaseResult solve_case(const Options& options, int extra_refinements) {
   return result;
 }
 
-void add_case_summary(const CaseResult& result, nlohmann::json& summary) {
-  const StaticReport& report = result.report;
-  summary["mesh"] = {{"vertices", result.mesh.vertex_count()},
-                     {"triangles", result.mesh.triangle_count()},
-                     {"pinned_vertices", result.pinned_vertices},
-                     {"dofs", result.dofs}};
-  summary["converged"] = report.converged;
+namespace {
+
+void add_statics_summary(const StaticReport& report, nlohmann::json& summary) {
   summary["solver"] = {{"reason", report.reason},
                        {"load_steps", report.steps.size()},
                        {"newton_iterations", report.newton_iterations},
@@ -398,10 +603,86 @@ void add_case_summary(const CaseResult& result, nlohmann::json& summary) {
                                      {"linear_iterations", step.linear_iterations},
                                      {"residual_norm", step.residual_norm}});
   }
+}
+
+void add_dynamics_summary(const DynamicReport& report, nlohmann::json& summary) {
+  const std::size_t accepted = report.steps.empty() ? 0 : report.steps.size() - 1;
+  nlohmann::json history = nlohmann::json::array();
+  for (const auto& step : report.steps) {
+    history.push_back({{"step", step.step},
+                       {"time_s", step.time},
+                       {"dt_s", step.dt},
+                       {"newton_iterations", step.newton_iterations},
+                       {"linear_iterations", step.linear_iterations},
+                       {"rejected", step.rejected},
+                       {"kinetic_energy_J", step.kinetic_energy},
+                       {"potential_energy_J", step.potential_energy},
+                       {"static_residual_norm", step.static_residual_norm},
+                       {"velocities_reset", step.velocities_reset},
+                       {"output", step.output}});
+  }
+  summary["dynamics"] = {{"completed", report.completed},
+                         {"at_rest", report.at_rest},
+                         {"reason", report.completed
+                                        ? (report.at_rest ? "at rest" : "reached the end time")
+                                        : report.reason},
+                         {"final_time_s", report.final_time},
+                         {"steps", accepted},
+                         {"rejected_steps", report.rejected_steps},
+                         {"newton_iterations", report.newton_iterations},
+                         {"linear_iterations", report.linear_iterations},
+                         {"newton_iterations_per_step",
+                          accepted ? double(report.newton_iterations) / double(accepted) : 0.0},
+                         {"velocity_resets", report.velocity_resets},
+                         {"steps_per_second",
+                          report.solve_seconds > 0 ? double(accepted) / report.solve_seconds : 0.0},
+                         {"history", history}};
+}
+
+// dynamics.csv: one row per state (the initial one first).
+std::string dynamics_csv(const CaseResult& result) {
+  std::ostringstream csv;
+  csv << "time_s,dt_s,kinetic_energy_J,potential_energy_J,total_energy_J,static_residual_N,"
+         "newton_iterations,rejected";
+  if (result.probe) csv << ",probe_dx_m,probe_dy_m,probe_dz_m";
+  csv << "\n";
+  const auto& steps = result.dynamics->steps;
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const DynamicStepReport& s = steps[k];
+    csv << format_number(s.time) << ',' << format_number(s.dt) << ','
+        << format_number(s.kinetic_energy) << ',' << format_number(s.potential_energy) << ','
+        << format_number(s.kinetic_energy + s.potential_energy) << ','
+        << format_number(s.static_residual_norm) << ',' << s.newton_iterations << ',' << s.rejected;
+    if (result.probe && k < result.probe_history.size()) {
+      for (int d = 0; d < 3; ++d)
+        csv << ',' << format_number(result.probe_history[k][d]);
+    }
+    csv << "\n";
+  }
+  return csv.str();
+}
+
+} // namespace
+
+void add_case_summary(const CaseResult& result, nlohmann::json& summary) {
+  summary["mesh"] = {{"vertices", result.mesh.vertex_count()},
+                     {"triangles", result.mesh.triangle_count()},
+                     {"pinned_vertices", result.pinned_vertices},
+                     {"dofs", result.dofs}};
+  summary["converged"] = result.converged;
+  if (result.dynamics) {
+    add_dynamics_summary(*result.dynamics, summary);
+  } else {
+    add_statics_summary(result.report, summary);
+  }
   summary["energy_J"] = {{"membrane", result.energy.membrane},
                          {"bending", result.energy.bending},
                          {"external", result.energy.external},
                          {"total", result.energy.total()}};
+  if (result.seams) {
+    summary["energy_J"]["seam"] = result.energy.seam;
+    add_seam_summary(*result.seams, summary);
+  }
   summary["pin_reaction_N"] = vector_json(result.pin_reaction);
   summary["max_displacement_m"] = result.max_displacement;
   if (result.probe) {
@@ -409,6 +690,7 @@ void add_case_summary(const CaseResult& result, nlohmann::json& summary) {
                         {"initial_position_m", vector_json(result.probe->initial_position)},
                         {"displacement_m", vector_json(result.probe->displacement)}};
   }
+  if (!result.contact.bodies.empty()) summary["contact"] = contact_summary(result.contact);
   summary["timing_s"] = {{"setup", result.setup_seconds},
                          {"solve", result.solve_seconds},
                          {"total", result.total_seconds}};
@@ -418,6 +700,7 @@ void write_case_results(const std::string& directory, const CaseResult& result,
                         const nlohmann::json& summary) {
   if (!is_root()) return;
   write_cloth_results(directory, result.mesh, result.positions, result.strains);
+  if (result.dynamics) write_file_atomically(directory + "/dynamics.csv", dynamics_csv(result));
   write_json(directory + "/summary.json", summary);
 }
 
@@ -431,15 +714,44 @@ void write_petsc_options(const std::string& directory) {
 
 int run_run(const Invocation& invocation) {
   const Options& options = invocation.options;
-  const CaseResult result = solve_case(options);
+  const std::string directory = options.text("output");
+  // Dynamic runs write their states at output times into series.h5/.xmf.
+  std::unique_ptr<ClothTimeSeries> series;
+  const CaseStepObserver write_state = [&](ClothProblem& problem, Vec x,
+                                           const DynamicStepReport& step) {
+    if (!step.output) return;
+    std::vector<Eigen::Vector3d> positions;
+    std::vector<element::MembraneStrain> strains;
+    SartorPetscCall(problem.gather_positions(x, &positions));
+    SartorPetscCall(problem.gather_strains(x, &strains));
+    if (!is_root()) return;
+    if (!series) series = std::make_unique<ClothTimeSeries>(directory, problem.mesh());
+    series->write(step.time, positions, strains);
+  };
+  const CaseResult result = solve_case(options, 0, write_state);
 
   nlohmann::json summary = run_metadata(invocation, "run");
   summary["case"] = invocation.command_line.positionals.at(0);
   add_case_summary(result, summary);
-  const std::string directory = options.text("output");
   write_case_results(directory, result, summary);
   write_petsc_options(directory);
 
+  if (result.dynamics) {
+    const DynamicReport& report = *result.dynamics;
+    SartorPetscCall(PetscPrintf(
+        PETSC_COMM_WORLD,
+        "sartor run: %zu triangles, dynamic to t = %g s in %zu steps (%d rejected), %d Newton "
+        "iterations%s; wrote %s\n",
+        result.mesh.triangle_count(), report.final_time, report.steps.size() - 1,
+        int(report.rejected_steps), int(report.newton_iterations),
+        report.at_rest ? ", at rest" : "", directory.c_str()));
+    if (!report.completed) {
+      throw InputError(report.reason + "; " + directory +
+                       " holds the last accepted state. Try a smaller --time-step, --damping, "
+                       "or -snes_monitor");
+    }
+    return 0;
+  }
   SartorPetscCall(
       PetscPrintf(PETSC_COMM_WORLD,
                   "sartor run: %zu triangles, %s after %d Newton iterations in %zu load "

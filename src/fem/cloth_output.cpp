@@ -1,5 +1,6 @@
 #include "fem/cloth_output.hpp"
 
+#include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
 #include "mesh/obj.hpp"
@@ -7,6 +8,7 @@
 #include <hdf5.h>
 
 #include <cstdio>
+#include <iomanip>
 #include <sstream>
 
 namespace sartor {
@@ -42,7 +44,10 @@ void write_dataset(hid_t file, const std::string& name, hid_t type, const void* 
   }
 }
 
-std::string xdmf_text(const std::string& h5, std::size_t vertices, std::size_t triangles) {
+// One XDMF grid of the cloth whose datasets live under `group` of `h5`
+// ("" for the final state: /fields, /cell_fields), at `time` when given.
+std::string grid_text(const std::string& h5, const std::string& group, const std::string& name,
+                      std::size_t vertices, std::size_t triangles, const double* time) {
   std::ostringstream x;
   const auto item = [&](const std::string& set, std::size_t rows, int columns, const char* type) {
     std::ostringstream d;
@@ -52,21 +57,77 @@ std::string xdmf_text(const std::string& h5, std::size_t vertices, std::size_t t
       << "</DataItem>";
     return d.str();
   };
-  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
-    << "  <Grid Name=\"cloth\" GridType=\"Uniform\">\n"
-    << "   <Topology TopologyType=\"Triangle\" NumberOfElements=\"" << triangles << "\">"
+  x << "  <Grid Name=\"" << name << "\" GridType=\"Uniform\">\n";
+  if (time) x << "   <Time Value=\"" << format_number(*time) << "\"/>\n";
+  x << "   <Topology TopologyType=\"Triangle\" NumberOfElements=\"" << triangles << "\">"
     << item("/mesh/triangles", triangles, 3, "Int") << "</Topology>\n"
-    << "   <Geometry GeometryType=\"XYZ\">" << item("/fields/position", vertices, 3, "Float")
-    << "</Geometry>\n"
+    << "   <Geometry GeometryType=\"XYZ\">"
+    << item(group + "/fields/position", vertices, 3, "Float") << "</Geometry>\n"
     << "   <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">"
-    << item("/fields/displacement", vertices, 3, "Float") << "</Attribute>\n";
+    << item(group + "/fields/displacement", vertices, 3, "Float") << "</Attribute>\n";
   for (const char* field :
        {"strain_warp", "strain_weft", "strain_shear", "tension_warp", "tension_weft"}) {
     x << "   <Attribute Name=\"" << field << "\" AttributeType=\"Scalar\" Center=\"Cell\">"
-      << item(std::string("/cell_fields/") + field, triangles, 1, "Float") << "</Attribute>\n";
+      << item(group + "/cell_fields/" + field, triangles, 1, "Float") << "</Attribute>\n";
   }
-  x << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  x << "  </Grid>\n";
   return x.str();
+}
+
+std::string xdmf_text(const std::string& h5, std::size_t vertices, std::size_t triangles) {
+  return "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n" +
+         grid_text(h5, "", "cloth", vertices, triangles, nullptr) + " </Domain>\n</Xdmf>\n";
+}
+
+// Positions, displacements and per-triangle strains under `group` of `file`.
+void write_state(hid_t file, const std::string& group, const TriangleMesh& mesh,
+                 const std::vector<Eigen::Vector3d>& positions,
+                 const std::vector<element::MembraneStrain>& strains, const std::string& path) {
+  const std::size_t nv = mesh.vertex_count(), nt = mesh.triangle_count();
+  if (positions.size() != nv || strains.size() != nt) {
+    throw std::logic_error("write_state: positions or strains do not match the mesh");
+  }
+  std::vector<double> current, displacement;
+  for (std::size_t v = 0; v < nv; ++v) {
+    for (int d = 0; d < 3; ++d) {
+      current.push_back(positions[v][d]);
+      displacement.push_back(positions[v][d] - mesh.positions[v][d]);
+    }
+  }
+  write_dataset(file, group + "/fields/position", H5T_NATIVE_DOUBLE, current.data(), {nv, 3}, path);
+  write_dataset(file, group + "/fields/displacement", H5T_NATIVE_DOUBLE, displacement.data(),
+                {nv, 3}, path);
+  const std::pair<const char*, double element::MembraneStrain::*> fields[] = {
+      {"strain_warp", &element::MembraneStrain::warp},
+      {"strain_weft", &element::MembraneStrain::weft},
+      {"strain_shear", &element::MembraneStrain::shear},
+      {"tension_warp", &element::MembraneStrain::tension_warp},
+      {"tension_weft", &element::MembraneStrain::tension_weft}};
+  for (const auto& [name, member] : fields) {
+    std::vector<double> values;
+    for (const auto& s : strains)
+      values.push_back(s.*member);
+    write_dataset(file, group + "/cell_fields/" + name, H5T_NATIVE_DOUBLE, values.data(), {nt},
+                  path);
+  }
+}
+
+// The mesh: triangles, material uv and initial positions.
+void write_mesh(hid_t file, const TriangleMesh& mesh, const std::string& path) {
+  const std::size_t nv = mesh.vertex_count(), nt = mesh.triangle_count();
+  std::vector<long long> triangles;
+  std::vector<double> uv, initial;
+  for (const auto& t : mesh.triangles)
+    triangles.insert(triangles.end(), {t[0], t[1], t[2]});
+  for (const auto& corners : mesh.material_uv) {
+    for (const auto& c : corners)
+      uv.insert(uv.end(), {c[0], c[1]});
+  }
+  for (const auto& p : mesh.positions)
+    initial.insert(initial.end(), {p[0], p[1], p[2]});
+  write_dataset(file, "/mesh/triangles", H5T_NATIVE_LLONG, triangles.data(), {nt, 3}, path);
+  write_dataset(file, "/mesh/material_uv", H5T_NATIVE_DOUBLE, uv.data(), {nt, 3, 2}, path);
+  write_dataset(file, "/mesh/initial_position", H5T_NATIVE_DOUBLE, initial.data(), {nv, 3}, path);
 }
 
 } // namespace
@@ -81,42 +142,8 @@ void write_cloth_results(const std::string& directory, const TriangleMesh& mesh,
     const H5Handle file(H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
                         H5Fclose);
     if (file.get() < 0) throw InputError(h5 + ": cannot create HDF5 file");
-    const std::size_t nv = mesh.vertex_count(), nt = mesh.triangle_count();
-    std::vector<long long> triangles;
-    std::vector<double> uv, initial, current, displacement;
-    for (const auto& t : mesh.triangles)
-      triangles.insert(triangles.end(), {t[0], t[1], t[2]});
-    for (const auto& corners : mesh.material_uv) {
-      for (const auto& c : corners)
-        uv.insert(uv.end(), {c[0], c[1]});
-    }
-    for (std::size_t v = 0; v < nv; ++v) {
-      for (int d = 0; d < 3; ++d) {
-        initial.push_back(mesh.positions[v][d]);
-        current.push_back(positions[v][d]);
-        displacement.push_back(positions[v][d] - mesh.positions[v][d]);
-      }
-    }
-    write_dataset(file.get(), "/mesh/triangles", H5T_NATIVE_LLONG, triangles.data(), {nt, 3}, h5);
-    write_dataset(file.get(), "/mesh/material_uv", H5T_NATIVE_DOUBLE, uv.data(), {nt, 3, 2}, h5);
-    write_dataset(file.get(), "/mesh/initial_position", H5T_NATIVE_DOUBLE, initial.data(), {nv, 3},
-                  h5);
-    write_dataset(file.get(), "/fields/position", H5T_NATIVE_DOUBLE, current.data(), {nv, 3}, h5);
-    write_dataset(file.get(), "/fields/displacement", H5T_NATIVE_DOUBLE, displacement.data(),
-                  {nv, 3}, h5);
-    const std::pair<const char*, double element::MembraneStrain::*> fields[] = {
-        {"strain_warp", &element::MembraneStrain::warp},
-        {"strain_weft", &element::MembraneStrain::weft},
-        {"strain_shear", &element::MembraneStrain::shear},
-        {"tension_warp", &element::MembraneStrain::tension_warp},
-        {"tension_weft", &element::MembraneStrain::tension_weft}};
-    for (const auto& [name, member] : fields) {
-      std::vector<double> values;
-      for (const auto& s : strains)
-        values.push_back(s.*member);
-      write_dataset(file.get(), std::string("/cell_fields/") + name, H5T_NATIVE_DOUBLE,
-                    values.data(), {nt}, h5);
-    }
+    write_mesh(file.get(), mesh, h5);
+    write_state(file.get(), "", mesh, positions, strains, h5);
   }
   if (std::rename(temporary.c_str(), h5.c_str()) != 0) throw InputError(h5 + ": cannot write");
   write_file_atomically(directory + "/result.xmf",
@@ -124,6 +151,40 @@ void write_cloth_results(const std::string& directory, const TriangleMesh& mesh,
   TriangleMesh deformed = mesh;
   deformed.positions = positions;
   write_obj(directory + "/final.obj", deformed);
+}
+
+ClothTimeSeries::ClothTimeSeries(const std::string& directory, const TriangleMesh& mesh)
+    : directory_(directory), mesh_(mesh) {
+  make_output_directory(directory);
+  const std::string h5 = directory + "/series.h5";
+  const H5Handle file(H5Fcreate(h5.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  if (file.get() < 0) throw InputError(h5 + ": cannot create HDF5 file");
+  write_mesh(file.get(), mesh, h5);
+}
+
+void ClothTimeSeries::write(double time, const std::vector<Eigen::Vector3d>& positions,
+                            const std::vector<element::MembraneStrain>& strains) {
+  const std::string h5 = directory_ + "/series.h5";
+  std::ostringstream group;
+  group << "/steps/" << std::setw(6) << std::setfill('0') << times_.size();
+  {
+    const H5Handle file(H5Fopen(h5.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose);
+    if (file.get() < 0) throw InputError(h5 + ": cannot open HDF5 file for appending");
+    write_state(file.get(), group.str(), mesh_, positions, strains, h5);
+    write_dataset(file.get(), group.str() + "/time", H5T_NATIVE_DOUBLE, &time, {1}, h5);
+  }
+  times_.push_back(time);
+  std::ostringstream xdmf;
+  xdmf << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
+       << " <Grid Name=\"cloth\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (std::size_t k = 0; k < times_.size(); ++k) {
+    std::ostringstream step;
+    step << "/steps/" << std::setw(6) << std::setfill('0') << k;
+    xdmf << grid_text("series.h5", step.str(), "cloth", mesh_.vertex_count(),
+                      mesh_.triangle_count(), &times_[k]);
+  }
+  xdmf << " </Grid>\n </Domain>\n</Xdmf>\n";
+  write_file_atomically(directory_ + "/series.xmf", xdmf.str());
 }
 
 } // namespace sartor

@@ -4,6 +4,7 @@
 //               positions, displacement, per-triangle strains and tensions
 //   result.xmf  XDMF description of result.h5 for ParaView/VisIt
 //   final.obj   the deformed cloth with its material coordinates as vt
+// and, for time stepping, ClothTimeSeries below.
 // Called on one rank with data in mesh numbering (ClothProblem::gather_*).
 
 #include "element/membrane.hpp"
@@ -17,5 +18,23 @@ namespace sartor {
 void write_cloth_results(const std::string& directory, const TriangleMesh& mesh,
                          const std::vector<Eigen::Vector3d>& positions,
                          const std::vector<element::MembraneStrain>& strains);
+
+// A time series for ParaView, written state by state (rank 0):
+//   series.h5   the mesh (/mesh as in result.h5), then one group per state,
+//               /steps/NNNNNN/{time, fields/*, cell_fields/*}
+//   series.xmf  a temporal collection of those states; rewritten after each
+//               state, so a running or stopped simulation opens as it stands
+class ClothTimeSeries {
+public:
+  ClothTimeSeries(const std::string& directory, const TriangleMesh& mesh);
+  void write(double time, const std::vector<Eigen::Vector3d>& positions,
+             const std::vector<element::MembraneStrain>& strains);
+  std::size_t states() const { return times_.size(); }
+
+private:
+  std::string directory_;
+  const TriangleMesh& mesh_;
+  std::vector<double> times_;
+};
 
 } // namespace sartor

@@ -2,16 +2,20 @@
 
 #include "common/error.hpp"
 #include "element/pressure.hpp"
+#include "fem/block_assembly.hpp"
 #include "fem/petsc_call.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace sartor {
 
 namespace {
 
 constexpr PetscInt dofs_per_vertex = 3;
+// The name under which a Jacobian carries its fem::ElementScatter.
+constexpr const char* element_scatter_name = "sartor_element_scatter";
 
 // Mesh index of every local point: cells as c >= 0, vertices as -(v + 1).
 // `migration` maps the serial mesh's points (on rank 0) to the distributed
@@ -233,6 +237,7 @@ ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh, const ClothM
       hinges_.push_back(local);
     }
   }
+  set_up_contact();
 }
 
 ClothProblem::~ClothProblem() {
@@ -289,20 +294,45 @@ PetscErrorCode ClothProblem::create_solution(Vec* x) const {
   PetscFunctionReturn(0);
 }
 
+// Where every pin is now, in the order of pinned().
+PetscErrorCode ClothProblem::pin_places(std::vector<Eigen::Vector3d>* places) const {
+  PetscFunctionBeginUser;
+  *places = pin_positions_;
+  const double clock = pins_follow_time ? time : load_factor;
+  for (const PinGroupMotion& group : pin_groups) {
+    for (std::size_t i : group.pins) {
+      PetscCheck(i < places->size(), comm_, PETSC_ERR_ARG_OUTOFRANGE,
+                 "pin group names pin %zu of %zu", i, places->size());
+      (*places)[i] = group.place(pin_positions_[i], clock);
+    }
+  }
+  for (Eigen::Vector3d& place : *places)
+    place += load_factor * pin_motion;
+  PetscFunctionReturn(0);
+}
+
 // The local positions: free dofs from x, pinned ones from their prescribed place.
 PetscErrorCode ClothProblem::to_local(Vec x) {
   PetscScalar* values = nullptr;
   PetscFunctionBeginUser;
   PetscCall(DMGlobalToLocal(dm_, x, INSERT_VALUES, local_x_));
+  std::vector<Eigen::Vector3d> places;
+  PetscCall(pin_places(&places));
   PetscCall(VecGetArray(local_x_, &values));
   for (std::size_t i = 0; i < pinned_.size(); ++i) {
     const PetscInt offset = vertex_dof_[std::size_t(pinned_[i])];
     if (offset < 0) continue;
-    const Eigen::Vector3d place = pin_positions_[i] + load_factor * pin_motion;
+    const Eigen::Vector3d& place = places[i];
     for (std::size_t d = 0; d < 3; ++d)
       values[offset + PetscInt(d)] = place[long(d)];
   }
   PetscCall(VecRestoreArray(local_x_, &values));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::accept_step(Vec x) {
+  PetscFunctionBeginUser;
+  PetscCall(update_contact(x));
   PetscFunctionReturn(0);
 }
 
@@ -311,15 +341,23 @@ PetscErrorCode ClothProblem::energy(Vec x, ClothEnergy* result) {
   PetscFunctionBeginUser;
   PetscCall(to_local(x));
   PetscCall(VecGetArrayRead(local_x_, &values));
-  double local[3] = {0.0, 0.0, 0.0};
+  double local[4] = {0.0, 0.0, 0.0, 0.0};
+  local[3] = contact_energy(values);
   for (const LocalTriangle& t : triangles_) {
     const element::Vector9 xe = gather<9>(values, t.dofs);
     local[0] += element::membrane(material_.membrane_model, material_.membrane, t.rest,
                                   nonelastic[std::size_t(t.index)], xe, element::Want::energy)
                     .energy;
+    // Potentials of the loads are measured from the initial placement: a
+    // line search compares energies that differ by |F|^2/k near the
+    // solution, and g.x itself (~ weight x height) would bury that in
+    // round-off long before the residual is small.
     const double mass = material_.areal_density * t.rest.area / 3.0;
-    for (int k = 0; k < 3; ++k)
-      local[2] -= load_factor * mass * loads.gravity.dot(xe.segment<3>(3 * k));
+    const auto& corners = mesh_.triangles[std::size_t(t.index)];
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d& start = mesh_.positions[std::size_t(corners[std::size_t(k)])];
+      local[2] -= load_factor * mass * loads.gravity.dot(xe.segment<3>(3 * k) - start);
+    }
   }
   for (const LocalHinge& h : hinges_) {
     local[1] += element::bending(material_.bending_model, material_.bending_stiffness, h.rest,
@@ -330,12 +368,14 @@ PetscErrorCode ClothProblem::energy(Vec x, ClothEnergy* result) {
     if (!vertex_owned_[std::size_t(v)]) continue;
     const PetscInt offset = vertex_dof_[std::size_t(v)];
     local[2] -= load_factor *
-                force.dot(Eigen::Vector3d(values[offset], values[offset + 1], values[offset + 2]));
+                force.dot(Eigen::Vector3d(values[offset], values[offset + 1], values[offset + 2]) -
+                          mesh_.positions[std::size_t(v)]);
   }
   PetscCall(VecRestoreArrayRead(local_x_, &values));
-  double total[3];
-  PetscCallMPI(MPIU_Allreduce(local, total, 3, MPI_DOUBLE, MPI_SUM, comm_));
-  *result = {total[0], total[1], total[2]};
+  double total[4];
+  PetscCallMPI(MPIU_Allreduce(local, total, 4, MPI_DOUBLE, MPI_SUM, comm_));
+  *result = {total[0], total[1], total[2], total[3]};
+  if (seams_) PetscCall(seam_energy(x, &result->seam));
   PetscFunctionReturn(0);
 }
 
@@ -372,10 +412,12 @@ PetscErrorCode ClothProblem::residual(Vec x, Vec f) {
     for (int d = 0; d < 3; ++d)
       forces[offset + d] -= load_factor * force[d];
   }
+  add_contact_forces(values, forces);
   PetscCall(VecRestoreArray(local_f_, &forces));
   PetscCall(VecRestoreArrayRead(local_x_, &values));
   PetscCall(VecSet(f, 0.0));
   PetscCall(DMLocalToGlobal(dm_, local_f_, ADD_VALUES, f));
+  if (seams_) PetscCall(add_seam_forces(x, f));
   PetscFunctionReturn(0);
 }
 
@@ -385,6 +427,14 @@ PetscErrorCode ClothProblem::jacobian(Vec x, Mat J) {
   PetscCall(to_local(x));
   PetscCall(MatZeroEntries(J));
   PetscCall(VecGetArrayRead(local_x_, &values));
+  // Element matrices go straight into the value arrays when create_jacobian
+  // left a scatter with J, through MatSetValuesLocal otherwise.
+  PetscContainer container = nullptr;
+  fem::ElementScatter* scatter = nullptr;
+  PetscCall(PetscObjectQuery(reinterpret_cast<PetscObject>(J), element_scatter_name,
+                             reinterpret_cast<PetscObject*>(&container)));
+  if (container) PetscCall(PetscContainerGetPointer(container, reinterpret_cast<void**>(&scatter)));
+  if (scatter) PetscCall(scatter->begin());
   for (const LocalTriangle& t : triangles_) {
     const element::Vector9 xe = gather<9>(values, t.dofs);
     auto result = element::membrane(material_.membrane_model, material_.membrane, t.rest,
@@ -393,44 +443,40 @@ PetscErrorCode ClothProblem::jacobian(Vec x, Mat J) {
     if (loads.pressure != 0.0) {
       result.hessian -= load_factor * element::follower_pressure(loads.pressure, xe).jacobian;
     }
-    PetscCall(add_block<9>(J, t.dofs, result.hessian));
+    if (scatter)
+      PetscCall(scatter->add<9>(result.hessian));
+    else
+      PetscCall(add_block<9>(J, t.dofs, result.hessian));
   }
   for (const LocalHinge& h : hinges_) {
     auto result = element::bending(material_.bending_model, material_.bending_stiffness, h.rest,
                                    gather<12>(values, h.dofs), element::Want::hessian);
     if (material_.project_bending) element::project_to_psd<12>(result.hessian);
-    PetscCall(add_block<12>(J, h.dofs, result.hessian));
+    if (scatter)
+      PetscCall(scatter->add<12>(result.hessian));
+    else
+      PetscCall(add_block<12>(J, h.dofs, result.hessian));
   }
+  if (scatter) PetscCall(scatter->end());
+  PetscCall(add_contact_jacobian(values, J));
   PetscCall(VecRestoreArrayRead(local_x_, &values));
+  if (seams_) PetscCall(seams_->add_jacobian(J)); // global indices, across partitions
   PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode ClothProblem::create_jacobian(Mat* J) {
-  Mat pattern = nullptr;
   ISLocalToGlobalMapping map = nullptr;
   PetscInt local_size = 0;
   Vec global = nullptr;
+  fem::BlockLayout layout;
   PetscFunctionBeginUser;
   PetscCall(DMGetGlobalVector(dm_, &global));
   PetscCall(VecGetLocalSize(global, &local_size));
   PetscCall(DMRestoreGlobalVector(dm_, &global));
   PetscCall(DMGetLocalToGlobalMapping(dm_, &map));
-  PetscCall(MatCreate(comm_, &pattern));
-  PetscCall(MatSetType(pattern, MATPREALLOCATOR));
-  PetscCall(MatSetSizes(pattern, local_size, local_size, global_dofs_, global_dofs_));
-  PetscCall(MatSetLocalToGlobalMapping(pattern, map, map));
-  PetscCall(MatSetUp(pattern));
-  const Eigen::Matrix<double, 9, 9> zeros9 = Eigen::Matrix<double, 9, 9>::Zero();
-  const Eigen::Matrix<double, 12, 12> zeros12 = Eigen::Matrix<double, 12, 12>::Zero();
-  for (const LocalTriangle& t : triangles_)
-    PetscCall(add_block<9>(pattern, t.dofs, zeros9));
-  for (const LocalHinge& h : hinges_)
-    PetscCall(add_block<12>(pattern, h.dofs, zeros12));
-  PetscCall(MatAssemblyBegin(pattern, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(pattern, MAT_FINAL_ASSEMBLY));
-
+  PetscCall(fem::block_layout(dm_, &layout));
   PetscCall(MatCreate(comm_, J));
   PetscCall(MatSetSizes(*J, local_size, local_size, global_dofs_, global_dofs_));
   PetscCall(MatSetBlockSize(*J, dofs_per_vertex));
@@ -438,9 +484,47 @@ PetscErrorCode ClothProblem::create_jacobian(Mat* J) {
   PetscCall(MatSetOptionsPrefix(*J, "jacobian_"));
   PetscCall(MatSetFromOptions(*J));
   PetscCall(MatSetLocalToGlobalMapping(*J, map, map));
-  PetscCall(MatPreallocatorPreallocate(pattern, PETSC_TRUE, *J));
-  PetscCall(MatDestroy(&pattern));
+
+  // The exact block structure: every vertex pair of an element, plus the
+  // couplings that other terms insert into `recording` (global indices).
+  fem::BlockPattern pattern(comm_, layout);
+  for (const LocalTriangle& t : triangles_)
+    pattern.add_element(t.dofs);
+  for (const LocalHinge& h : hinges_)
+    pattern.add_element(h.dofs);
+  Mat recording = nullptr;
+  PetscCall(pattern.recorder(&recording));
+  if (seams_) PetscCall(seams_->add_pattern(recording)); // seam couplings, global indices
+  PetscCall(pattern.preallocate(*J));
   PetscCall(MatSetOption(*J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscCall(attach_element_scatter(layout, *J));
+  PetscFunctionReturn(0);
+}
+
+// For AIJ matrices, where each element block lands in the value arrays, so
+// that jacobian() adds element matrices without searching (kept with J).
+PetscErrorCode ClothProblem::attach_element_scatter(const fem::BlockLayout& layout, Mat J) const {
+  PetscBool aij = PETSC_FALSE;
+  PetscContainer container = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(
+      PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(J), &aij, MATSEQAIJ, MATMPIAIJ, ""));
+  if (!aij) PetscFunctionReturn(0);
+  auto scatter = std::make_unique<fem::ElementScatter>(layout);
+  PetscCall(scatter->attach(J));
+  for (const LocalTriangle& t : triangles_)
+    PetscCall(scatter->add_element(t.dofs));
+  for (const LocalHinge& h : hinges_)
+    PetscCall(scatter->add_element(h.dofs));
+  PetscCall(PetscContainerCreate(PETSC_COMM_SELF, &container));
+  PetscCall(PetscContainerSetPointer(container, scatter.release()));
+  PetscCall(PetscContainerSetUserDestroy(container, [](void* pointer) -> PetscErrorCode {
+    delete static_cast<fem::ElementScatter*>(pointer);
+    return 0;
+  }));
+  PetscCall(PetscObjectCompose(reinterpret_cast<PetscObject>(J), element_scatter_name,
+                               reinterpret_cast<PetscObject>(container)));
+  PetscCall(PetscContainerDestroy(&container));
   PetscFunctionReturn(0);
 }
 
@@ -540,6 +624,7 @@ PetscErrorCode ClothProblem::pin_reaction(Vec x, Eigen::Vector3d* reaction) {
   double total[3];
   PetscCallMPI(MPIU_Allreduce(local, total, 3, MPI_DOUBLE, MPI_SUM, comm_));
   *reaction = Eigen::Vector3d(total[0], total[1], total[2]);
+  if (seams_) PetscCall(add_seam_pin_reaction(x, reaction));
   PetscFunctionReturn(0);
 }
 

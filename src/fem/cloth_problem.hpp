@@ -12,8 +12,12 @@
 // are gathered in the mesh's own vertex and triangle numbering, so they do not
 // depend on the number of ranks.
 
+#include "contact/body.hpp"
+#include "contact/penalty.hpp"
 #include "element/bending.hpp"
 #include "element/membrane.hpp"
+#include "fem/pin_motion.hpp"
+#include "fem/seam_coupling.hpp"
 #include "mesh/triangle_mesh.hpp"
 
 #include <petscdmplex.h>
@@ -23,9 +27,14 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <memory>
 #include <vector>
 
 namespace sartor {
+
+namespace fem {
+struct BlockLayout;
+}
 
 struct ClothMaterial {
   explicit ClothMaterial(element::MembraneMaterial membrane_material)
@@ -49,8 +58,28 @@ struct ClothLoads {
 struct ClothEnergy {
   double membrane = 0.0;
   double bending = 0.0;
-  double external = 0.0; // potential of gravity and point forces (no pressure)
-  double total() const { return membrane + bending + external; }
+  double external = 0.0; // of gravity and point forces from the initial placement (no pressure)
+  double contact = 0.0;  // body penalty and friction anchor springs
+  double seam = 0.0;     // seam springs
+  double total() const { return membrane + bending + external + contact + seam; }
+};
+
+// Contact between the cloth's vertices and rigid bodies (docs/contact.md).
+struct ContactSettings {
+  double offset = 1e-3;          // m: the distance kept from bodies (half the cloth thickness)
+  double stiffness = 0.0;        // N/m per vertex; 0: automatic, see contact::penalty_stiffness
+  double stiffness_factor = 1.0; // the automatic rule's factor
+};
+
+// What one body does to the cloth, summed over all vertices (every rank).
+struct BodyContact {
+  Eigen::Vector3d normal_force = Eigen::Vector3d::Zero();   // N, on the cloth
+  Eigen::Vector3d friction_force = Eigen::Vector3d::Zero(); // N, on the cloth
+  long contacting_vertices = 0;                             // inside the contact offset
+  long anchored_vertices = 0;                               // holding an anchor in the solved state
+  long sliding_vertices = 0;                                // whose anchor slid at the last update
+  double max_penetration = 0.0; // m: largest depth into the offset layer, offset - d
+  double min_distance = 0.0;    // m: smallest signed distance of a vertex (< 0: inside)
 };
 
 // Per-triangle results in mesh numbering.
@@ -72,6 +101,9 @@ public:
   const TriangleMesh& mesh() const { return mesh_; }
   ClothLoads loads;
   double load_factor = 1.0;
+  // Time, s: the clock of prescribed motions (pins, bodies). Statics keep it
+  // fixed; time stepping advances it.
+  double time = 0.0;
   std::vector<element::NonelasticStrain> nonelastic; // per mesh triangle (creep state)
 
   // A global vector of the free positions, filled from the mesh's placement.
@@ -80,7 +112,40 @@ public:
   void set_pin_position(std::size_t index, const Eigen::Vector3d& position);
   // Every pin is displaced by load_factor * pin_motion from its position.
   Eigen::Vector3d pin_motion = Eigen::Vector3d::Zero();
+  // Prescribed motion histories of groups of pins (pin_motion.hpp), on top
+  // of pin_motion. Their clock is the load factor, or `time` when
+  // pins_follow_time (time stepping). A pin in several groups follows the last.
+  std::vector<PinGroupMotion> pin_groups;
+  bool pins_follow_time = false;
   const std::vector<int>& pinned() const { return pinned_; }
+
+  // Called once a load or time step is accepted at state x: updates the state
+  // carried from step to step (friction anchors, creep), never inside Newton.
+  PetscErrorCode accept_step(Vec x);
+
+  // Rigid bodies the cloth rests on, moving on the clock of the pin
+  // histories (the load factor in statics, `time` when time stepping), and
+  // the penalty and friction settings. Set them before solving.
+  std::vector<contact::Body> bodies;
+  ContactSettings contact;
+  // Coulomb friction between steps (Sensitive Couture §7): vertices that came
+  // into contact get an anchor at their closest surface point, anchors whose
+  // spring force exceeds mu_s times the normal force slide to mu_k times it,
+  // vertices that left contact lose theirs. Part of accept_step; statics also
+  // call it at the start, to anchor what touches a body there.
+  PetscErrorCode update_contact(Vec x);
+  // Per body, the forces on the cloth and the contact state at x, the
+  // friction forces from the anchors the solve used (before the last update).
+  PetscErrorCode contact_report(Vec x, std::vector<BodyContact>* report);
+
+  // Seam springs (mesh/seams.hpp) between any vertices of the mesh, on any
+  // ranks (fem/seam_coupling.hpp). Collective, with the same springs on every
+  // rank; call before create_jacobian. Energy, residual, Jacobian and pin
+  // reaction include them.
+  void set_seams(const std::vector<SeamSpring>& springs);
+  const SeamCoupling* seam_coupling() const { return seams_.get(); }
+  // Collective: the largest gap of a seam spring at x, m (0 without seams).
+  PetscErrorCode seam_gap(Vec x, double* gap);
 
   PetscErrorCode residual(Vec x, Vec f);
   PetscErrorCode jacobian(Vec x, Mat J);
@@ -119,6 +184,14 @@ private:
   };
 
   PetscErrorCode to_local(Vec x);
+  // Jacobian assembly without column searches (fem/block_assembly.hpp).
+  PetscErrorCode attach_element_scatter(const fem::BlockLayout& layout, Mat J) const;
+  PetscErrorCode pin_places(std::vector<Eigen::Vector3d>* places) const;
+  // Seams (cloth_seams.cpp).
+  PetscErrorCode seam_energy(Vec x, double* energy);
+  PetscErrorCode add_seam_forces(Vec x, Vec f);
+  PetscErrorCode add_seam_pin_reaction(Vec x, Eigen::Vector3d* reaction);
+  std::unique_ptr<SeamCoupling> seams_;
   template <typename Visit>
   PetscErrorCode for_each_triangle(const Visit& visit) const;
 
@@ -135,6 +208,33 @@ private:
   std::vector<LocalTriangle> triangles_;
   std::vector<LocalHinge> hinges_;
   std::vector<Eigen::Vector3d> pin_positions_;
+
+  // Contact: the owned free vertices, their material areas, the mesh size, and
+  // the friction anchors (in the body's frame) per body and mesh vertex.
+  struct FrictionAnchor {
+    bool active = false;
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();   // on the body surface
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); // of the frozen tangent plane
+  };
+  void set_up_contact();
+  // The clock of body motions: like the pin histories', the load factor in
+  // statics and `time` when time stepping (pins_follow_time).
+  double contact_clock() const { return pins_follow_time ? time : load_factor; }
+  double contact_stiffness(int vertex) const;
+  contact::PointResult vertex_contact(std::size_t body, int vertex, const Eigen::Vector3d& x,
+                                      element::Want want) const;
+  // The contact terms of every owned free vertex, added to local arrays.
+  double contact_energy(const PetscScalar* x) const;
+  void add_contact_forces(const PetscScalar* x, PetscScalar* f) const;
+  PetscErrorCode add_contact_jacobian(const PetscScalar* x, Mat J) const;
+  std::vector<int> contact_vertices_;
+  std::vector<double> vertex_area_;
+  double mesh_size_ = 0.0;
+  std::vector<std::vector<FrictionAnchor>> anchors_;
+  // The anchors before the last update: those the last solved state is in
+  // equilibrium with, for the reported friction forces.
+  std::vector<std::vector<FrictionAnchor>> solved_anchors_;
+  std::vector<long> sliding_;
 };
 
 } // namespace sartor

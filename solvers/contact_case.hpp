@@ -1,0 +1,56 @@
+#pragma once
+// Bodies and contact in a cloth case (docs/contact.md): the options that
+// describe them, their set-up on a ClothProblem, and what summary.json
+// reports: per-body reactions, penetration, contacting and sliding vertices,
+// and the Cusick drape coefficient.
+
+#include "fem/cloth_problem.hpp"
+#include "mesh/triangle_mesh.hpp"
+#include "solvers/cli.hpp"
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sartor {
+
+// Parses the options --body, --body2 ... --body4, --contact-offset,
+// --contact-stiffness, --contact-stiffness-factor (declared with the case's
+// options in run_command.cpp) onto `problem`.
+// Throws InputError naming the option for a bad specification.
+void set_up_contact(const Options& options, ClothProblem& problem);
+
+// The Cusick drape coefficient: the cloth's shadow on the horizontal plane
+// (the area covered by its triangles projected along z) against the flat
+// specimen's and the support disk's areas:
+//     DC = (A_projected - A_support) / (A_specimen - A_support).
+struct DrapeMeasure {
+  double coefficient = 0.0;
+  double projected_area = 0.0; // m^2
+  double support_area = 0.0;   // m^2
+  double specimen_area = 0.0;  // m^2, the material area of the mesh
+};
+
+// Area covered by the triangles projected onto the xy plane, m^2 (overlaps
+// counted once), by sampling a grid of `resolution` x `resolution` cells
+// over their bounding box.
+double projected_area(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& positions,
+                      int resolution = 2000);
+
+struct CaseContact {
+  std::vector<std::string> bodies; // descriptions, in option order
+  std::vector<BodyContact> reports;
+  ContactSettings settings;
+  std::optional<DrapeMeasure> drape;
+};
+
+// Collective: the contact state at x; `positions` (rank 0) give the drape.
+CaseContact measure_contact(const Options& options, ClothProblem& problem, Vec x,
+                            const std::vector<Eigen::Vector3d>& positions);
+
+// The "contact" object of summary.json.
+nlohmann::json contact_summary(const CaseContact& contact);
+
+} // namespace sartor

@@ -1,0 +1,236 @@
+#include "contact/body_spec.hpp"
+
+#include "common/error.hpp"
+#include "contact/analytic_shapes.hpp"
+#include "contact/mesh_shape.hpp"
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <sstream>
+
+namespace sartor::contact {
+
+namespace {
+
+using Eigen::Vector3d;
+
+// The key=value pairs of a spec, each used at most once and every one
+// required to be consumed by the shape it describes.
+class Fields {
+public:
+  Fields(const std::string& spec, std::string where) : where_(std::move(where)) {
+    std::istringstream words(spec);
+    if (!(words >> kind_)) fail("empty body specification (expected e.g. 'sphere radius=0.3')");
+    std::string word;
+    while (words >> word) {
+      const auto equals = word.find('=');
+      if (equals == std::string::npos || equals == 0 || equals + 1 == word.size()) {
+        fail("'" + word + "' is not key=value");
+      }
+      const std::string key = word.substr(0, equals);
+      if (!values_.emplace(key, word.substr(equals + 1)).second) {
+        fail("key '" + key + "' is given twice");
+      }
+    }
+  }
+
+  const std::string& kind() const { return kind_; }
+  bool has(const std::string& key) const { return values_.count(key) != 0; }
+
+  std::string text(const std::string& key) {
+    used_.insert(key);
+    return values_.at(key);
+  }
+
+  std::string text_required(const std::string& key) {
+    if (!has(key)) fail(kind_ + " needs " + key + "=");
+    return text(key);
+  }
+
+  double number(const std::string& key, std::optional<double> fallback = std::nullopt) {
+    if (!has(key)) {
+      if (!fallback) fail(kind_ + " needs " + key + "=");
+      return *fallback;
+    }
+    return parse_number(key, text(key));
+  }
+
+  double positive(const std::string& key, std::optional<double> fallback = std::nullopt) {
+    const double value = number(key, fallback);
+    if (!(value > 0.0)) fail(key + " must be > 0, got " + format(value));
+    return value;
+  }
+
+  Vector3d vector(const std::string& key, std::optional<Vector3d> fallback = std::nullopt) {
+    if (!has(key)) {
+      if (!fallback) fail(kind_ + " needs " + key + "=X,Y,Z");
+      return *fallback;
+    }
+    return parse_vector(key, text(key));
+  }
+
+  // "T:VALUE;T:VALUE;..." with VALUE read by `parse`.
+  template <typename Value, typename Parse>
+  void history(const std::string& key, PiecewiseLinear<Value>& target, const Parse& parse) {
+    if (!has(key)) return;
+    std::istringstream samples(text(key));
+    std::string sample;
+    while (std::getline(samples, sample, ';')) {
+      const auto colon = sample.find(':');
+      if (colon == std::string::npos) {
+        fail(key + ": sample '" + sample + "' is not TIME:VALUE");
+      }
+      const double time = parse_number(key, sample.substr(0, colon));
+      try {
+        target.add(time, parse(sample.substr(colon + 1)));
+      } catch (const InputError& error) {
+        fail(key + ": " + error.what());
+      }
+    }
+  }
+
+  // Every key given must have been used.
+  void finish() const {
+    for (const auto& [key, value] : values_) {
+      if (used_.count(key) == 0) fail("unknown key '" + key + "' for a " + kind_);
+    }
+  }
+
+  [[noreturn]] void fail(const std::string& message) const {
+    throw InputError(where_ + ": " + message);
+  }
+
+  double parse_number(const std::string& key, const std::string& text) const {
+    try {
+      std::size_t used = 0;
+      const double value = std::stod(text, &used);
+      if (used == text.size() && std::isfinite(value)) return value;
+    } catch (const std::exception&) {
+    }
+    fail(key + ": '" + text + "' is not a number");
+  }
+
+  Vector3d parse_vector(const std::string& key, const std::string& text) const {
+    std::istringstream items(text);
+    std::string item;
+    std::vector<double> values;
+    while (std::getline(items, item, ','))
+      values.push_back(parse_number(key, item));
+    if (values.size() != 3) fail(key + ": expected X,Y,Z, got '" + text + "'");
+    return {values[0], values[1], values[2]};
+  }
+
+  static std::string format(double value) {
+    std::ostringstream out;
+    out << value;
+    return out.str();
+  }
+
+private:
+  std::string where_;
+  std::string kind_;
+  std::map<std::string, std::string> values_;
+  std::set<std::string> used_;
+};
+
+// The shape a spec names and its pivot (the point motions turn and scale about).
+std::pair<std::shared_ptr<const Shape>, Vector3d> make_shape(Fields& fields) {
+  const std::string& kind = fields.kind();
+  const Vector3d origin = Vector3d::Zero();
+  const Vector3d up = Vector3d::UnitZ();
+  if (kind == "plane") {
+    const Vector3d point = fields.vector("point", origin);
+    return {std::make_shared<Plane>(point, fields.vector("normal", up)), point};
+  }
+  if (kind == "sphere") {
+    const Vector3d center = fields.vector("center", origin);
+    return {std::make_shared<Sphere>(center, fields.positive("radius")), center};
+  }
+  if (kind == "capsule") {
+    const Vector3d a = fields.vector("a"), b = fields.vector("b");
+    return {std::make_shared<Capsule>(a, b, fields.positive("radius")), 0.5 * (a + b)};
+  }
+  if (kind == "cylinder") {
+    const Vector3d center = fields.vector("center", origin);
+    const Vector3d direction = fields.vector("direction", up);
+    const double radius = fields.positive("radius");
+    return {std::make_shared<Cylinder>(center, direction, radius, fields.positive("height")),
+            center};
+  }
+  if (kind == "disk") {
+    const Vector3d top = fields.vector("top", origin);
+    const Vector3d direction = fields.vector("direction", up);
+    const double radius = fields.positive("radius");
+    const double thickness = fields.positive("thickness", 0.01);
+    if (!(direction.norm() > 0.0)) fields.fail("direction must be a non-zero vector");
+    const Vector3d center = top - 0.5 * thickness * direction.normalized();
+    return {std::make_shared<Cylinder>(center, direction, radius, thickness), top};
+  }
+  if (kind == "box") {
+    const Vector3d center = fields.vector("center", origin);
+    const Vector3d size = fields.vector("size");
+    if (size.minCoeff() <= 0.0) fields.fail("size must be positive in x, y and z");
+    const double rounding = fields.number("rounding", 0.0);
+    if (rounding < 0.0 || rounding > 0.5 * size.minCoeff()) {
+      fields.fail("rounding must lie in [0, smallest size / 2], got " + Fields::format(rounding));
+    }
+    return {std::make_shared<Box>(center, size, rounding), center};
+  }
+  if (kind == "mesh") {
+    std::shared_ptr<const Shape> shape = load_mesh_shape(fields.text_required("file"));
+    return {shape, origin};
+  }
+  if (kind == "mannequin") return {std::shared_ptr<const Shape>(make_mannequin_shape()), origin};
+  fields.fail("unknown body '" + kind +
+              "' (plane, sphere, capsule, cylinder, disk, box, mesh, mannequin)");
+}
+
+} // namespace
+
+Body parse_body(const std::string& spec, const std::string& where,
+                const std::string& default_name) {
+  Fields fields(spec, where);
+  auto [shape, pivot] = [&] {
+    try {
+      return make_shape(fields);
+    } catch (const InputError& error) {
+      const std::string message = error.what();
+      if (message.rfind(where, 0) == 0) throw;
+      fields.fail(message); // a shape's own check: say which option it came from
+    }
+  }();
+  Body body(fields.has("name") ? fields.text("name") : default_name, shape,
+            fields.vector("pivot", pivot));
+
+  const double mu = fields.number("mu", 0.0);
+  body.friction.static_coefficient = fields.number("mu_s", mu);
+  body.friction.kinetic_coefficient =
+      fields.number("mu_k", fields.has("mu_s") ? body.friction.static_coefficient : mu);
+  if (body.friction.kinetic_coefficient < 0.0 ||
+      body.friction.kinetic_coefficient > body.friction.static_coefficient) {
+    fields.fail("friction coefficients must satisfy 0 <= mu_k <= mu_s, got mu_s=" +
+                Fields::format(body.friction.static_coefficient) +
+                " mu_k=" + Fields::format(body.friction.kinetic_coefficient));
+  }
+
+  const Vector3d axis = fields.vector("rotate_axis", Vector3d::UnitZ());
+  if (!(axis.norm() > 0.0)) fields.fail("rotate_axis must be a non-zero vector");
+  body.motion.rotation_axis = axis.normalized();
+  fields.history("translate", body.motion.translation,
+                 [&](const std::string& v) { return fields.parse_vector("translate", v); });
+  fields.history("rotate", body.motion.angle, [&](const std::string& v) {
+    return fields.parse_number("rotate", v) * M_PI / 180.0;
+  });
+  fields.history("scale", body.motion.scale, [&](const std::string& v) {
+    const double s = fields.parse_number("scale", v);
+    if (!(s > 0.0)) fields.fail("scale: factors must be > 0, got " + Fields::format(s));
+    return s;
+  });
+  fields.finish();
+  return body;
+}
+
+} // namespace sartor::contact

@@ -1,0 +1,31 @@
+#pragma once
+// Bodies from one-line text specifications, the form case files use:
+//     "sphere center=0,0,0.3 radius=0.3 mu=0.4 name=ball"
+// The first word is the shape; then key=value pairs, vectors as x,y,z:
+//   plane     point=P (0,0,0)  normal=N (0,0,1)
+//   sphere    center=C  radius=R
+//   capsule   a=A  b=B  radius=R
+//   cylinder  center=C (middle of the axis)  direction=D (0,0,1)  radius=R  height=H
+//   disk      top=T (centre of the top face)  radius=R  thickness=H (0.01)
+//             direction=D (0,0,1, the top face's normal)
+//   box       center=C  size=SX,SY,SZ (full extents)  rounding=R (0)
+//   mesh      file=BODY.obj (a closed triangle mesh, mesh/body_obj.hpp)
+//   mannequin (the built-in one, mesh/mannequin.hpp: feet on z = 0, facing -y)
+// Every body also takes
+//   name=NAME (body, body2, ...: the option's name), mu=MU (static and kinetic),
+//   mu_s=, mu_k= (separately; mu_k <= mu_s), pivot=P (the fixed point of
+//   rotation and scaling; default the centre/point/top/midpoint above, the
+//   origin for meshes),
+//   translate=T:X,Y,Z;T:X,Y,Z...  rotate=T:DEG;...  rotate_axis=X,Y,Z (0,0,1)
+//   scale=T:S;...  (piecewise-linear motions; no spaces inside a value)
+
+#include "contact/body.hpp"
+
+#include <string>
+
+namespace sartor::contact {
+
+// Throws InputError naming `where` (e.g. "option --body2") and what is wrong.
+Body parse_body(const std::string& spec, const std::string& where, const std::string& default_name);
+
+} // namespace sartor::contact

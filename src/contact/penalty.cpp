@@ -1,0 +1,48 @@
+#include "contact/penalty.hpp"
+
+namespace sartor::contact {
+
+using element::Want;
+
+PointResult penalty(double stiffness, double offset, const SurfaceQuery& query, Want want) {
+  PointResult result;
+  const double gap = offset - query.distance; // > 0: inside the contact layer
+  if (gap <= 0.0) return result;
+  result.energy = 0.5 * stiffness * gap * gap;
+  if (want == Want::energy) return result;
+  result.gradient = -stiffness * gap * query.normal;
+  if (want == Want::gradient) return result;
+  result.hessian =
+      stiffness * (query.normal * query.normal.transpose()) - stiffness * gap * query.hessian;
+  return result;
+}
+
+PointResult anchor_spring(double stiffness, const Eigen::Vector3d& x, const Eigen::Vector3d& anchor,
+                          const Eigen::Vector3d& normal, Want want) {
+  PointResult result;
+  const Eigen::Matrix3d tangent = Eigen::Matrix3d::Identity() - normal * normal.transpose();
+  const Eigen::Vector3d stretch = tangent * (x - anchor);
+  result.energy = 0.5 * stiffness * stretch.squaredNorm();
+  if (want == Want::energy) return result;
+  result.gradient = stiffness * stretch;
+  if (want == Want::gradient) return result;
+  result.hessian = stiffness * tangent;
+  return result;
+}
+
+AnchorUpdate slide_anchor(double stiffness, const Eigen::Vector3d& x, const Eigen::Vector3d& anchor,
+                          const Eigen::Vector3d& normal, double normal_force,
+                          double static_coefficient, double kinetic_coefficient) {
+  const Eigen::Vector3d stretch = (x - anchor) - normal.dot(x - anchor) * normal;
+  const double force = stiffness * stretch.norm();
+  if (force <= static_coefficient * normal_force) return {anchor, false};
+  // Move the anchor along the stretch so that k_t |P (x - a')| = mu_k f_n.
+  const double keep = kinetic_coefficient * normal_force / force;
+  return {anchor + (1.0 - keep) * stretch, true};
+}
+
+double penalty_stiffness(double factor, double modulus, double vertex_area, double h) {
+  return factor * modulus * vertex_area / (h * h);
+}
+
+} // namespace sartor::contact

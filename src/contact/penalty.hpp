@@ -1,0 +1,64 @@
+#pragma once
+// Contact kernels of one cloth vertex against one body: plain Eigen, no PETSc.
+//
+// Normal contact is a one-sided penalty on the signed distance d(x) to the
+// body, kept at least `offset` (half the cloth's thickness) away from it:
+//     E = k/2 max(0, offset - d)^2
+//     grad E = -k (offset - d) n
+//     hess E = k n n^T - k (offset - d) H_d        (n = grad d, H_d = hess d)
+// The curvature term is what makes the Jacobian exact on curved bodies; it is
+// zero on flat faces. The force on the cloth is f_n = k (offset - d) n.
+//
+// Coulomb friction uses moving anchors (Sensitive Couture §7, after Hasegawa
+// et al.): a vertex in contact is tied to an anchor a on the body surface by a
+// tangential spring
+//     E = k_t/2 |P (x - a)|^2,   P = I - m m^T,
+// with the anchor and the tangent plane's normal m frozen while Newton
+// iterates (so gradient k_t P (x - a) and Hessian k_t P are exact). Between
+// accepted steps `slide_anchor` enforces Coulomb's law on the spring force.
+
+#include "contact/shape.hpp"
+#include "element/element.hpp"
+
+#include <Eigen/Core>
+
+namespace sartor::contact {
+
+struct PointResult {
+  double energy = 0.0;                                // J
+  Eigen::Vector3d gradient = Eigen::Vector3d::Zero(); // N
+  Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();  // N/m
+};
+
+// The normal penalty, from the body's query at the vertex.
+PointResult penalty(double stiffness, double offset, const SurfaceQuery& query, element::Want want);
+
+// The tangential anchor spring with anchor `anchor` and tangent-plane normal
+// `normal` (unit) frozen.
+PointResult anchor_spring(double stiffness, const Eigen::Vector3d& x, const Eigen::Vector3d& anchor,
+                          const Eigen::Vector3d& normal, element::Want want);
+
+// Coulomb's law on an anchor spring at an accepted state: when the spring's
+// tangential force k_t |P (x - a)| exceeds mu_s * normal_force, the anchor
+// slides towards x along the tangent plane until the force is mu_k *
+// normal_force (kinetic friction); otherwise it stays (sticking). Returns the
+// new anchor (not yet put back on a curved surface) and whether it slid.
+struct AnchorUpdate {
+  Eigen::Vector3d anchor;
+  bool slid = false;
+};
+AnchorUpdate slide_anchor(double stiffness, const Eigen::Vector3d& x, const Eigen::Vector3d& anchor,
+                          const Eigen::Vector3d& normal, double normal_force,
+                          double static_coefficient, double kinetic_coefficient);
+
+// The automatic penalty stiffness of a vertex, N/m:
+//     k = factor * E_max * A_v / h^2,
+// E_max the largest membrane modulus (N/m), A_v the vertex's share of the
+// material area (m^2), h the mesh size (m). On a uniform mesh A_v / h^2 is
+// O(1), so k is `factor` times the membrane's own vertex stiffness: stiff
+// enough that the cloth's weight and tension press it into the offset layer
+// by a tiny fraction of it (rho g h^2 / (factor E_max) under its weight),
+// soft enough to keep Newton's systems well conditioned.
+double penalty_stiffness(double factor, double modulus, double vertex_area, double h);
+
+} // namespace sartor::contact

@@ -1,0 +1,32 @@
+#pragma once
+// A rigid obstacle's geometry in its own frame: the signed distance to its
+// surface with the first and second derivatives that an exact contact
+// Jacobian needs. Analytic shapes (plane, sphere, capsule, box, disk) and
+// triangle-mesh bodies implement it; motions over time and the contact
+// penalty are built on top and know nothing of how a shape answers.
+
+#include <Eigen/Core>
+
+#include <string>
+
+namespace sartor::contact {
+
+struct SurfaceQuery {
+  double distance = 0.0;                             // signed, > 0 outside, m
+  Eigen::Vector3d closest = Eigen::Vector3d::Zero(); // nearest surface point, m
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); // d distance / d p (unit, outward)
+  Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero(); // d^2 distance / d p^2, 1/m
+};
+
+class Shape {
+public:
+  virtual ~Shape() = default;
+  // The query at point p, in the shape's frame. Must be defined everywhere
+  // (inside and outside); where the distance is not differentiable (a medial
+  // axis) any one-sided value is acceptable.
+  virtual SurfaceQuery query(const Eigen::Vector3d& p) const = 0;
+  // One line for logs and summaries, e.g. "sphere r=0.3".
+  virtual std::string describe() const = 0;
+};
+
+} // namespace sartor::contact

@@ -1,0 +1,203 @@
+// ClothProblem's contact with rigid bodies: penalty on the signed distance and
+// Coulomb friction by moving anchors (docs/contact.md). Each owned free vertex
+// meets each body on the rank that owns it, so the sums over ranks count every
+// vertex once and results do not depend on the partition.
+
+#include "fem/cloth_problem.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace sartor {
+
+namespace {
+
+Eigen::Vector3d position(const PetscScalar* x, PetscInt offset) {
+  return {x[offset], x[offset + 1], x[offset + 2]};
+}
+
+} // namespace
+
+void ClothProblem::set_up_contact() {
+  std::vector<bool> free(mesh_.vertex_count(), true);
+  for (int v : pinned_)
+    free[std::size_t(v)] = false;
+  for (std::size_t v = 0; v < mesh_.vertex_count(); ++v) {
+    if (vertex_owned_[v] && free[v]) contact_vertices_.push_back(int(v));
+  }
+  vertex_area_.assign(mesh_.vertex_count(), 0.0);
+  for (std::size_t t = 0; t < mesh_.triangle_count(); ++t) {
+    const auto& uv = mesh_.material_uv[t];
+    const Eigen::Vector2d a = uv[1] - uv[0], b = uv[2] - uv[0];
+    const double area = 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+    for (std::size_t k = 0; k < 3; ++k) {
+      vertex_area_[std::size_t(mesh_.triangles[t][k])] += area / 3.0;
+      mesh_size_ = std::max(mesh_size_, (uv[(k + 1) % 3] - uv[k]).norm());
+    }
+  }
+}
+
+double ClothProblem::contact_stiffness(int vertex) const {
+  if (contact.stiffness > 0.0) return contact.stiffness;
+  const double modulus = std::max(material_.membrane.warp.initial_modulus(),
+                                  material_.membrane.weft.initial_modulus());
+  return contact::penalty_stiffness(contact.stiffness_factor, modulus,
+                                    vertex_area_[std::size_t(vertex)], mesh_size_);
+}
+
+contact::PointResult ClothProblem::vertex_contact(std::size_t body, int vertex,
+                                                  const Eigen::Vector3d& x,
+                                                  element::Want want) const {
+  const contact::Body& b = bodies[body];
+  const double k = contact_stiffness(vertex);
+  contact::PointResult result =
+      contact::penalty(k, contact.offset, b.query(x, contact_clock()), want);
+  if (anchors_.size() == bodies.size()) {
+    const FrictionAnchor& anchor = anchors_[body][std::size_t(vertex)];
+    if (anchor.active) {
+      const contact::PointResult spring =
+          contact::anchor_spring(k, x, b.to_world(anchor.point, contact_clock()),
+                                 b.direction_to_world(anchor.normal, contact_clock()), want);
+      result.energy += spring.energy;
+      result.gradient += spring.gradient;
+      result.hessian += spring.hessian;
+    }
+  }
+  return result;
+}
+
+double ClothProblem::contact_energy(const PetscScalar* x) const {
+  double energy = 0.0;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    for (int v : contact_vertices_) {
+      energy +=
+          vertex_contact(b, v, position(x, vertex_dof_[std::size_t(v)]), element::Want::energy)
+              .energy;
+    }
+  }
+  return energy;
+}
+
+void ClothProblem::add_contact_forces(const PetscScalar* x, PetscScalar* f) const {
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    for (int v : contact_vertices_) {
+      const PetscInt offset = vertex_dof_[std::size_t(v)];
+      const Eigen::Vector3d g =
+          vertex_contact(b, v, position(x, offset), element::Want::gradient).gradient;
+      for (int d = 0; d < 3; ++d)
+        f[offset + d] += g[d];
+    }
+  }
+}
+
+PetscErrorCode ClothProblem::add_contact_jacobian(const PetscScalar* x, Mat J) const {
+  PetscFunctionBeginUser;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    for (int v : contact_vertices_) {
+      const PetscInt offset = vertex_dof_[std::size_t(v)];
+      const contact::PointResult result =
+          vertex_contact(b, v, position(x, offset), element::Want::hessian);
+      if (result.hessian.isZero(0.0)) continue; // out of contact and unanchored
+      const PetscInt dofs[3] = {offset, offset + 1, offset + 2};
+      const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> block = result.hessian;
+      PetscCall(MatSetValuesLocal(J, 3, dofs, 3, dofs, block.data(), ADD_VALUES));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::update_contact(Vec x) {
+  const PetscScalar* values = nullptr;
+  PetscFunctionBeginUser;
+  if (anchors_.size() != bodies.size()) {
+    anchors_.assign(bodies.size(), std::vector<FrictionAnchor>(mesh_.vertex_count()));
+  }
+  solved_anchors_ = anchors_;
+  sliding_.assign(bodies.size(), 0);
+  PetscCall(to_local(x));
+  PetscCall(VecGetArrayRead(local_x_, &values));
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const contact::Body& body = bodies[b];
+    if (!body.friction.active()) continue;
+    for (int v : contact_vertices_) {
+      const Eigen::Vector3d p = position(values, vertex_dof_[std::size_t(v)]);
+      const contact::SurfaceQuery q = body.query(p, contact_clock());
+      FrictionAnchor& anchor = anchors_[b][std::size_t(v)];
+      const double gap = contact.offset - q.distance;
+      if (gap <= 0.0) {
+        anchor.active = false; // left the body: released
+        continue;
+      }
+      Eigen::Vector3d place = q.closest; // a new contact sticks where it touched
+      if (anchor.active) {
+        const double k = contact_stiffness(v);
+        const contact::AnchorUpdate update = contact::slide_anchor(
+            k, p, body.to_world(anchor.point, contact_clock()),
+            body.direction_to_world(anchor.normal, contact_clock()), k * gap,
+            body.friction.static_coefficient, body.friction.kinetic_coefficient);
+        if (!update.slid) continue;
+        ++sliding_[b];
+        place = body.query(update.anchor, contact_clock()).closest; // back onto the surface
+      }
+      anchor.active = true;
+      anchor.point = body.to_body(place, contact_clock());
+      anchor.normal = body.direction_to_body(q.normal, contact_clock());
+    }
+  }
+  PetscCall(VecRestoreArrayRead(local_x_, &values));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::contact_report(Vec x, std::vector<BodyContact>* report) {
+  const PetscScalar* values = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(to_local(x));
+  PetscCall(VecGetArrayRead(local_x_, &values));
+  report->assign(bodies.size(), {});
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const contact::Body& body = bodies[b];
+    // Sums: forces (6), contacting, anchored, sliding; extremes: penetration, -distance.
+    double sums[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    double extremes[2] = {0.0, -std::numeric_limits<double>::max()};
+    for (int v : contact_vertices_) {
+      const Eigen::Vector3d p = position(values, vertex_dof_[std::size_t(v)]);
+      const contact::SurfaceQuery q = body.query(p, contact_clock());
+      const double k = contact_stiffness(v);
+      const double gap = contact.offset - q.distance;
+      extremes[1] = std::max(extremes[1], -q.distance);
+      if (gap > 0.0) {
+        for (int d = 0; d < 3; ++d)
+          sums[d] += k * gap * q.normal[d];
+        sums[6] += 1.0;
+        extremes[0] = std::max(extremes[0], gap);
+      }
+      if (solved_anchors_.size() == bodies.size() && solved_anchors_[b][std::size_t(v)].active) {
+        const FrictionAnchor& anchor = solved_anchors_[b][std::size_t(v)];
+        const Eigen::Vector3d spring =
+            contact::anchor_spring(k, p, body.to_world(anchor.point, contact_clock()),
+                                   body.direction_to_world(anchor.normal, contact_clock()),
+                                   element::Want::gradient)
+                .gradient;
+        for (int d = 0; d < 3; ++d)
+          sums[3 + d] -= spring[d];
+        sums[7] += 1.0;
+      }
+    }
+    if (sliding_.size() == bodies.size()) sums[8] = double(sliding_[b]);
+    double total[9], extreme[2];
+    PetscCallMPI(MPIU_Allreduce(sums, total, 9, MPI_DOUBLE, MPI_SUM, comm_));
+    PetscCallMPI(MPIU_Allreduce(extremes, extreme, 2, MPI_DOUBLE, MPI_MAX, comm_));
+    BodyContact& r = (*report)[b];
+    r.normal_force = {total[0], total[1], total[2]};
+    r.friction_force = {total[3], total[4], total[5]};
+    r.contacting_vertices = long(total[6]);
+    r.anchored_vertices = long(total[7]);
+    r.sliding_vertices = long(total[8]);
+    r.max_penetration = extreme[0];
+    r.min_distance = -extreme[1];
+  }
+  PetscCall(VecRestoreArrayRead(local_x_, &values));
+  PetscFunctionReturn(0);
+}
+
+} // namespace sartor

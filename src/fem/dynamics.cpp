@@ -1,0 +1,184 @@
+#include "fem/dynamics.hpp"
+
+#include "common/error.hpp"
+#include "fem/incremental_system.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace sartor {
+
+namespace {
+
+PetscErrorCode kinetic_energy(Vec v, Vec mass, Vec work, double* value) {
+  PetscFunctionBeginUser;
+  PetscCall(VecPointwiseMult(work, v, v));
+  PetscCall(VecDot(work, mass, value));
+  *value *= 0.5;
+  PetscFunctionReturn(0);
+}
+
+void check(const DynamicOptions& options, double start) {
+  const auto positive = [](double value, const char* name) {
+    if (!(value > 0.0) || !std::isfinite(value)) {
+      throw InputError(std::string("dynamics: ") + name + " must be a positive number, got " +
+                       std::to_string(value));
+    }
+  };
+  positive(options.time_step, "the time step");
+  if (!(options.time_end > start)) {
+    throw InputError("dynamics: the end time " + std::to_string(options.time_end) +
+                     " s is not after the start time " + std::to_string(start) + " s");
+  }
+  if (!(options.damping >= 0.0) || !(options.output_interval >= 0.0) ||
+      !(options.rest_tolerance >= 0.0) || options.max_cutbacks < 0) {
+    throw InputError("dynamics: damping, output interval, rest tolerance and cut-backs must "
+                     "not be negative");
+  }
+}
+
+} // namespace
+
+PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicOptions& options,
+                             DynamicReport* report, const DynamicObserver& observe) {
+  Vec f = nullptr, work = nullptr;
+  PetscFunctionBeginUser;
+  const auto started = std::chrono::steady_clock::now();
+  const double start = problem.time;
+  check(options, start);
+  const double span = options.time_end - start;
+  // Times closer than this are the same time (round-off of sums of steps).
+  const double tiny = 1e-9 * std::min(options.time_step, span);
+  problem.pins_follow_time = true;
+  IncrementalSystem system(problem, x);
+  PetscCall(VecDuplicate(x, &f));
+  PetscCall(VecDuplicate(x, &work));
+
+  const auto measure = [&](DynamicStepReport* step) -> PetscErrorCode {
+    ClothEnergy energy;
+    PetscFunctionBeginUser;
+    PetscCall(kinetic_energy(v, system.mass(), work, &step->kinetic_energy));
+    PetscCall(problem.energy(x, &energy));
+    step->potential_energy = energy.total();
+    PetscCall(problem.residual(x, f));
+    PetscCall(VecNorm(f, NORM_2, &step->static_residual_norm));
+    PetscFunctionReturn(0);
+  };
+
+  DynamicStepReport initial;
+  initial.time = start;
+  initial.output = true;
+  PetscCall(measure(&initial));
+  report->steps.push_back(initial);
+  if (observe) PetscCall(observe(initial, x, v));
+  const double initial_residual = initial.static_residual_norm;
+
+  double t = start;
+  double dt = options.time_step;
+  double next_output = options.output_interval > 0.0 ? start + options.output_interval : 0.0;
+  double previous_kinetic = initial.kinetic_energy;
+  double next_progress = 0.05;
+  PetscInt step_index = 0;
+  report->completed = true;
+  while (options.time_end - t > tiny) {
+    DynamicStepReport step;
+    step.step = ++step_index;
+    bool accepted = false;
+    for (int attempt = 0; !accepted; ++attempt) {
+      double target = std::min(t + dt, options.time_end);
+      bool at_output = options.output_interval <= 0.0 || target >= next_output - tiny;
+      if (options.output_interval > 0.0 && target > next_output) target = next_output;
+      // A remainder shorter than a round-off is merged into this step.
+      if (options.time_end - target <= tiny) {
+        target = options.time_end;
+        at_output = true;
+      }
+      const double h = target - t;
+      PetscCall(VecCopy(x, system.previous()));
+      PetscCall(VecWAXPY(system.predicted(), h, v, x));
+      system.inertia_weight = 1.0 / (h * h);
+      system.damping_weight = options.damping / h;
+      problem.time = target;
+      PetscCall(VecCopy(system.predicted(), x));
+      IncrementalSystem::Solve solve;
+      PetscCall(system.solve(x, &solve));
+      step.newton_iterations += solve.newton_iterations;
+      step.linear_iterations += solve.linear_iterations;
+      step.reason = solve.reason;
+      if (solve.converged) {
+        accepted = true;
+        step.time = target;
+        step.dt = h;
+        step.output = at_output;
+        if (options.output_interval > 0.0 && at_output) next_output += options.output_interval;
+        // v = (x - x_n) / h
+        PetscCall(VecWAXPY(v, -1.0, system.previous(), x));
+        PetscCall(VecScale(v, 1.0 / h));
+        t = target;
+        dt = std::min(2.0 * dt, options.time_step);
+        break;
+      }
+      PetscCall(VecCopy(system.previous(), x));
+      problem.time = t;
+      if (attempt >= options.max_cutbacks) {
+        report->completed = false;
+        char message[256];
+        std::snprintf(message, sizeof message,
+                      "the time step from t = %.6g s (dt = %.3g s) failed after %d cut-backs: "
+                      "SNES %s",
+                      t, h, attempt, solve.reason.c_str());
+        report->reason = message;
+        break;
+      }
+      ++step.rejected;
+      dt = 0.5 * h;
+      PetscCall(PetscInfo(system.snes(), "time step to %g failed (%s); retrying with dt = %g\n",
+                          target, solve.reason.c_str(), dt));
+    }
+    report->newton_iterations += step.newton_iterations;
+    report->linear_iterations += step.linear_iterations;
+    report->rejected_steps += step.rejected;
+    if (!accepted) break;
+
+    PetscCall(problem.accept_step(x));
+    PetscCall(measure(&step));
+    if (options.kinetic_damping && step.kinetic_energy < previous_kinetic) {
+      // Past a peak of the kinetic energy: start again from rest.
+      PetscCall(VecSet(v, 0.0));
+      step.velocities_reset = true;
+      ++report->velocity_resets;
+      previous_kinetic = 0.0;
+    } else {
+      previous_kinetic = step.kinetic_energy;
+    }
+    const bool at_rest = options.rest_tolerance > 0.0 &&
+                         step.static_residual_norm <= options.rest_tolerance * initial_residual;
+    if (at_rest) {
+      step.output = true;
+      report->at_rest = true;
+    }
+    report->steps.push_back(step);
+    if (observe) PetscCall(observe(step, x, v));
+    if (options.print_progress &&
+        ((t - start) >= next_progress * span - tiny || options.time_end - t <= tiny)) {
+      PetscCall(PetscPrintf(problem.comm(),
+                            "  t = %.4g s (%3.0f%%): %" PetscInt_FMT " steps, %" PetscInt_FMT
+                            " Newton iterations, %" PetscInt_FMT
+                            " rejected; kinetic %.3e J, potential %.6e J\n",
+                            t, 100.0 * (t - start) / span, step_index, report->newton_iterations,
+                            report->rejected_steps, step.kinetic_energy, step.potential_energy));
+      while (next_progress * span <= t - start + tiny)
+        next_progress += 0.05;
+    }
+    if (at_rest) break;
+  }
+  report->final_time = t;
+  report->solve_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  PetscCall(VecDestroy(&f));
+  PetscCall(VecDestroy(&work));
+  PetscFunctionReturn(0);
+}
+
+} // namespace sartor

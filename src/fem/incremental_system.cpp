@@ -1,0 +1,177 @@
+#include "fem/incremental_system.hpp"
+
+#include "fem/petsc_call.hpp"
+#include "fem/petsc_options.hpp"
+
+#include <string>
+
+namespace sartor {
+
+namespace {
+
+PetscErrorCode form_residual(SNES, Vec x, Vec f, void* context) {
+  return static_cast<IncrementalSystem*>(context)->residual(x, f);
+}
+
+PetscErrorCode form_jacobian(SNES, Vec x, Mat J, Mat, void* context) {
+  return static_cast<IncrementalSystem*>(context)->jacobian(x, J);
+}
+
+PetscErrorCode form_objective(SNES, Vec x, PetscReal* value, void* context) {
+  return static_cast<IncrementalSystem*>(context)->objective(x, value);
+}
+
+// Rigid-body modes of the free dofs, for algebraic multigrid.
+PetscErrorCode attach_near_null_space(Vec x, Mat J) {
+  MatNullSpace modes = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(MatNullSpaceCreateRigidBody(x, &modes));
+  PetscCall(MatSetNearNullSpace(J, modes));
+  PetscCall(MatNullSpaceDestroy(&modes));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+IncrementalSystem::IncrementalSystem(ClothProblem& problem, Vec like) : problem_(problem) {
+  SartorPetscCall(set_default_option("-ksp_type", "preonly"));
+  SartorPetscCall(set_default_option("-pc_type", "lu"));
+  SartorPetscCall(set_default_option("-pc_factor_mat_solver_type", "mumps"));
+  SartorPetscCall(problem.create_jacobian(&jacobian_));
+  SartorPetscCall(attach_near_null_space(like, jacobian_));
+  for (Vec* v : {&residual_, &mass_, &predicted_, &previous_, &work_})
+    SartorPetscCall(VecDuplicate(like, v));
+  SartorPetscCall(problem.lumped_mass(mass_));
+  SartorPetscCall(SNESCreate(problem.comm(), &snes_));
+  SartorPetscCall(SNESSetFunction(snes_, residual_, form_residual, this));
+  SartorPetscCall(SNESSetJacobian(snes_, jacobian_, jacobian_, form_jacobian, this));
+  // A follower load has no potential; otherwise the line search uses Phi.
+  if (!problem.has_follower_load()) SartorPetscCall(SNESSetObjective(snes_, form_objective, this));
+  // Defaults the options database can override: a residual below round-off
+  // of the membrane forces counts as converged.
+  SartorPetscCall(SNESSetTolerances(snes_, 1e-12 * problem.force_scale(), 1e-10, 1e-14, 100, -1));
+  SartorPetscCall(SNESSetFromOptions(snes_));
+  // Keeps the residual norms of each solve (the first is the initial one).
+  norms_.assign(1000, 0.0);
+  SartorPetscCall(SNESSetConvergenceHistory(snes_, norms_.data(), nullptr, PetscInt(norms_.size()),
+                                            PETSC_TRUE));
+}
+
+IncrementalSystem::~IncrementalSystem() {
+  SNESDestroy(&snes_);
+  MatDestroy(&jacobian_);
+  for (Vec* v : {&residual_, &mass_, &predicted_, &previous_, &work_})
+    VecDestroy(v);
+}
+
+PetscErrorCode IncrementalSystem::solve(Vec x, Solve* result) {
+  PetscFunctionBeginUser;
+  PetscCall(run_snes(x, result));
+  PetscErrorCode (*line_search_objective)(SNES, Vec, PetscReal*, void*) = nullptr;
+  PetscCall(SNESGetObjective(snes_, &line_search_objective, nullptr));
+  // Close to the solution a Newton step lowers Phi by less than its
+  // round-off, and a line search on Phi fails although Newton converges.
+  // Once the residual has dropped by 1e-3, or Newton's correction is below
+  // 1e-6 of the positions (the iterate is in Newton's basin, Phi minimised
+  // to round-off), the solve is finished by a few full Newton steps, which
+  // converge quadratically from there and need no merit function.
+  SNESLineSearch line_search = nullptr;
+  PetscReal position_norm = 0.0, residual_norm = 0.0, correction_norm = 0.0;
+  PetscCall(SNESGetLineSearch(snes_, &line_search));
+  PetscCall(SNESLineSearchGetNorms(line_search, &position_norm, &residual_norm, &correction_norm));
+  const bool in_newton_basin =
+      result->residual_norm <= 1e-3 * norms_[0] || correction_norm <= 1e-6 * position_norm;
+  if (result->reason == SNESConvergedReasons[SNES_DIVERGED_LINE_SEARCH] && line_search_objective &&
+      in_newton_basin) {
+    PetscCall(PetscInfo(snes_,
+                        "line search on the potential stalled at |F| = %g; "
+                        "finishing with full Newton steps\n",
+                        result->residual_norm));
+    const Solve first = *result;
+    SNESLineSearchType type = nullptr;
+    PetscCall(SNESLineSearchGetType(line_search, &type));
+    const std::string line_search_type = type;
+    PetscReal atol = 0.0, rtol = 0.0, stol = 0.0;
+    PetscInt max_iterations = 0, max_evaluations = 0;
+    PetscCall(SNESGetTolerances(snes_, &atol, &rtol, &stol, &max_iterations, &max_evaluations));
+    PetscCall(SNESLineSearchSetType(line_search, SNESLINESEARCHBASIC));
+    PetscCall(SNESSetTolerances(snes_, atol, rtol, stol, 10, max_evaluations));
+    PetscCall(run_snes(x, result));
+    PetscCall(SNESSetTolerances(snes_, atol, rtol, stol, max_iterations, max_evaluations));
+    PetscCall(SNESLineSearchSetType(line_search, line_search_type.c_str()));
+    PetscCall(SNESLineSearchSetFromOptions(line_search)); // the type's own options again
+    result->newton_iterations += first.newton_iterations;
+    result->linear_iterations += first.linear_iterations;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode IncrementalSystem::run_snes(Vec x, Solve* result) {
+  SNESConvergedReason reason;
+  PetscFunctionBeginUser;
+  PetscCall(SNESSolve(snes_, nullptr, x));
+  PetscCall(SNESGetConvergedReason(snes_, &reason));
+  PetscCall(SNESGetIterationNumber(snes_, &result->newton_iterations));
+  PetscCall(SNESGetLinearSolveIterations(snes_, &result->linear_iterations));
+  PetscCall(SNESGetFunctionNorm(snes_, &result->residual_norm));
+  result->reason = SNESConvergedReasons[reason];
+  result->converged = reason > 0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode IncrementalSystem::extra_energy(Vec x, double* value) {
+  PetscReal inertia = 0.0, damping = 0.0;
+  PetscFunctionBeginUser;
+  if (inertia_weight > 0.0) {
+    PetscCall(VecWAXPY(work_, -1.0, predicted_, x));
+    PetscCall(VecPointwiseMult(work_, work_, work_));
+    PetscCall(VecDot(work_, mass_, &inertia));
+  }
+  if (damping_weight > 0.0) {
+    PetscCall(VecWAXPY(work_, -1.0, previous_, x));
+    PetscCall(VecPointwiseMult(work_, work_, work_));
+    PetscCall(VecDot(work_, mass_, &damping));
+  }
+  *value = 0.5 * (inertia_weight * inertia + damping_weight * damping);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode IncrementalSystem::residual(Vec x, Vec f) {
+  PetscFunctionBeginUser;
+  PetscCall(problem_.residual(x, f));
+  if (inertia_weight > 0.0) {
+    PetscCall(VecWAXPY(work_, -1.0, predicted_, x));
+    PetscCall(VecPointwiseMult(work_, work_, mass_));
+    PetscCall(VecAXPY(f, inertia_weight, work_));
+  }
+  if (damping_weight > 0.0) {
+    PetscCall(VecWAXPY(work_, -1.0, previous_, x));
+    PetscCall(VecPointwiseMult(work_, work_, mass_));
+    PetscCall(VecAXPY(f, damping_weight, work_));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode IncrementalSystem::jacobian(Vec x, Mat J) {
+  PetscFunctionBeginUser;
+  PetscCall(problem_.jacobian(x, J));
+  const double weight = inertia_weight + damping_weight;
+  if (weight > 0.0) {
+    PetscCall(VecCopy(mass_, work_));
+    PetscCall(VecScale(work_, weight));
+    PetscCall(MatDiagonalSet(J, work_, ADD_VALUES));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode IncrementalSystem::objective(Vec x, PetscReal* value) {
+  ClothEnergy energy;
+  double extra = 0.0;
+  PetscFunctionBeginUser;
+  PetscCall(problem_.energy(x, &energy));
+  PetscCall(extra_energy(x, &extra));
+  *value = energy.total() + extra;
+  PetscFunctionReturn(0);
+}
+
+} // namespace sartor

@@ -1,0 +1,73 @@
+#pragma once
+// The nonlinear system of one load, pseudo-time or time step, shared by the
+// static and dynamic solvers: the stationary point of the incremental potential
+//     Phi(x) = E(x) - f.x + (a/2) |x - x_pred|^2_M + (b/2) |x - x_prev|^2_M
+// (M: lumped masses), whose residual and Jacobian are
+//     F(x) = grad E - f + M (a (x - x_pred) + b (x - x_prev)),
+//     J(x) = K(x) + (a + b) M.
+// Statics: a = b = 0, or a = 1/dt^2 about the last state in pseudo-transient
+// continuation. Backward Euler: a = 1/dt^2 about x_n + dt v_n and b = alpha/dt
+// about x_n (mass-proportional damping alpha M v).
+//
+// The SNES takes every choice from the options database (no prefix), with
+// defaults: Newton with a line search on Phi (none with a follower load, which
+// has no potential), MUMPS LU, and a residual tolerance at round-off of the
+// membrane forces. Where the line search on Phi stalls at Phi's round-off
+// after the residual has fallen 1e3-fold, Newton finishes on the residual norm.
+
+#include "fem/cloth_problem.hpp"
+
+#include <petscsnes.h>
+
+#include <string>
+#include <vector>
+
+namespace sartor {
+
+class IncrementalSystem {
+public:
+  // Collective. `like` is a solution vector of `problem`.
+  IncrementalSystem(ClothProblem& problem, Vec like);
+  ~IncrementalSystem();
+  IncrementalSystem(const IncrementalSystem&) = delete;
+  IncrementalSystem& operator=(const IncrementalSystem&) = delete;
+
+  ClothProblem& problem() { return problem_; }
+  SNES snes() const { return snes_; }
+  Vec mass() const { return mass_; }
+  Vec predicted() const { return predicted_; }
+  Vec previous() const { return previous_; }
+  double inertia_weight = 0.0; // a, 1/s^2
+  double damping_weight = 0.0; // b, 1/s^2
+
+  struct Solve {
+    bool converged = false;
+    std::string reason;
+    PetscInt newton_iterations = 0;
+    PetscInt linear_iterations = 0;
+    double residual_norm = 0.0;
+  };
+  // Solves from x in place (x holds SNES's last iterate on failure).
+  PetscErrorCode solve(Vec x, Solve* result);
+
+  // Phi - E + f.x at x: the inertia and damping terms alone.
+  PetscErrorCode extra_energy(Vec x, double* value);
+  PetscErrorCode residual(Vec x, Vec f);
+  PetscErrorCode jacobian(Vec x, Mat J);
+  PetscErrorCode objective(Vec x, PetscReal* value);
+
+private:
+  PetscErrorCode run_snes(Vec x, Solve* result);
+
+  ClothProblem& problem_;
+  SNES snes_ = nullptr;
+  Mat jacobian_ = nullptr;
+  Vec residual_ = nullptr;
+  Vec mass_ = nullptr;
+  Vec predicted_ = nullptr;
+  Vec previous_ = nullptr;
+  Vec work_ = nullptr;
+  std::vector<PetscReal> norms_; // residual norms of the last SNES solve
+};
+
+} // namespace sartor

@@ -1,0 +1,165 @@
+#include "garment/pattern_svg.hpp"
+
+#include "common/output.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+
+namespace sartor::garment {
+
+namespace {
+
+using Eigen::Vector2d;
+
+std::string escape_xml(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+    case '&':
+      out += "&amp;";
+      break;
+    case '<':
+      out += "&lt;";
+      break;
+    case '>':
+      out += "&gt;";
+      break;
+    case '"':
+      out += "&quot;";
+      break;
+    case '\'':
+      out += "&apos;";
+      break;
+    default:
+      out += c;
+    }
+  }
+  return out;
+}
+
+// Sheet metres to SVG millimetres, y pointing down.
+struct Canvas {
+  double top = 0; // sheet y of the drawing's top edge, m
+  Vector2d operator()(const Vector2d& sheet) const {
+    return {1000 * sheet.x(), 1000 * (top - sheet.y())};
+  }
+};
+
+std::string number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3f", value);
+  return buffer;
+}
+
+std::string xy(const Vector2d& p) {
+  return number(p.x()) + "," + number(p.y());
+}
+
+// An SVG path of one curve after placing it: Beziers stay Beziers under a
+// rigid motion.
+std::string path_of(const Curve& curve, const Placement& placement, const Canvas& canvas,
+                    bool move_first) {
+  std::string d;
+  const auto at = [&](const Vector2d& p) { return xy(canvas(placement.apply(p))); };
+  if (move_first) d += "M " + at(curve.start()) + " ";
+  if (curve.kind == Curve::Kind::bezier) {
+    d += "C " + at(curve.points[1]) + " " + at(curve.points[2]) + " " + at(curve.points[3]) + " ";
+  } else {
+    for (std::size_t k = 1; k < curve.points.size(); ++k)
+      d += "L " + at(curve.points[k]) + " ";
+  }
+  return d;
+}
+
+std::string label(const Vector2d& at, const std::string& text, const char* css_class) {
+  return "<text class=\"" + std::string(css_class) + "\" x=\"" + number(at.x()) + "\" y=\"" +
+         number(at.y()) + "\">" + escape_xml(text) + "</text>\n";
+}
+
+} // namespace
+
+std::string pattern_svg(const Pattern& pattern, const SvgOptions& options) {
+  const std::vector<Placement> layout = sheet_layout(pattern, options.gap);
+  const double tolerance = pattern.flattening_tolerance();
+  Eigen::AlignedBox2d sheet;
+  for (std::size_t i = 0; i < pattern.panels.size(); ++i)
+    for (const auto& p : pattern.panels[i].outline_polygon(tolerance))
+      sheet.extend(layout[i].apply(p));
+  const double margin = options.gap;
+  Canvas canvas;
+  canvas.top = sheet.max().y() + margin;
+  const double width = 1000 * (sheet.sizes().x() + 2 * margin);
+  const double height = 1000 * (sheet.sizes().y() + 2 * margin);
+  const double left = 1000 * (sheet.min().x() - margin);
+
+  std::ostringstream svg;
+  svg << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << number(width) << "mm\" height=\""
+      << number(height) << "mm\" viewBox=\"" << number(left) << " 0 " << number(width) << " "
+      << number(height) << "\">\n"
+      << "<title>" << escape_xml(pattern.name.empty() ? pattern.source : pattern.name)
+      << "</title>\n"
+      << "<defs><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"10\" refY=\"5\" "
+         "markerWidth=\"6\" markerHeight=\"6\" orient=\"auto\"><path d=\"M 0 0 L 10 5 L 0 10 "
+         "z\" fill=\"#2060c0\"/></marker></defs>\n"
+      << "<style>\n"
+         ".outline { fill: #f4efe4; stroke: #000; stroke-width: 1; }\n"
+         ".yseam { fill: none; stroke: #d02020; stroke-width: 2.5; }\n"
+         ".interior { fill: none; stroke: #606060; stroke-width: 1; stroke-dasharray: 6 4; }\n"
+         ".grain { stroke: #2060c0; stroke-width: 1.2; marker-end: url(#arrow); }\n"
+         ".panel { font: 16px sans-serif; text-anchor: middle; }\n"
+         ".line { font: 9px sans-serif; fill: #404040; text-anchor: middle; }\n"
+         "</style>\n";
+
+  for (std::size_t i = 0; i < pattern.panels.size(); ++i) {
+    const Panel& panel = pattern.panels[i];
+    const Placement& placement = layout[i];
+    svg << "<g id=\"panel-" << escape_xml(panel.id) << "\">\n";
+    std::string outline;
+    for (std::size_t l = 0; l < panel.outline.size(); ++l)
+      outline += path_of(panel.outline[l].curve, placement, canvas, l == 0);
+    svg << "<path class=\"outline\" d=\"" << outline << "Z\"/>\n";
+    for (const auto& line : panel.outline) {
+      if (line.y_seam) {
+        svg << "<path class=\"yseam\" d=\"" << path_of(line.curve, placement, canvas, true)
+            << "\"/>\n";
+      }
+    }
+    for (const auto& line : panel.interior) {
+      svg << "<path class=\"interior\" d=\"" << path_of(line.curve, placement, canvas, true)
+          << "\"/>\n";
+    }
+
+    Eigen::AlignedBox2d box;
+    for (const auto& p : panel.outline_polygon(tolerance))
+      box.extend(p);
+    const Vector2d centre = box.center();
+    const double half = 0.25 * box.sizes().minCoeff();
+    svg << "<line class=\"grain\" x1=\""
+        << number(canvas(placement.apply(centre - half * panel.grain.warp)).x()) << "\" y1=\""
+        << number(canvas(placement.apply(centre - half * panel.grain.warp)).y()) << "\" x2=\""
+        << number(canvas(placement.apply(centre + half * panel.grain.warp)).x()) << "\" y2=\""
+        << number(canvas(placement.apply(centre + half * panel.grain.warp)).y()) << "\"/>\n";
+    const Vector2d text_at = canvas(placement.apply(centre + 0.5 * half * panel.grain.weft()));
+    svg << label(text_at, panel.id, "panel")
+        << label(text_at + Vector2d(0, 20), to_string(panel.tag) + " " + panel.fabric, "line");
+    if (options.line_labels) {
+      for (const auto& line : panel.outline)
+        svg << label(canvas(placement.apply(line.curve.at(0.5))), line.id, "line");
+      for (const auto& line : panel.interior)
+        svg << label(canvas(placement.apply(line.curve.at(0.5))), line.id, "line");
+    }
+    svg << "</g>\n";
+  }
+  svg << "</svg>\n";
+  return svg.str();
+}
+
+void write_pattern_svg(const std::string& path, const Pattern& pattern, const SvgOptions& options) {
+  write_file_atomically(path, pattern_svg(pattern, options));
+}
+
+} // namespace sartor::garment

@@ -1,0 +1,159 @@
+// Contact kernels: penalty and anchor spring derivatives by central
+// differences, Coulomb's law of the anchor update, the stiffness rule, and the
+// body specifications of case files.
+
+#include "common/error.hpp"
+#include "contact/analytic_shapes.hpp"
+#include "contact/body_spec.hpp"
+#include "contact/penalty.hpp"
+#include "tests/element/finite_difference.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace sartor::contact {
+namespace {
+
+using Eigen::Vector3d;
+using element::Want;
+using element::testing::numeric_gradient;
+using element::testing::numeric_jacobian;
+
+TEST(Penalty, DerivativesOnCurvedBodies) {
+  const double k = 2.5e4, offset = 0.01;
+  Body body("ball", std::make_shared<Sphere>(Vector3d(0, 0, 0), 0.3), Vector3d::Zero());
+  body.motion.scale.add(0.0, 1.0);
+  body.motion.scale.add(1.0, 1.2);
+  body.motion.angle.add(0.0, 0.0);
+  body.motion.angle.add(1.0, 0.5);
+  Body edge("table", std::make_shared<Box>(Vector3d::Zero(), Vector3d(1, 1, 0.1), 0.02),
+            Vector3d::Zero());
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  for (const Body* b : {&body, &edge}) {
+    for (int i = 0; i < 50; ++i) {
+      // Points in the contact layer: just outside, inside the offset, or slightly in.
+      const Vector3d direction =
+          Vector3d(uniform(random), uniform(random), uniform(random)).normalized();
+      const Vector3d surface = b->query(2.0 * direction, 0.7).closest;
+      const Vector3d x = surface + 0.012 * (uniform(random) + 0.2) * direction;
+      const auto energy = [&](const Vector3d& y) {
+        return penalty(k, offset, b->query(y, 0.7), Want::energy).energy;
+      };
+      const auto gradient = [&](const Vector3d& y) {
+        return penalty(k, offset, b->query(y, 0.7), Want::gradient).gradient;
+      };
+      const PointResult exact = penalty(k, offset, b->query(x, 0.7), Want::hessian);
+      if (exact.energy == 0.0) continue;
+      EXPECT_LT((numeric_gradient<3>(energy, x, 1e-8) - exact.gradient).norm(),
+                1e-6 * exact.gradient.norm());
+      EXPECT_LT((numeric_jacobian<3, 3>(gradient, x, 1e-8) - exact.hessian).norm(),
+                1e-6 * exact.hessian.norm());
+    }
+  }
+}
+
+TEST(Penalty, ZeroOutsideTheOffsetLayer) {
+  const Plane floor(Vector3d::Zero(), Vector3d::UnitZ());
+  const PointResult out = penalty(1e3, 0.01, floor.query(Vector3d(0, 0, 0.02)), Want::hessian);
+  EXPECT_EQ(out.energy, 0.0);
+  EXPECT_TRUE(out.gradient.isZero() && out.hessian.isZero());
+  const PointResult in = penalty(1e3, 0.01, floor.query(Vector3d(0, 0, 0.005)), Want::hessian);
+  EXPECT_NEAR(in.energy, 0.5 * 1e3 * 0.005 * 0.005, 1e-15);
+  EXPECT_NEAR(in.gradient.z(), -5.0, 1e-12); // the force on the vertex pushes it out: +5 N
+}
+
+TEST(Penalty, AnchorSpringDerivatives) {
+  const Vector3d anchor(0.1, 0.2, 0.0), normal = Vector3d(0.2, -0.1, 1.0).normalized();
+  const Vector3d x(0.13, 0.18, 0.004);
+  const auto energy = [&](const Vector3d& y) {
+    return anchor_spring(3e3, y, anchor, normal, Want::energy).energy;
+  };
+  const auto gradient = [&](const Vector3d& y) {
+    return anchor_spring(3e3, y, anchor, normal, Want::gradient).gradient;
+  };
+  const PointResult exact = anchor_spring(3e3, x, anchor, normal, Want::hessian);
+  EXPECT_LT((numeric_gradient<3>(energy, x, 1e-7) - exact.gradient).norm(),
+            1e-7 * exact.gradient.norm());
+  EXPECT_LT((numeric_jacobian<3, 3>(gradient, x, 1e-7) - exact.hessian).norm(), 1e-6 * 3e3);
+  EXPECT_NEAR(exact.gradient.dot(normal), 0.0, 1e-10); // purely tangential
+}
+
+TEST(Penalty, CoulombAnchorUpdate) {
+  const Vector3d normal = Vector3d::UnitZ(), anchor = Vector3d::Zero();
+  const double k = 100.0, normal_force = 2.0; // mu_s = 0.5 -> sticks up to 1 N = 1 cm
+  const AnchorUpdate stick =
+      slide_anchor(k, Vector3d(0.006, 0.008, 0.001), anchor, normal, normal_force, 0.5, 0.4);
+  EXPECT_FALSE(stick.slid);
+  EXPECT_EQ(stick.anchor, anchor);
+  const Vector3d x(0.012, 0.016, 0.001); // 2 N of spring force: slides
+  const AnchorUpdate slip = slide_anchor(k, x, anchor, normal, normal_force, 0.5, 0.4);
+  ASSERT_TRUE(slip.slid);
+  const Vector3d stretch = x - slip.anchor - normal.dot(x - slip.anchor) * normal;
+  EXPECT_NEAR(k * stretch.norm(), 0.4 * normal_force, 1e-12); // kinetic force
+  EXPECT_NEAR(stretch.normalized().dot(Vector3d(0.6, 0.8, 0)), 1.0, 1e-12);
+}
+
+TEST(Penalty, StiffnessRule) {
+  EXPECT_NEAR(penalty_stiffness(10.0, 3e4, 0.005, 0.1), 10.0 * 3e4 * 0.5, 1e-9);
+}
+
+TEST(BodySpec, ParsesShapesFrictionAndMotions) {
+  const Body ball = parse_body("sphere center=0,0,0.5 radius=0.3 mu=0.4", "option --body", "body");
+  EXPECT_EQ(ball.name(), "body");
+  EXPECT_NEAR(ball.query(Vector3d(0, 0, 1.0), 0.0).distance, 0.2, 1e-14);
+  EXPECT_EQ(ball.friction.static_coefficient, 0.4);
+  EXPECT_EQ(ball.friction.kinetic_coefficient, 0.4);
+  const Body disk = parse_body("disk top=0,0,0.5 radius=0.09 thickness=0.02 name=support",
+                               "option --body2", "body2");
+  EXPECT_EQ(disk.name(), "support");
+  EXPECT_NEAR(disk.query(Vector3d(0, 0, 0.6), 0.0).distance, 0.1, 1e-14);
+  EXPECT_NEAR(disk.query(Vector3d(0, 0, 0.49), 0.0).distance, -0.01, 1e-14);
+  const Body lift = parse_body(
+      "box size=1,1,0.1 translate=0:0,0,0;2:0,0,1 rotate=0:0;2:90 rotate_axis=0,1,0 mu_s=0.5 "
+      "mu_k=0.3",
+      "option --body", "body");
+  // At t = 2 the slab stands on edge (turned 90 degrees about y) around z = 1.
+  EXPECT_NEAR(lift.query(Vector3d(0.15, 0.2, 1.1), 2.0).distance, 0.1, 1e-14);
+  EXPECT_EQ(lift.friction.kinetic_coefficient, 0.3);
+  const Body grown = parse_body("cylinder radius=0.1 height=1 direction=0,1,0 scale=0:1;10:1.5",
+                                "option --body", "body");
+  EXPECT_NEAR(grown.query(Vector3d(0.2, 0, 0), 10.0).distance, 0.05, 1e-14);
+  EXPECT_NO_THROW(parse_body("plane normal=0,1,1", "option --body", "floor"));
+  EXPECT_NO_THROW(parse_body("capsule a=0,0,0 b=1,0,0 radius=0.1", "option --body", "arm"));
+}
+
+void expect_error(const std::string& spec, const std::string& message) {
+  try {
+    parse_body(spec, "option --body3", "body3");
+    ADD_FAILURE() << "no error for '" << spec << "'";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()), "option --body3: " + message) << spec;
+  }
+}
+
+TEST(BodySpec, BadSpecificationsNameTheOptionAndTheProblem) {
+  expect_error("", "empty body specification (expected e.g. 'sphere radius=0.3')");
+  expect_error(
+      "cube size=1,1,1",
+      "unknown body 'cube' (plane, sphere, capsule, cylinder, disk, box, mesh, mannequin)");
+  expect_error("mesh", "mesh needs file=");
+  expect_error("sphere center=0,0,0", "sphere needs radius=");
+  expect_error("sphere radius=0.3 radius=0.4", "key 'radius' is given twice");
+  expect_error("sphere radius=abc", "radius: 'abc' is not a number");
+  expect_error("sphere radius=-1", "radius must be > 0, got -1");
+  expect_error("sphere radius=1 centre=0,0,0", "unknown key 'centre' for a sphere");
+  expect_error("sphere radius=1 center=0,0", "center: expected X,Y,Z, got '0,0'");
+  expect_error("sphere radius=1 mu_s=0.2 mu_k=0.3",
+               "friction coefficients must satisfy 0 <= mu_k <= mu_s, got mu_s=0.2 mu_k=0.3");
+  expect_error("sphere radius=1 translate=1:0,0,0;0:0,0,1",
+               "translate: motion sample times must increase: 0 follows 1");
+  expect_error("plane normal=0,0,0", "plane normal must be a non-zero vector, got 0,0,0");
+  expect_error("box size=1,1,1 rounding=0.7",
+               "rounding must lie in [0, smallest size / 2], got 0.7");
+  expect_error("sphere radius", "'radius' is not key=value");
+}
+
+} // namespace
+} // namespace sartor::contact

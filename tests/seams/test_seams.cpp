@@ -1,0 +1,195 @@
+// Seam lines and their springs (mesh/seams.hpp), the seam file, the tube
+// panels generator and the exact merge of sewn vertices.
+
+#include "common/error.hpp"
+#include "mesh/merge.hpp"
+#include "mesh/panels.hpp"
+#include "mesh/seams.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <numeric>
+
+namespace sartor {
+namespace {
+
+const double width = 0.4, height = 0.3;
+
+double total_stiffness(const std::vector<SeamSpring>& springs, int seam) {
+  double sum = 0.0;
+  for (const SeamSpring& s : springs)
+    sum += s.seam == seam ? s.stiffness : 0.0;
+  return sum;
+}
+
+TEST(SeamLines, TubePanelsAreTwoRectanglesWithTwoSideSeams) {
+  const mesh::PanelMesh tube = mesh::tube_panels(width, height, 8, 6, 10, 4, 0.15);
+  EXPECT_EQ(tube.mesh.vertex_count(), std::size_t(9 * 7 + 11 * 5));
+  EXPECT_EQ(tube.mesh.triangle_count(), std::size_t(2 * (8 * 6 + 10 * 4)));
+  ASSERT_EQ(tube.seams.size(), 2u);
+  EXPECT_NO_THROW(check_seams(tube.mesh, tube.seams, "tube"));
+  for (const Seam& seam : tube.seams) {
+    EXPECT_NEAR(material_arc_length(tube.mesh, seam.a).back(), height, 1e-14);
+    EXPECT_NEAR(material_arc_length(tube.mesh, seam.b).back(), height, 1e-14);
+    EXPECT_FALSE(seam_is_matched(tube.mesh, seam)); // 6 against 4 rows
+    // Seam lines start the gap apart.
+    EXPECT_NEAR((tube.mesh.positions[std::size_t(seam.a.front())] -
+                 tube.mesh.positions[std::size_t(seam.b.front())])
+                    .norm(),
+                0.15, 1e-12);
+  }
+}
+
+TEST(SeamLines, MatchedLinesGiveVertexToVertexSpringsOfTheSeamStiffness) {
+  const mesh::PanelMesh tube = mesh::tube_panels(width, height, 8, 6, 10, 6, 0.1);
+  SeamStiffness stiffness;
+  stiffness.modulus = 30000.0;
+  const auto springs = seam_springs(tube.mesh, tube.seams, stiffness);
+  ASSERT_EQ(springs.size(), std::size_t(2 * 7));
+  for (const SeamSpring& s : springs)
+    EXPECT_FALSE(s.to_edge);
+  // kappa = penalty E / h, h = height / 6; the springs add up to kappa * height.
+  const double kappa = 100.0 * 30000.0 / (height / 6);
+  EXPECT_NEAR(total_stiffness(springs, 0), kappa * height, 1e-9 * kappa * height);
+  EXPECT_NEAR(total_stiffness(springs, 1), kappa * height, 1e-9 * kappa * height);
+  // An explicit kappa and a certainty.
+  auto uncertain = tube.seams;
+  uncertain[1].certainty = 0.5;
+  stiffness.per_length = 2e6;
+  const auto weak = seam_springs(tube.mesh, uncertain, stiffness);
+  EXPECT_NEAR(total_stiffness(weak, 0), 2e6 * height, 1e-6);
+  EXPECT_NEAR(total_stiffness(weak, 1), 1e6 * height, 1e-6);
+}
+
+TEST(SeamLines, UnequalLinesGiveVertexToEdgeSpringsAtTheSameArcLength) {
+  // With no gap both seam lines lie on the same straight segment, so every
+  // anchor at the same normalised arc length is exactly where its vertex is.
+  const mesh::PanelMesh tube = mesh::tube_panels(width, height, 8, 6, 10, 4, 0.0);
+  SeamStiffness stiffness;
+  stiffness.modulus = 30000.0;
+  const auto springs = seam_springs(tube.mesh, tube.seams, stiffness);
+  int to_edge = 0;
+  for (const SeamSpring& s : springs)
+    to_edge += s.to_edge ? 1 : 0;
+  EXPECT_GT(to_edge, 0);
+  EXPECT_LT(largest_seam_gap(springs, tube.mesh.positions), 1e-14);
+  // Each line emits half the seam's stiffness: kappa (height + height) / 2.
+  const double kappa = 100.0 * 30000.0 / (2 * height / 10);
+  EXPECT_NEAR(total_stiffness(springs, 0), kappa * height, 1e-9 * kappa * height);
+  // Moving one panel opens every spring by the same amount.
+  auto moved = tube.mesh.positions;
+  for (std::size_t v = std::size_t(tube.panel_start[1]); v < moved.size(); ++v)
+    moved[v].y() += 0.02;
+  EXPECT_NEAR(largest_seam_gap(springs, moved), 0.02, 1e-14);
+}
+
+TEST(SeamLines, ReversedLinePairsStartWithEnd) {
+  const mesh::PanelMesh tube = mesh::tube_panels(width, height, 4, 5, 4, 3, 0.1);
+  auto reversed = tube.seams;
+  for (Seam& seam : reversed) {
+    std::reverse(seam.b.begin(), seam.b.end());
+    seam.reverse = true;
+  }
+  SeamStiffness stiffness;
+  stiffness.modulus = 1000.0;
+  const auto original = seam_springs(tube.mesh, tube.seams, stiffness);
+  const auto same = seam_springs(tube.mesh, reversed, stiffness);
+  ASSERT_EQ(original.size(), same.size());
+  EXPECT_NEAR(largest_seam_gap(same, tube.mesh.positions),
+              largest_seam_gap(original, tube.mesh.positions), 1e-14);
+}
+
+std::string write_file(const std::string& name, const std::string& text) {
+  const std::string path = std::string(SARTOR_SEAM_TEST_OUT) + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+void expect_seam_file_error(const std::string& name, const std::string& text,
+                            const std::string& expected) {
+  const mesh::PanelMesh tube = mesh::tube_panels(width, height, 2, 2, 2, 2, 0.1);
+  const std::string path = write_file(name, text);
+  try {
+    read_seams(path, tube.mesh);
+    ADD_FAILURE() << name << ": no error";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+  }
+}
+
+TEST(SeamFile, RoundTripsAndReportsBadInputWithFileAndSeam) {
+  // Tube 2x2 + 2x2: back panel vertices 0..8, front 9..17.
+  const mesh::PanelMesh tube = mesh::tube_panels(width, height, 2, 2, 2, 2, 0.1);
+  const std::string path = std::string(SARTOR_SEAM_TEST_OUT) + "/tube_seams.json";
+  write_seams(path, tube.seams);
+  const auto read = read_seams(path, tube.mesh);
+  ASSERT_EQ(read.size(), 2u);
+  EXPECT_EQ(read[1].name, "left");
+  EXPECT_EQ(read[1].a, tube.seams[1].a);
+  EXPECT_EQ(read[1].b, tube.seams[1].b);
+
+  const std::string good = R"({"name": "ok", "a": [2, 5, 8], "b": [9, 12, 15]})";
+  expect_seam_file_error("syntax.json", R"({"seams": [{"a": [1, 2,]}]})", "not valid JSON");
+  expect_seam_file_error("unknown_vertex.json",
+                         R"({"seams": [)" + good +
+                             R"(, {"name": "x", "a": [2, 99], "b": [9, 12]}]})",
+                         "seam 1 ('x'): line a: vertex 99 is not in the mesh (0..17)");
+  expect_seam_file_error("one_vertex.json", R"({"seams": [{"a": [2], "b": [9, 12]}]})",
+                         "seam 0 ('seam 0'): line a has 1 vertex(es)");
+  expect_seam_file_error("interior.json", R"({"seams": [{"a": [3, 4], "b": [9, 12]}]})",
+                         "edge 3-4 is not on a panel boundary");
+  expect_seam_file_error("not_joined.json", R"({"seams": [{"a": [2, 8], "b": [9, 12]}]})",
+                         "vertices 2 and 8 are not joined by a mesh edge");
+  expect_seam_file_error("unknown_key.json",
+                         R"({"seams": [{"a": [2, 5], "b": [9, 12], "revers": true}]})",
+                         "seam 0: unknown key 'revers'");
+  expect_seam_file_error("certainty.json",
+                         R"({"seams": [{"a": [2, 5], "b": [9, 12], "certainty": 0}]})",
+                         "certainty must lie in (0, 1]");
+  expect_seam_file_error("no_list.json", R"({"seam": []})", "expected an object {\"seams\"");
+}
+
+TEST(SeamMerge, MatchedSeamsMergeIntoOneConnectedTube) {
+  const mesh::PanelMesh tube = mesh::tube_panels(width, height, 6, 4, 6, 4, 0.0);
+  const auto pairs = matched_vertex_pairs(tube.mesh, tube.seams);
+  EXPECT_EQ(pairs.size(), std::size_t(2 * 5));
+  const MergedMesh merged = merge_vertices(tube.mesh, pairs);
+  EXPECT_EQ(merged.mesh.vertex_count(), tube.mesh.vertex_count() - 2 * 5);
+  EXPECT_EQ(merged.mesh.triangle_count(), tube.mesh.triangle_count());
+  // The seam edges became interior edges with bending hinges: 2 seams x 4 edges.
+  EXPECT_EQ(interior_edges(merged.mesh).size(), interior_edges(tube.mesh).size() + 2 * 4);
+  // A closed tube: its boundary is the two rims, 2 x 12 vertices.
+  EXPECT_EQ(boundary_vertices(merged.mesh).size(), std::size_t(2 * 12));
+  // One connected piece: walk the triangles' vertex graph.
+  std::vector<int> component(merged.mesh.vertex_count());
+  std::iota(component.begin(), component.end(), 0);
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const auto& t : merged.mesh.triangles) {
+      const int lowest = std::min({component[std::size_t(t[0])], component[std::size_t(t[1])],
+                                   component[std::size_t(t[2])]});
+      for (int v : t) {
+        if (component[std::size_t(v)] != lowest) {
+          component[std::size_t(v)] = lowest;
+          changed = true;
+        }
+      }
+    }
+  }
+  for (int c : component)
+    EXPECT_EQ(c, 0);
+  // Both panels keep their own material coordinates.
+  EXPECT_EQ(merged.mesh.material_uv.size(), tube.mesh.material_uv.size());
+}
+
+TEST(SeamMerge, UnequalSeamsCannotBeMerged) {
+  const mesh::PanelMesh tube = mesh::tube_panels(width, height, 6, 4, 6, 3, 0.0);
+  EXPECT_THROW(matched_vertex_pairs(tube.mesh, tube.seams), InputError);
+}
+
+} // namespace
+} // namespace sartor
