@@ -39,9 +39,7 @@ void ClothProblem::set_up_contact() {
 
 double ClothProblem::contact_stiffness(int vertex) const {
   if (contact.stiffness > 0.0) return contact.stiffness;
-  const double modulus = std::max(material_.membrane.warp.initial_modulus(),
-                                  material_.membrane.weft.initial_modulus());
-  return contact::penalty_stiffness(contact.stiffness_factor, modulus,
+  return contact::penalty_stiffness(contact.stiffness_factor, largest_modulus(),
                                     vertex_area_[std::size_t(vertex)], mesh_size_);
 }
 

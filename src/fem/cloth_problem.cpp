@@ -91,8 +91,26 @@ PetscErrorCode add_block(Mat J, const std::array<PetscInt, N>& dofs,
 
 ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh, const ClothMaterial& material,
                            const std::vector<int>& pinned)
-    : comm_(comm), mesh_(mesh), material_(material), pinned_(pinned) {
+    : ClothProblem(comm, mesh, std::vector<ClothMaterial>{material}, pinned) {}
+
+ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh,
+                           std::vector<ClothMaterial> materials, const std::vector<int>& pinned)
+    : comm_(comm), mesh_(mesh), materials_(std::move(materials)), pinned_(pinned) {
   validate(mesh, "cloth mesh");
+  if (materials_.empty()) throw InputError("cloth: no material given");
+  for (const ClothMaterial& material : materials_) {
+    if (material.bending_model != materials_.front().bending_model) {
+      throw InputError("cloth: all materials must use the same bending model");
+    }
+  }
+  for (std::size_t t = 0; t < mesh.material_ids.size(); ++t) {
+    const int id = mesh.material_ids[t];
+    if (id < 0 || std::size_t(id) >= materials_.size()) {
+      throw InputError("cloth mesh: triangle " + std::to_string(t) + " has material id " +
+                       std::to_string(id) + ", but there are " + std::to_string(materials_.size()) +
+                       " material(s)");
+    }
+  }
   PetscMPIInt rank = 0;
   MPI_Comm_rank(comm, &rank);
   nonelastic.assign(mesh.triangle_count(), {});
@@ -207,6 +225,7 @@ ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh, const ClothM
     triangle_owned[t] = true;
     LocalTriangle local;
     local.index = int(t);
+    local.material = &triangle_material(t);
     local.rest = element::triangle_rest(mesh.material_uv[t]);
     for (std::size_t k = 0; k < 3; ++k) {
       const PetscInt offset = vertex_dof_[std::size_t(mesh.triangles[t][k])];
@@ -216,11 +235,18 @@ ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh, const ClothM
     }
     triangles_.push_back(local);
   }
-  if (material_.bending_stiffness > 0.0) {
+  const bool any_bending =
+      std::any_of(materials_.begin(), materials_.end(),
+                  [](const ClothMaterial& material) { return material.bending_stiffness > 0.0; });
+  if (any_bending) {
     for (const Hinge& hinge : interior_edges(mesh)) {
       const auto first = std::size_t(std::min(hinge.triangles[0], hinge.triangles[1]));
       if (!triangle_owned[first]) continue;
+      const ClothMaterial& one = triangle_material(std::size_t(hinge.triangles[0]));
+      const ClothMaterial& other = triangle_material(std::size_t(hinge.triangles[1]));
       LocalHinge local;
+      local.stiffness = 0.5 * (one.bending_stiffness + other.bending_stiffness);
+      local.project = one.project_bending || other.project_bending;
       for (std::size_t k = 0; k < 4; ++k) {
         const PetscInt offset = vertex_dof_[std::size_t(hinge.vertices[k])];
         if (offset < 0) throw std::logic_error("a vertex of an owned hinge is not local");
@@ -249,10 +275,10 @@ ClothProblem::~ClothProblem() {
 PetscErrorCode ClothProblem::lumped_mass(Vec mass) {
   PetscScalar* values = nullptr;
   PetscFunctionBeginUser;
-  const double density = material_.areal_density > 0.0 ? material_.areal_density : 1.0;
   PetscCall(VecSet(local_f_, 0.0));
   PetscCall(VecGetArray(local_f_, &values));
   for (const LocalTriangle& t : triangles_) {
+    const double density = t.material->areal_density > 0.0 ? t.material->areal_density : 1.0;
     for (PetscInt dof : t.dofs)
       values[dof] += density * t.rest.area / 3.0;
   }
@@ -268,9 +294,21 @@ double ClothProblem::force_scale() const {
     area += 0.5 * std::abs((uv[1] - uv[0]).x() * (uv[2] - uv[0]).y() -
                            (uv[2] - uv[0]).x() * (uv[1] - uv[0]).y());
   }
-  const double modulus = std::max(material_.membrane.warp.initial_modulus(),
-                                  material_.membrane.weft.initial_modulus());
-  return modulus * std::sqrt(area);
+  return largest_modulus() * std::sqrt(area);
+}
+
+const ClothMaterial& ClothProblem::triangle_material(std::size_t triangle) const {
+  return mesh_.material_ids.empty() ? materials_.front()
+                                    : materials_[std::size_t(mesh_.material_ids[triangle])];
+}
+
+double ClothProblem::largest_modulus() const {
+  double modulus = 0.0;
+  for (const ClothMaterial& material : materials_) {
+    modulus = std::max({modulus, material.membrane.warp.initial_modulus(),
+                        material.membrane.weft.initial_modulus()});
+  }
+  return modulus;
 }
 
 void ClothProblem::set_pin_position(std::size_t index, const Eigen::Vector3d& position) {
@@ -345,14 +383,14 @@ PetscErrorCode ClothProblem::energy(Vec x, ClothEnergy* result) {
   local[3] = contact_energy(values);
   for (const LocalTriangle& t : triangles_) {
     const element::Vector9 xe = gather<9>(values, t.dofs);
-    local[0] += element::membrane(material_.membrane_model, material_.membrane, t.rest,
+    local[0] += element::membrane(t.material->membrane_model, t.material->membrane, t.rest,
                                   nonelastic[std::size_t(t.index)], xe, element::Want::energy)
                     .energy;
     // Potentials of the loads are measured from the initial placement: a
     // line search compares energies that differ by |F|^2/k near the
     // solution, and g.x itself (~ weight x height) would bury that in
     // round-off long before the residual is small.
-    const double mass = material_.areal_density * t.rest.area / 3.0;
+    const double mass = t.material->areal_density * t.rest.area / 3.0;
     const auto& corners = mesh_.triangles[std::size_t(t.index)];
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector3d& start = mesh_.positions[std::size_t(corners[std::size_t(k)])];
@@ -360,7 +398,7 @@ PetscErrorCode ClothProblem::energy(Vec x, ClothEnergy* result) {
     }
   }
   for (const LocalHinge& h : hinges_) {
-    local[1] += element::bending(material_.bending_model, material_.bending_stiffness, h.rest,
+    local[1] += element::bending(materials_.front().bending_model, h.stiffness, h.rest,
                                  gather<12>(values, h.dofs), element::Want::energy)
                     .energy;
   }
@@ -390,11 +428,11 @@ PetscErrorCode ClothProblem::residual(Vec x, Vec f) {
   for (const LocalTriangle& t : triangles_) {
     const element::Vector9 xe = gather<9>(values, t.dofs);
     scatter_add<9>(forces, t.dofs,
-                   element::membrane(material_.membrane_model, material_.membrane, t.rest,
+                   element::membrane(t.material->membrane_model, t.material->membrane, t.rest,
                                      nonelastic[std::size_t(t.index)], xe, element::Want::gradient)
                        .gradient);
     element::Vector9 external = element::Vector9::Zero();
-    const double mass = material_.areal_density * t.rest.area / 3.0;
+    const double mass = t.material->areal_density * t.rest.area / 3.0;
     for (int k = 0; k < 3; ++k)
       external.segment<3>(3 * k) = mass * loads.gravity;
     if (loads.pressure != 0.0) external += element::follower_pressure(loads.pressure, xe).force;
@@ -402,7 +440,7 @@ PetscErrorCode ClothProblem::residual(Vec x, Vec f) {
   }
   for (const LocalHinge& h : hinges_) {
     scatter_add<12>(forces, h.dofs,
-                    element::bending(material_.bending_model, material_.bending_stiffness, h.rest,
+                    element::bending(materials_.front().bending_model, h.stiffness, h.rest,
                                      gather<12>(values, h.dofs), element::Want::gradient)
                         .gradient);
   }
@@ -437,9 +475,9 @@ PetscErrorCode ClothProblem::jacobian(Vec x, Mat J) {
   if (scatter) PetscCall(scatter->begin());
   for (const LocalTriangle& t : triangles_) {
     const element::Vector9 xe = gather<9>(values, t.dofs);
-    auto result = element::membrane(material_.membrane_model, material_.membrane, t.rest,
+    auto result = element::membrane(t.material->membrane_model, t.material->membrane, t.rest,
                                     nonelastic[std::size_t(t.index)], xe, element::Want::hessian);
-    if (material_.project_membrane) element::project_to_psd<9>(result.hessian);
+    if (t.material->project_membrane) element::project_to_psd<9>(result.hessian);
     if (loads.pressure != 0.0) {
       result.hessian -= load_factor * element::follower_pressure(loads.pressure, xe).jacobian;
     }
@@ -449,9 +487,9 @@ PetscErrorCode ClothProblem::jacobian(Vec x, Mat J) {
       PetscCall(add_block<9>(J, t.dofs, result.hessian));
   }
   for (const LocalHinge& h : hinges_) {
-    auto result = element::bending(material_.bending_model, material_.bending_stiffness, h.rest,
+    auto result = element::bending(materials_.front().bending_model, h.stiffness, h.rest,
                                    gather<12>(values, h.dofs), element::Want::hessian);
-    if (material_.project_bending) element::project_to_psd<12>(result.hessian);
+    if (h.project) element::project_to_psd<12>(result.hessian);
     if (scatter)
       PetscCall(scatter->add<12>(result.hessian));
     else
@@ -573,7 +611,7 @@ PetscErrorCode ClothProblem::gather_strains(Vec x, std::vector<element::Membrane
   PetscCall(VecGetArrayRead(local_x_, &values));
   for (const LocalTriangle& t : triangles_) {
     const auto s =
-        element::membrane_strain(material_.membrane_model, material_.membrane, t.rest,
+        element::membrane_strain(t.material->membrane_model, t.material->membrane, t.rest,
                                  nonelastic[std::size_t(t.index)], gather<9>(values, t.dofs));
     const PetscScalar row[fields] = {s.warp, s.weft, s.shear, s.tension_warp, s.tension_weft};
     PetscInt rows[fields];

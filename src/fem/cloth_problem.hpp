@@ -92,6 +92,11 @@ public:
   // Collective. `mesh`, `pinned` (vertex indices) must be the same on every rank.
   ClothProblem(MPI_Comm comm, const TriangleMesh& mesh, const ClothMaterial& material,
                const std::vector<int>& pinned);
+  // Several materials: triangle t uses materials[mesh.material_ids[t]] (all
+  // materials[0] when the mesh has no ids). They must share the bending
+  // model; a hinge between two materials takes the mean of their stiffnesses.
+  ClothProblem(MPI_Comm comm, const TriangleMesh& mesh, std::vector<ClothMaterial> materials,
+               const std::vector<int>& pinned);
   ~ClothProblem();
   ClothProblem(const ClothProblem&) = delete;
   ClothProblem& operator=(const ClothProblem&) = delete;
@@ -176,12 +181,18 @@ private:
   struct LocalTriangle {
     std::array<PetscInt, 9> dofs; // local-vector indices, corner by corner
     element::TriangleRest rest;
-    int index; // in the mesh
+    int index;                     // in the mesh
+    const ClothMaterial* material; // in materials_
   };
   struct LocalHinge {
     std::array<PetscInt, 12> dofs;
     element::HingeRest rest;
+    double stiffness; // N m
+    bool project;     // PSD-project its Hessian
   };
+  const ClothMaterial& triangle_material(std::size_t triangle) const;
+  // The largest initial modulus of any material, N/m.
+  double largest_modulus() const;
 
   PetscErrorCode to_local(Vec x);
   // Jacobian assembly without column searches (fem/block_assembly.hpp).
@@ -197,7 +208,7 @@ private:
 
   MPI_Comm comm_;
   const TriangleMesh& mesh_;
-  ClothMaterial material_;
+  std::vector<ClothMaterial> materials_;
   std::vector<int> pinned_;
   DM dm_ = nullptr;
   Vec local_x_ = nullptr;

@@ -2,6 +2,7 @@
 // Jacobian, equilibrium of reactions, and results independent of the number
 // of MPI ranks.
 
+#include "common/error.hpp"
 #include "fem/cloth_problem.hpp"
 #include "fem/statics.hpp"
 #include "mesh/generators.hpp"
@@ -174,6 +175,69 @@ TEST(ClothStaticsMpi, ResultIndependentOfTheNumberOfRanks) {
     scale = std::max(scale, (serial[v] - mesh.positions[v]).norm());
   }
   EXPECT_LT(largest, 1e-8 * scale);
+}
+
+TEST(ClothMaterials, StripsInSeriesStretchInverselyToTheirModuli) {
+  // A 1 m x 0.1 m strip, the half x < 0.5 of modulus k and the other of 3k,
+  // stretched by 0.01 m between its pinned ends: one tension T through both
+  // halves, T = delta / (0.5/k + 0.5/(3k)), and the joint at x = 0.5 moves by
+  // 0.5 T / k.
+  TriangleMesh mesh = mesh::rectangle(1.0, 0.1, 8, 1);
+  const double k = 1000.0, delta = 0.01;
+  ClothMaterial soft = isotropic_stvk(k, 0.0), stiff = isotropic_stvk(3.0 * k, 0.0);
+  soft.membrane_model = stiff.membrane_model = element::MembraneModel::baraff_witkin;
+  // Bending holds the flat strip out of plane before it is in tension; the
+  // stretched state does not bend it.
+  soft.bending_stiffness = 1e-4;
+  stiff.bending_stiffness = 3e-4;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    double centroid = 0.0;
+    for (int v : mesh.triangles[t])
+      centroid += mesh.positions[std::size_t(v)].x() / 3.0;
+    mesh.material_ids.push_back(centroid < 0.5 ? 0 : 1);
+  }
+  std::vector<int> pins;
+  std::vector<int> joint;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const double x = mesh.positions[v].x();
+    if (x == 0.0 || x == 1.0) pins.push_back(int(v));
+    if (std::abs(x - 0.5) < 1e-12) joint.push_back(int(v));
+  }
+  ClothProblem problem(PETSC_COMM_WORLD, mesh, {soft, stiff}, pins);
+  for (std::size_t i = 0; i < pins.size(); ++i) {
+    const Eigen::Vector3d& place = mesh.positions[std::size_t(pins[i])];
+    if (place.x() == 1.0) problem.set_pin_position(i, place + Eigen::Vector3d(delta, 0, 0));
+  }
+  Vec x = nullptr;
+  ASSERT_EQ(problem.create_solution(&x), 0);
+  StaticReport report;
+  ASSERT_EQ(solve_static(problem, x, StaticOptions{}, &report), 0);
+  ASSERT_TRUE(report.converged) << report.reason;
+  const double tension = delta / (0.5 / k + 0.5 / (3.0 * k));
+  std::vector<Eigen::Vector3d> positions;
+  ASSERT_EQ(problem.gather_positions(x, &positions), 0);
+  Eigen::Vector3d reaction;
+  ASSERT_EQ(problem.pin_reaction(x, &reaction), 0);
+  EXPECT_NEAR(reaction.x(), 0.0, 1e-9 * tension); // equal and opposite at the two ends
+  if (!positions.empty()) {
+    for (int v : joint) {
+      EXPECT_NEAR(positions[std::size_t(v)].x() - 0.5, 0.5 * tension / k, 1e-10) << "vertex " << v;
+    }
+  }
+  VecDestroy(&x);
+}
+
+TEST(ClothMaterials, MaterialIdsOutOfRangeAreRejected) {
+  TriangleMesh mesh = mesh::rectangle(1.0, 1.0, 2, 2);
+  mesh.material_ids.assign(mesh.triangle_count(), 0);
+  mesh.material_ids[3] = 2;
+  try {
+    ClothProblem problem(PETSC_COMM_WORLD, mesh, {cotton(0.0), cotton(0.0)}, {});
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_STREQ(error.what(),
+                 "cloth mesh: triangle 3 has material id 2, but there are 2 material(s)");
+  }
 }
 
 } // namespace
