@@ -3,15 +3,14 @@
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
+#include "mesh/obj_lines.hpp"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
-#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <numeric>
@@ -243,44 +242,15 @@ void check(const BodyMesh& mesh, const FaceLocator& where, const std::string& em
   check_outward(mesh, where);
 }
 
-std::vector<std::string> split_words(const std::string& line) {
-  std::vector<std::string> words;
-  std::size_t start = 0;
-  while ((start = line.find_first_not_of(" \t\r\f\v", start)) != std::string::npos) {
-    const std::size_t end = line.find_first_of(" \t\r\f\v", start);
-    words.push_back(line.substr(start, end == std::string::npos ? end : end - start));
-    start = end;
-  }
-  return words;
-}
-
 class BodyObjParser {
 public:
   explicit BodyObjParser(std::string path) : path_(std::move(path)) {}
 
   BodyMesh read() {
-    std::ifstream in(path_);
-    if (!in) throw InputError(path_ + ": cannot open file");
-    std::string physical;
+    ObjLineReader reader(path_);
     std::string logical;
-    long physical_line = 0;
-    while (std::getline(in, physical)) {
-      ++physical_line;
-      if (logical.empty()) line_ = physical_line;
-      if (const auto comment = physical.find('#'); comment != std::string::npos)
-        physical.erase(comment);
-      while (!physical.empty() && std::isspace(static_cast<unsigned char>(physical.back())))
-        physical.pop_back();
-      if (!physical.empty() && physical.back() == '\\') {
-        physical.back() = ' ';
-        logical += physical;
-        continue;
-      }
-      logical += physical;
+    while (reader.next(logical, line_))
       statement(split_words(logical));
-      logical.clear();
-    }
-    if (!logical.empty()) statement(split_words(logical));
     for (std::size_t f = 0; f < mesh_.faces.size(); ++f) {
       for (int& index : mesh_.faces[f]) {
         if (index < 0) index += static_cast<int>(vertices_at_face_[f]);

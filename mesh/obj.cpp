@@ -3,69 +3,19 @@
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
+#include "mesh/obj_lines.hpp"
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <utility>
 
 namespace sartor {
 
 namespace {
-
-std::vector<std::string> split_words(const std::string& line) {
-  std::vector<std::string> words;
-  std::size_t start = 0;
-  while (true) {
-    start = line.find_first_not_of(" \t\r\f\v", start);
-    if (start == std::string::npos) return words;
-    const std::size_t end = line.find_first_of(" \t\r\f\v", start);
-    words.push_back(line.substr(start, end == std::string::npos ? end : end - start));
-    if (end == std::string::npos) return words;
-    start = end;
-  }
-}
-
-// Reads the file's logical lines: comments cut, continuations joined, each
-// with the number of the physical line it starts on.
-class LineReader {
-public:
-  explicit LineReader(const std::string& path) : in_(path) {
-    if (!in_) throw InputError(path + ": cannot open file");
-  }
-
-  bool next(std::string& line, long& number) {
-    line.clear();
-    std::string physical;
-    bool started = false;
-    while (std::getline(in_, physical)) {
-      ++physical_;
-      if (!started) number = physical_;
-      started = true;
-      const auto comment = physical.find('#');
-      if (comment != std::string::npos) physical.erase(comment);
-      while (!physical.empty() &&
-             (physical.back() == '\r' || physical.back() == ' ' || physical.back() == '\t'))
-        physical.pop_back();
-      if (!physical.empty() && physical.back() == '\\') {
-        physical.back() = ' ';
-        line += physical;
-        continue;
-      }
-      line += physical;
-      return true;
-    }
-    return started;
-  }
-
-private:
-  std::ifstream in_;
-  long physical_ = 0;
-};
 
 struct Corner {
   long long vertex;  // 0-based, range not yet checked
@@ -82,7 +32,7 @@ public:
   ObjParser(std::string path, double uv_scale) : path_(std::move(path)), uv_scale_(uv_scale) {}
 
   TriangleMesh read() {
-    LineReader reader(path_);
+    ObjLineReader reader(path_);
     std::string text;
     while (reader.next(text, line_)) {
       const std::vector<std::string> words = split_words(text);
