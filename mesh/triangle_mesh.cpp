@@ -168,9 +168,9 @@ std::vector<Hinge> interior_edges(const TriangleMesh& mesh) {
   return hinges;
 }
 
-std::vector<int> boundary_vertices(const TriangleMesh& mesh) {
+std::vector<std::array<int, 2>> boundary_edges(const TriangleMesh& mesh) {
   const std::vector<Side> sides = sorted_sides(mesh);
-  std::vector<int> vertices;
+  std::vector<std::array<int, 2>> edges;
   for (std::size_t i = 0; i < sides.size(); ++i) {
     const bool paired =
         i + 1 < sides.size() && sides[i + 1].lo == sides[i].lo && sides[i + 1].hi == sides[i].hi;
@@ -178,9 +178,15 @@ std::vector<int> boundary_vertices(const TriangleMesh& mesh) {
       ++i;
       continue;
     }
-    vertices.push_back(sides[i].lo);
-    vertices.push_back(sides[i].hi);
+    edges.push_back({sides[i].lo, sides[i].hi});
   }
+  return edges;
+}
+
+std::vector<int> boundary_vertices(const TriangleMesh& mesh) {
+  std::vector<int> vertices;
+  for (const auto& edge : boundary_edges(mesh))
+    vertices.insert(vertices.end(), edge.begin(), edge.end());
   std::sort(vertices.begin(), vertices.end());
   vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
   return vertices;

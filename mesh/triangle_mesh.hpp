@@ -56,5 +56,7 @@ std::vector<Hinge> interior_edges(const TriangleMesh& mesh);
 // Sorted indices of the vertices on edges that have one triangle. Throws as
 // interior_edges does for non-manifold edges.
 std::vector<int> boundary_vertices(const TriangleMesh& mesh);
+// Edges of one triangle only, (lower, higher vertex index), sorted.
+std::vector<std::array<int, 2>> boundary_edges(const TriangleMesh& mesh);
 
 } // namespace sartor

@@ -12,6 +12,7 @@
 #include "mesh/triangle_mesh.hpp"
 #include "solvers/cli.hpp"
 #include "solvers/contact_case.hpp"
+#include "solvers/creep_case.hpp"
 #include "solvers/seam_case.hpp"
 
 #include <nlohmann/json_fwd.hpp>
@@ -49,6 +50,7 @@ struct CaseResult {
   double load_factor = 0.0;              // reached (1 when converged)
   StaticReport report;                   // --analysis static
   std::optional<DynamicReport> dynamics; // --analysis dynamic
+  std::optional<CreepRunResult> creep;   // --analysis creep
   ClothEnergy energy;
   Eigen::Vector3d pin_reaction = Eigen::Vector3d::Zero();
   double max_displacement = 0.0;   // m
@@ -72,12 +74,18 @@ struct CaseResult {
 // uniform refinements on top of --mesh-refine. Throws InputError for a bad
 // option; a solve that does not converge is reported in the result, not
 // thrown. Every field but positions and strains is the same on every rank.
-// With --analysis dynamic, `observe` (when given) is called collectively
-// with the initial state and after every accepted time step.
-using CaseStepObserver =
-    std::function<void(ClothProblem& problem, Vec x, const DynamicStepReport& step)>;
+// With --analysis dynamic or creep, `observe` (when given) is called
+// collectively with the initial state and after every accepted time step;
+// `checkpointing` says where creep runs write checkpoints and resume from.
+struct CaseState {
+  double time = 0.0;                    // s
+  bool output = false;                  // an output time
+  const CreepCoupling* creep = nullptr; // creep runs: the elements' creep state
+};
+using CaseStepObserver = std::function<void(ClothProblem& problem, Vec x, const CaseState& state)>;
 CaseResult solve_case(const Options& options, int extra_refinements = 0,
-                      const CaseStepObserver& observe = {});
+                      const CaseStepObserver& observe = {},
+                      const CaseCheckpointing& checkpointing = {});
 
 // The parts of `sartor run`'s summary.json that describe the solve: "mesh",
 // "converged", "solver", "load_steps" (statics) or "dynamics" (time stepping),

@@ -37,6 +37,8 @@ const CommandSpec& pattern_command();
 int run_pattern(const Invocation&);
 const CommandSpec& body_command();
 int run_body(const Invocation&);
+const CommandSpec& construct_command();
+int run_construct(const Invocation&);
 
 // Metadata every output JSON carries: version, command line, options used.
 nlohmann::json run_metadata(const Invocation& invocation, const std::string& command);

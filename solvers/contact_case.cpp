@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <sstream>
 
 namespace sartor {
 
@@ -49,6 +50,45 @@ void set_up_contact(const Options& options, ClothProblem& problem) {
   }
   problem.contact.stiffness_factor = options.positive_real("contact-stiffness-factor");
   if (options.is_set("drape-support-radius")) options.positive_real("drape-support-radius");
+}
+
+void apply_placement_waves(const Options& options, TriangleMesh& mesh) {
+  if (!options.is_set("mesh-waves")) return;
+  const std::string text = options.text("mesh-waves");
+  const auto bad = [&](const std::string& why) {
+    return InputError("option --mesh-waves: " + why + " (expected N,AMPLITUDE,RADIUS, e.g. " +
+                      "8,0.002,0.09), got '" + text + "'");
+  };
+  std::vector<double> values;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, ',')) {
+    std::size_t used = 0;
+    try {
+      values.push_back(std::stod(item, &used));
+    } catch (const std::exception&) {
+      throw bad("'" + item + "' is not a number");
+    }
+    if (item.find_first_not_of(" \t", used) != std::string::npos || !std::isfinite(values.back()))
+      throw bad("'" + item + "' is not a number");
+  }
+  if (values.size() != 3) throw bad("three numbers needed");
+  const double waves = values[0], amplitude = values[1], start = values[2];
+  if (waves < 1.0 || waves != std::floor(waves)) throw bad("N must be a whole number >= 1");
+  if (start < 0.0) throw bad("the radius where the waves start must not be negative");
+  double outer = 0.0;
+  for (const auto& p : mesh.positions)
+    outer = std::max(outer, std::hypot(p.x(), p.y()));
+  if (!(outer > start)) {
+    throw bad("the waves start at radius " + std::to_string(start) +
+              " m, beyond the mesh's outer radius " + std::to_string(outer) + " m");
+  }
+  for (auto& p : mesh.positions) {
+    const double r = std::hypot(p.x(), p.y());
+    if (r <= start) continue;
+    const double s = (r - start) / (outer - start);
+    p.z() += amplitude * s * s * std::cos(waves * std::atan2(p.y(), p.x()));
+  }
 }
 
 double projected_area(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& positions,

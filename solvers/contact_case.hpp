@@ -22,6 +22,16 @@ namespace sartor {
 // Throws InputError naming the option for a bad specification.
 void set_up_contact(const Options& options, ClothProblem& problem);
 
+// --mesh-waves N,A,R0: a small out-of-plane imperfection of the placement,
+// applied in the mesh's own frame (before --mesh-rotate-x and
+// --mesh-translate), about its z axis:
+//     z += A ((r - R0) / (R - R0))^2 cos(N theta)   for r > R0,
+// R the largest distance of a vertex from the axis. A flat, symmetric start
+// (a Cusick specimen) is a saddle that a static or damped solve need never
+// leave; N waves seed the N folds (nodes) a real drape forms.
+// Throws InputError for a malformed value. Does nothing without the option.
+void apply_placement_waves(const Options& options, TriangleMesh& mesh);
+
 // The Cusick drape coefficient: the cloth's shadow on the horizontal plane
 // (the area covered by its triangles projected along z) against the flat
 // specimen's and the support disk's areas:

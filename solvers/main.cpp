@@ -27,6 +27,7 @@ const std::vector<Command>& commands() {
       {sartor::converge_command, sartor::run_converge},
       {sartor::pattern_command, sartor::run_pattern},
       {sartor::body_command, sartor::run_body},
+      {sartor::construct_command, sartor::run_construct},
   };
   return all;
 }

@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -48,6 +49,9 @@ const std::vector<OptionSpec>& case_option_specs() {
       {"mesh-refine", "N", "0", "uniform refinements (each splits triangles in four)"},
       {"mesh-snap-boundary", "", "",
        "disk: put refined boundary vertices back on the circle (position and uv)"},
+      {"mesh-waves", "N,A,R0", "",
+       "out-of-plane imperfection of the placement: N waves around the z axis, amplitude A (m) "
+       "at the rim, growing from radius R0 (m) (docs/contact.md)"},
       {"mesh-rotate-x", "DEG", "0", "rotate the placement about the x axis, degrees"},
       {"mesh-translate", "X,Y,Z", "0,0,0", "then translate it, m"},
       {"fabric", "SPEC", "cotton_twill", "preset or FILE.yaml: elastic curves per direction"},
@@ -64,6 +68,10 @@ const std::vector<OptionSpec>& case_option_specs() {
       {"gravity", "X,Y,Z", "0,0,-9.80665", "gravitational acceleration, m/s^2"},
       {"pressure", "PA", "0", "follower pressure on the triangles' normal side, Pa"},
       {"point-force", "V,FX,FY,FZ", "", "a force (N) on vertex V"},
+      {"edge-force", "FX,FY,FZ", "",
+       "a total force (N) spread over the boundary edges inside --edge-force-box as a uniform "
+       "line load (per unit material length)"},
+      {"edge-force-box", "X0,X1,Y0,Y1,Z0,Z1", "", "the box of the --edge-force edges, m"},
       {"pin-box", "X0,X1,Y0,Y1,Z0,Z1", "", "pin the vertices inside these boxes (6 numbers each)"},
       {"pin-boundary", "", "", "pin every boundary vertex"},
       {"pin-vertices", "I,J,...", "", "pin these vertices"},
@@ -93,17 +101,27 @@ const std::vector<OptionSpec>& case_option_specs() {
       {"seam-penalty", "P", "100", "automatic seam stiffness: P x modulus / seam spacing"},
       {"seam-merge", "", "", "sew, then merge matched seam vertices and solve again"},
       {"seam-merge-gap", "M", "1e-4", "--seam-merge: largest seam gap accepted as closed, m"},
-      {"analysis", "KIND", "static", "static (equilibrium) or dynamic (implicit time stepping)"},
-      {"time-end", "S", "1", "dynamic: end time, s"},
-      {"time-step", "S", "0.01", "dynamic: time step, s (halved up to 8 times on failure)"},
+      {"analysis", "KIND", "static",
+       "static (equilibrium), dynamic (implicit time stepping) or creep (quasi-static creep "
+       "over real time)"},
+      {"time-end", "S", "1", "dynamic, creep: end time, s"},
+      {"time-step", "S", "0.01",
+       "dynamic: time step, s (halved up to 8 times on failure); creep: the first step"},
       {"damping", "1/S", "0", "dynamic: mass-proportional damping alpha (force -alpha M v), 1/s"},
       {"kinetic-damping", "", "", "dynamic: zero every velocity at each kinetic-energy peak"},
       {"rest-tolerance", "R", "0",
        "dynamic: stop once the static residual is below R times its initial value (0: never)"},
+      {"settle", "", "",
+       "dynamic: finish (at rest or at --time-end) with a static Newton solve from the last state"},
       {"output-interval", "S", "0",
-       "dynamic: time between the states written to series.h5, s (0: every step)"},
+       "dynamic, creep: time between the states written to series.h5, s (0: every step)"},
   };
-  return specs;
+  static const std::vector<OptionSpec> all = [] {
+    std::vector<OptionSpec> options = specs;
+    options.insert(options.end(), creep_option_specs().begin(), creep_option_specs().end());
+    return options;
+  }();
+  return all;
 }
 
 const CommandSpec& run_command() {
@@ -125,16 +143,28 @@ const CommandSpec& run_command() {
       "also writes series.h5 + series.xmf (the states at --output-interval: open\n"
       "series.xmf in ParaView as a time series) and dynamics.csv (time, kinetic and\n"
       "potential energy, residual, iterations, probe displacement per step).\n\n"
+      "With --analysis creep it follows the cloth's creep over real time (thesis\n"
+      "Algorithm 2: equilibrium, then each element's creep update, with the loads\n"
+      "scaled by --load-history and steps sized by --creep-tolerance) and writes\n"
+      "series.h5 + series.xmf (with per-triangle creep strains) and creep.csv (one\n"
+      "row per step). --checkpoint-interval writes checkpoints; --restart resumes\n"
+      "one (docs/creep-structure.md).\n\n"
       "examples:\n"
       "  sartor run cases/fe/hanging_sheet.yaml\n"
       "  sartor run cases/fe/hencky.yaml --mesh-rings 16 -snes_monitor\n"
       "  mpiexec -n 2 sartor run cases/fe/hanging_sheet.yaml\n"
       "  sartor run cases/fe/hanging_sheet_dynamic.yaml --time-end 2 --output-interval 0.05\n"
-      "  sartor run cases/fe/cantilever_strip.yaml --pin-motion \"0:0,0,0; 1:0,0,0.1\"",
+      "  sartor run cases/fe/cantilever_strip.yaml --pin-motion \"0:0,0,0; 1:0,0,0.1\"\n"
+      "  sartor run cases/creep/strip.yaml --checkpoint-interval 600",
       [] {
         std::vector<OptionSpec> options = case_option_specs();
         options.push_back(
             {"output", "DIR", "out/run", "output folder (created; files in it are replaced)"});
+        options.push_back({"checkpoint-interval", "S", "0",
+                           "creep: write a checkpoint every S seconds of simulated time"});
+        options.push_back(
+            {"checkpoint", "FILE", "", "creep: the checkpoint file [OUTPUT/checkpoint.h5]"});
+        options.push_back({"restart", "FILE", "", "creep: resume from this checkpoint"});
         return options;
       }(),
       1,
@@ -238,6 +268,7 @@ TriangleMesh build_mesh(const Options& options, int extra_refinements, int* refi
     cloth = mesh::refine(cloth);
     if (snap) snap_to_circle(cloth, options.positive_real("mesh-radius"));
   }
+  apply_placement_waves(options, cloth);
   const double angle = options.real("mesh-rotate-x") * M_PI / 180.0;
   const Eigen::Matrix3d rotation =
       Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitX()).toRotationMatrix();
@@ -418,6 +449,53 @@ std::vector<PinGroupMotion> pin_groups(const Options& options, const TriangleMes
   return groups;
 }
 
+// --edge-force: consistent nodal forces of a uniform line load on the
+// boundary edges whose both ends lie in --edge-force-box.
+void add_edge_force(const Options& options, const TriangleMesh& mesh, ClothLoads* loads) {
+  if (options.is_set("edge-force") != options.is_set("edge-force-box")) {
+    throw InputError("options --edge-force and --edge-force-box go together");
+  }
+  if (!options.is_set("edge-force")) return;
+  const Eigen::Vector3d force = vector3(options, "edge-force");
+  const auto box = numbers(options, "edge-force-box", 6);
+  const auto inside = [&](int v) {
+    const Eigen::Vector3d& p = mesh.positions[std::size_t(v)];
+    for (int d = 0; d < 3; ++d) {
+      if (p[d] < box[std::size_t(2 * d)] || p[d] > box[std::size_t(2 * d + 1)]) return false;
+    }
+    return true;
+  };
+  // Material lengths come from the corners' uv in a triangle holding the edge.
+  std::map<std::pair<int, int>, double> material_length;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      const int a = mesh.triangles[t][c], b = mesh.triangles[t][(c + 1) % 3];
+      material_length[{std::min(a, b), std::max(a, b)}] =
+          (mesh.material_uv[t][(c + 1) % 3] - mesh.material_uv[t][c]).norm();
+    }
+  }
+  std::vector<std::pair<std::array<int, 2>, double>> loaded;
+  double total = 0.0;
+  for (const auto& edge : boundary_edges(mesh)) {
+    if (!inside(edge[0]) || !inside(edge[1])) continue;
+    const double length = material_length.at({edge[0], edge[1]});
+    loaded.push_back({edge, length});
+    total += length;
+  }
+  if (loaded.empty()) {
+    throw InputError("option --edge-force-box: no boundary edge has both ends in the box");
+  }
+  std::map<int, Eigen::Vector3d> nodal;
+  for (const auto& [edge, length] : loaded) {
+    for (int v : edge) {
+      auto [entry, added] = nodal.try_emplace(v, Eigen::Vector3d::Zero());
+      entry->second += 0.5 * length / total * force;
+    }
+  }
+  for (const auto& [vertex, f] : nodal)
+    loads->point_forces.push_back({vertex, f});
+}
+
 DynamicOptions dynamic_options(const Options& options) {
   DynamicOptions dynamic;
   dynamic.time_end = options.positive_real("time-end");
@@ -426,6 +504,7 @@ DynamicOptions dynamic_options(const Options& options) {
   dynamic.kinetic_damping = options.flag("kinetic-damping");
   dynamic.rest_tolerance = options.nonnegative_real("rest-tolerance");
   dynamic.output_interval = options.nonnegative_real("output-interval");
+  dynamic.settle = options.flag("settle");
   dynamic.print_progress = true;
   return dynamic;
 }
@@ -451,7 +530,7 @@ void broadcast(double* values, int count) {
 } // namespace
 
 CaseResult solve_case(const Options& options, int extra_refinements,
-                      const CaseStepObserver& observe) {
+                      const CaseStepObserver& observe, const CaseCheckpointing& checkpointing) {
   const auto started = std::chrono::steady_clock::now();
   CaseResult result;
   result.mesh = build_mesh(options, extra_refinements, &result.mesh_refine);
@@ -481,6 +560,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
     }
     problem.loads.point_forces.push_back({int(v), Eigen::Vector3d(f[1], f[2], f[3])});
   }
+  add_edge_force(options, mesh, &problem.loads);
   problem.pin_motion = vector3(options, "pin-move");
   problem.pin_groups = pin_groups(options, mesh, pinned);
   set_up_contact(options, problem);
@@ -488,13 +568,17 @@ CaseResult solve_case(const Options& options, int extra_refinements,
     attach_seams(options, seams, material, problem, &*result.seams);
   }
   const std::string analysis = options.text("analysis");
-  if (analysis != "static" && analysis != "dynamic") {
-    throw InputError("option --analysis: unknown kind '" + analysis + "' (static, dynamic)");
+  if (analysis != "static" && analysis != "dynamic" && analysis != "creep") {
+    throw InputError("option --analysis: unknown kind '" + analysis + "' (static, dynamic, creep)");
   }
   const bool dynamic = analysis == "dynamic";
-  if (dynamic && problem.pin_motion != Eigen::Vector3d::Zero()) {
-    throw InputError("option --pin-move ramps the pins with the load in statics; with --analysis "
-                     "dynamic give a history in time: --pin-motion \"0:0,0,0; T:DX,DY,DZ\"");
+  const bool creep = analysis == "creep";
+  if ((dynamic || creep) && problem.pin_motion != Eigen::Vector3d::Zero()) {
+    throw InputError("option --pin-move ramps the pins with the load in statics; with --analysis " +
+                     analysis + " give a history in time: --pin-motion \"0:0,0,0; T:DX,DY,DZ\"");
+  }
+  if (!creep && !checkpointing.restart_file.empty()) {
+    throw InputError("option --restart: only --analysis creep runs resume from checkpoints");
   }
   if (dynamic && material.areal_density <= 0.0) {
     throw InputError("option --density: --analysis dynamic needs a positive areal density, got " +
@@ -538,7 +622,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
         broadcast(d, 3);
         result.probe_history.emplace_back(d[0], d[1], d[2]);
       }
-      if (observe) observe(problem, state, step);
+      if (observe) observe(problem, state, {step.time, step.output, nullptr});
       return 0;
     };
     DynamicReport report;
@@ -547,6 +631,17 @@ CaseResult solve_case(const Options& options, int extra_refinements,
     result.converged = report.completed;
     result.solve_seconds = report.solve_seconds;
     result.dynamics = std::move(report);
+  } else if (creep) {
+    CreepCoupling coupling(problem, creep_materials(options));
+    const CreepStateObserver follow = [&](Vec state, const CreepStepReport& step) {
+      if (observe) observe(problem, state, {step.time, step.output, &coupling});
+    };
+    CreepRunResult run =
+        run_creep_case(options, problem, x, checkpointing,
+                       result.probe ? long(result.probe->vertex) : -1L, coupling, follow);
+    result.converged = run.report.completed;
+    result.solve_seconds = run.report.solve_seconds;
+    result.creep = std::move(run);
   } else {
     SartorPetscCall(solve_static(problem, x, solve, &result.report));
     result.converged = result.report.converged;
@@ -621,22 +716,44 @@ void add_dynamics_summary(const DynamicReport& report, nlohmann::json& summary) 
                        {"velocities_reset", step.velocities_reset},
                        {"output", step.output}});
   }
-  summary["dynamics"] = {{"completed", report.completed},
-                         {"at_rest", report.at_rest},
-                         {"reason", report.completed
-                                        ? (report.at_rest ? "at rest" : "reached the end time")
-                                        : report.reason},
-                         {"final_time_s", report.final_time},
-                         {"steps", accepted},
-                         {"rejected_steps", report.rejected_steps},
-                         {"newton_iterations", report.newton_iterations},
-                         {"linear_iterations", report.linear_iterations},
-                         {"newton_iterations_per_step",
-                          accepted ? double(report.newton_iterations) / double(accepted) : 0.0},
-                         {"velocity_resets", report.velocity_resets},
-                         {"steps_per_second",
-                          report.solve_seconds > 0 ? double(accepted) / report.solve_seconds : 0.0},
-                         {"history", history}};
+  summary["dynamics"] = {
+      {"completed", report.completed},
+      {"at_rest", report.at_rest},
+      {"reason",
+       report.completed ? (report.at_rest ? "at rest" : "reached the end time") : report.reason},
+      {"final_time_s", report.final_time},
+      {"steps", accepted},
+      {"rejected_steps", report.rejected_steps},
+      {"newton_iterations", report.newton_iterations},
+      {"linear_iterations", report.linear_iterations},
+      {"newton_iterations_per_step",
+       accepted ? double(report.newton_iterations) / double(accepted) : 0.0},
+      {"velocity_resets", report.velocity_resets},
+      {"settle", report.settle_reason.empty()
+                     ? nlohmann::json(nullptr)
+                     : nlohmann::json{{"converged", report.settled},
+                                      {"reason", report.settle_reason},
+                                      {"newton_iterations", report.settle_newton_iterations},
+                                      {"residual_norm", report.settle_residual_norm}}},
+      {"steps_per_second",
+       report.solve_seconds > 0 ? double(accepted) / report.solve_seconds : 0.0},
+      {"history", history}};
+}
+
+void add_creep_summary(const CreepRunResult& run, nlohmann::json& summary) {
+  const CreepReport& report = run.report;
+  long accepted = 0;
+  for (const auto& step : report.steps)
+    accepted += step.step > 0 ? 1 : 0;
+  summary["creep"] = {{"completed", report.completed},
+                      {"reason", report.completed ? "reached the end time" : report.reason},
+                      {"final_time_s", report.final_time},
+                      {"steps", accepted},
+                      {"rejected_steps", report.rejected_steps},
+                      {"newton_iterations", report.newton_iterations},
+                      {"checkpoints_written", run.checkpoints_written},
+                      {"resumed", run.resumed}};
+  if (run.resumed) summary["creep"]["resumed_from_time_s"] = run.resumed_time;
 }
 
 // dynamics.csv: one row per state (the initial one first).
@@ -672,6 +789,8 @@ void add_case_summary(const CaseResult& result, nlohmann::json& summary) {
   summary["converged"] = result.converged;
   if (result.dynamics) {
     add_dynamics_summary(*result.dynamics, summary);
+  } else if (result.creep) {
+    add_creep_summary(*result.creep, summary);
   } else {
     add_statics_summary(result.report, summary);
   }
@@ -701,6 +820,7 @@ void write_case_results(const std::string& directory, const CaseResult& result,
   if (!is_root()) return;
   write_cloth_results(directory, result.mesh, result.positions, result.strains);
   if (result.dynamics) write_file_atomically(directory + "/dynamics.csv", dynamics_csv(result));
+  if (result.creep) write_file_atomically(directory + "/creep.csv", result.creep->history_csv);
   write_json(directory + "/summary.json", summary);
 }
 
@@ -717,18 +837,40 @@ int run_run(const Invocation& invocation) {
   const std::string directory = options.text("output");
   // Dynamic runs write their states at output times into series.h5/.xmf.
   std::unique_ptr<ClothTimeSeries> series;
-  const CaseStepObserver write_state = [&](ClothProblem& problem, Vec x,
-                                           const DynamicStepReport& step) {
-    if (!step.output) return;
+  const CaseStepObserver write_state = [&](ClothProblem& problem, Vec x, const CaseState& state) {
+    if (!state.output) return;
     std::vector<Eigen::Vector3d> positions;
     std::vector<element::MembraneStrain> strains;
+    std::vector<ElementCreep> creep;
     SartorPetscCall(problem.gather_positions(x, &positions));
     SartorPetscCall(problem.gather_strains(x, &strains));
+    if (state.creep) SartorPetscCall(state.creep->gather(&creep));
     if (!is_root()) return;
+    std::vector<ClothTimeSeries::CellField> fields;
+    if (state.creep) {
+      fields = {{"viscoelastic_warp", {}},
+                {"permanent_warp", {}},
+                {"viscoelastic_weft", {}},
+                {"permanent_weft", {}}};
+      for (const ElementCreep& c : creep) {
+        fields[0].values.push_back(c.warp.viscoelastic);
+        fields[1].values.push_back(c.warp.permanent);
+        fields[2].values.push_back(c.weft.viscoelastic);
+        fields[3].values.push_back(c.weft.permanent);
+      }
+    }
     if (!series) series = std::make_unique<ClothTimeSeries>(directory, problem.mesh());
-    series->write(step.time, positions, strains);
+    series->write(state.time, positions, strains, fields);
   };
-  const CaseResult result = solve_case(options, 0, write_state);
+  CaseCheckpointing checkpointing;
+  checkpointing.interval = options.nonnegative_real("checkpoint-interval");
+  checkpointing.file =
+      options.is_set("checkpoint") ? options.text("checkpoint") : directory + "/checkpoint.h5";
+  if (options.is_set("restart")) checkpointing.restart_file = options.text("restart");
+  if (checkpointing.interval > 0.0 || !checkpointing.restart_file.empty()) {
+    if (is_root()) make_output_directory(directory);
+  }
+  const CaseResult result = solve_case(options, 0, write_state, checkpointing);
 
   nlohmann::json summary = run_metadata(invocation, "run");
   summary["case"] = invocation.command_line.positionals.at(0);
@@ -736,6 +878,22 @@ int run_run(const Invocation& invocation) {
   write_case_results(directory, result, summary);
   write_petsc_options(directory);
 
+  if (result.creep) {
+    const CreepReport& report = result.creep->report;
+    SartorPetscCall(PetscPrintf(
+        PETSC_COMM_WORLD,
+        "sartor run: %zu triangles, creep to t = %g s in %zu steps (%ld rejected), %d Newton "
+        "iterations; wrote %s\n",
+        result.mesh.triangle_count(), report.final_time, report.steps.size(), report.rejected_steps,
+        int(report.newton_iterations), directory.c_str()));
+    if (!report.completed) {
+      throw InputError("the creep run stopped at t = " + format_number(report.final_time) +
+                       " s: " + report.reason + "; " + directory +
+                       " holds the last accepted state. Try a smaller --creep-tolerance or "
+                       "-snes_monitor");
+    }
+    return 0;
+  }
   if (result.dynamics) {
     const DynamicReport& report = *result.dynamics;
     SartorPetscCall(PetscPrintf(

@@ -3,6 +3,7 @@
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "fem/petsc_call.hpp"
+#include "fem/petsc_options.hpp"
 #include "mesh/merge.hpp"
 
 #include <nlohmann/json.hpp>
@@ -65,6 +66,12 @@ std::vector<SeamSpring> case_seam_springs(const Options& options, const Triangle
 
 void attach_seams(const Options& options, const std::vector<Seam>& seams,
                   const ClothMaterial& material, ClothProblem& problem, SeamReport* report) {
+  // Sewing starts with the seam springs stretched across the gap: residuals
+  // of ~1e6 N, of which SNES's relative tolerance (1e-10) would accept a
+  // final residual of 1e-4 N, a good fraction of the cloth's weight. Sewn
+  // cases converge on the absolute tolerance instead (round-off of the
+  // membrane forces, IncrementalSystem); -snes_rtol still overrides.
+  SartorPetscCall(set_default_option("-snes_rtol", "0"));
   const std::vector<SeamSpring> springs =
       case_seam_springs(options, problem.mesh(), seams, material);
   problem.set_seams(springs);

@@ -47,7 +47,8 @@ void write_dataset(hid_t file, const std::string& name, hid_t type, const void* 
 // One XDMF grid of the cloth whose datasets live under `group` of `h5`
 // ("" for the final state: /fields, /cell_fields), at `time` when given.
 std::string grid_text(const std::string& h5, const std::string& group, const std::string& name,
-                      std::size_t vertices, std::size_t triangles, const double* time) {
+                      std::size_t vertices, std::size_t triangles, const double* time,
+                      const std::vector<std::string>& extra_cell_fields = {}) {
   std::ostringstream x;
   const auto item = [&](const std::string& set, std::size_t rows, int columns, const char* type) {
     std::ostringstream d;
@@ -65,8 +66,10 @@ std::string grid_text(const std::string& h5, const std::string& group, const std
     << item(group + "/fields/position", vertices, 3, "Float") << "</Geometry>\n"
     << "   <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">"
     << item(group + "/fields/displacement", vertices, 3, "Float") << "</Attribute>\n";
-  for (const char* field :
-       {"strain_warp", "strain_weft", "strain_shear", "tension_warp", "tension_weft"}) {
+  std::vector<std::string> cell_fields{"strain_warp", "strain_weft", "strain_shear", "tension_warp",
+                                       "tension_weft"};
+  cell_fields.insert(cell_fields.end(), extra_cell_fields.begin(), extra_cell_fields.end());
+  for (const std::string& field : cell_fields) {
     x << "   <Attribute Name=\"" << field << "\" AttributeType=\"Scalar\" Center=\"Cell\">"
       << item(group + "/cell_fields/" + field, triangles, 1, "Float") << "</Attribute>\n";
   }
@@ -163,14 +166,30 @@ ClothTimeSeries::ClothTimeSeries(const std::string& directory, const TriangleMes
 }
 
 void ClothTimeSeries::write(double time, const std::vector<Eigen::Vector3d>& positions,
-                            const std::vector<element::MembraneStrain>& strains) {
+                            const std::vector<element::MembraneStrain>& strains,
+                            const std::vector<CellField>& extra_cell_fields) {
   const std::string h5 = directory_ + "/series.h5";
   std::ostringstream group;
   group << "/steps/" << std::setw(6) << std::setfill('0') << times_.size();
+  std::vector<std::string> names;
+  for (const CellField& field : extra_cell_fields)
+    names.push_back(field.name);
+  if (times_.empty()) extra_names_ = names;
+  if (names != extra_names_) {
+    throw std::logic_error("ClothTimeSeries: every state must have the same cell fields");
+  }
   {
     const H5Handle file(H5Fopen(h5.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose);
     if (file.get() < 0) throw InputError(h5 + ": cannot open HDF5 file for appending");
     write_state(file.get(), group.str(), mesh_, positions, strains, h5);
+    for (const CellField& field : extra_cell_fields) {
+      if (field.values.size() != mesh_.triangle_count()) {
+        throw std::logic_error("ClothTimeSeries: cell field " + field.name +
+                               " does not match the mesh");
+      }
+      write_dataset(file.get(), group.str() + "/cell_fields/" + field.name, H5T_NATIVE_DOUBLE,
+                    field.values.data(), {field.values.size()}, h5);
+    }
     write_dataset(file.get(), group.str() + "/time", H5T_NATIVE_DOUBLE, &time, {1}, h5);
   }
   times_.push_back(time);
@@ -181,7 +200,7 @@ void ClothTimeSeries::write(double time, const std::vector<Eigen::Vector3d>& pos
     std::ostringstream step;
     step << "/steps/" << std::setw(6) << std::setfill('0') << k;
     xdmf << grid_text("series.h5", step.str(), "cloth", mesh_.vertex_count(),
-                      mesh_.triangle_count(), &times_[k]);
+                      mesh_.triangle_count(), &times_[k], extra_names_);
   }
   xdmf << " </Grid>\n </Domain>\n</Xdmf>\n";
   write_file_atomically(directory_ + "/series.xmf", xdmf.str());

@@ -26,15 +26,23 @@ void write_cloth_results(const std::string& directory, const TriangleMesh& mesh,
 //               state, so a running or stopped simulation opens as it stands
 class ClothTimeSeries {
 public:
+  // A per-triangle field beyond the strains and tensions (e.g. creep strains).
+  struct CellField {
+    std::string name;
+    std::vector<double> values; // per mesh triangle
+  };
   ClothTimeSeries(const std::string& directory, const TriangleMesh& mesh);
+  // Every state must have the same extra cell fields.
   void write(double time, const std::vector<Eigen::Vector3d>& positions,
-             const std::vector<element::MembraneStrain>& strains);
+             const std::vector<element::MembraneStrain>& strains,
+             const std::vector<CellField>& extra_cell_fields = {});
   std::size_t states() const { return times_.size(); }
 
 private:
   std::string directory_;
   const TriangleMesh& mesh_;
   std::vector<double> times_;
+  std::vector<std::string> extra_names_;
 };
 
 } // namespace sartor

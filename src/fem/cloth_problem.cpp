@@ -316,19 +316,28 @@ void ClothProblem::set_pin_position(std::size_t index, const Eigen::Vector3d& po
 }
 
 PetscErrorCode ClothProblem::create_solution(Vec* x) const {
+  PetscFunctionBeginUser;
+  PetscCall(DMCreateGlobalVector(dm_, x));
+  PetscCall(VecSetBlockSize(*x, dofs_per_vertex));
+  PetscCall(set_solution(mesh_.positions, *x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::set_solution(const std::vector<Eigen::Vector3d>& positions,
+                                          Vec x) const {
   PetscScalar* values = nullptr;
   PetscFunctionBeginUser;
+  PetscCheck(positions.size() == mesh_.vertex_count(), comm_, PETSC_ERR_ARG_SIZ,
+             "%zu positions for a mesh of %zu vertices", positions.size(), mesh_.vertex_count());
   PetscCall(VecSet(local_x_, 0.0));
   PetscCall(VecGetArray(local_x_, &values));
   for (std::size_t v = 0; v < mesh_.vertex_count(); ++v) {
     if (vertex_dof_[v] < 0) continue;
     for (std::size_t d = 0; d < 3; ++d)
-      values[vertex_dof_[v] + PetscInt(d)] = mesh_.positions[v][long(d)];
+      values[vertex_dof_[v] + PetscInt(d)] = positions[v][long(d)];
   }
   PetscCall(VecRestoreArray(local_x_, &values));
-  PetscCall(DMCreateGlobalVector(dm_, x));
-  PetscCall(VecSetBlockSize(*x, dofs_per_vertex));
-  PetscCall(DMLocalToGlobal(dm_, local_x_, INSERT_VALUES, *x));
+  PetscCall(DMLocalToGlobal(dm_, local_x_, INSERT_VALUES, x));
   PetscFunctionReturn(0);
 }
 
@@ -638,6 +647,70 @@ PetscErrorCode ClothProblem::gather_strains(Vec x, std::vector<element::Membrane
   PetscCall(VecDestroy(&root));
   PetscCall(VecDestroy(&natural));
   PetscFunctionReturn(0);
+}
+
+PetscErrorCode
+ClothProblem::owned_strains(Vec x, std::vector<std::pair<int, element::MembraneStrain>>* strains) {
+  const PetscScalar* values = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(to_local(x));
+  strains->clear();
+  strains->reserve(triangles_.size());
+  PetscCall(VecGetArrayRead(local_x_, &values));
+  for (const LocalTriangle& t : triangles_) {
+    strains->emplace_back(t.index,
+                          element::membrane_strain(t.material->membrane_model, t.material->membrane,
+                                                   t.rest, nonelastic[std::size_t(t.index)],
+                                                   gather<9>(values, t.dofs)));
+  }
+  PetscCall(VecRestoreArrayRead(local_x_, &values));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::gather_anchors(std::vector<std::array<double, 8>>* rows) {
+  PetscFunctionBeginUser;
+  std::vector<double> local;
+  for (std::size_t body = 0; body < anchors_.size(); ++body) {
+    for (std::size_t vertex = 0; vertex < anchors_[body].size(); ++vertex) {
+      const FrictionAnchor& anchor = anchors_[body][vertex];
+      if (!anchor.active || !vertex_owned_[vertex]) continue;
+      local.insert(local.end(),
+                   {double(body), double(vertex), anchor.point.x(), anchor.point.y(),
+                    anchor.point.z(), anchor.normal.x(), anchor.normal.y(), anchor.normal.z()});
+    }
+  }
+  PetscMPIInt ranks = 1, rank = 0;
+  PetscCallMPI(MPI_Comm_size(comm_, &ranks));
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  const auto count = PetscMPIInt(local.size());
+  std::vector<PetscMPIInt> counts(std::size_t(ranks), 0), offsets(std::size_t(ranks), 0);
+  PetscCallMPI(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_));
+  for (std::size_t r = 1; r < counts.size(); ++r)
+    offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::vector<double> all(rank == 0 ? std::size_t(offsets.back() + counts.back()) : 0);
+  PetscCallMPI(MPI_Gatherv(local.data(), count, MPI_DOUBLE, all.data(), counts.data(),
+                           offsets.data(), MPI_DOUBLE, 0, comm_));
+  rows->clear();
+  for (std::size_t i = 0; i + 8 <= all.size(); i += 8) {
+    std::array<double, 8> row;
+    std::copy(all.begin() + long(i), all.begin() + long(i + 8), row.begin());
+    rows->push_back(row);
+  }
+  PetscFunctionReturn(0);
+}
+
+void ClothProblem::restore_anchors(const std::vector<std::array<double, 8>>& rows) {
+  anchors_.assign(bodies.size(), std::vector<FrictionAnchor>(mesh_.vertex_count()));
+  for (const auto& row : rows) {
+    const auto body = std::size_t(row[0]);
+    const auto vertex = std::size_t(row[1]);
+    if (body >= anchors_.size() || vertex >= mesh_.vertex_count()) {
+      throw InputError("checkpoint: friction anchor of body " + std::to_string(row[0]) +
+                       " at vertex " + std::to_string(row[1]) + " is not in this case");
+    }
+    anchors_[body][vertex] = {true, {row[2], row[3], row[4]}, {row[5], row[6], row[7]}};
+  }
+  solved_anchors_ = anchors_;
 }
 
 PetscErrorCode ClothProblem::pin_reaction(Vec x, Eigen::Vector3d* reaction) {

@@ -113,6 +113,9 @@ public:
 
   // A global vector of the free positions, filled from the mesh's placement.
   PetscErrorCode create_solution(Vec* x) const;
+  // Fills the solution vector x from positions of every mesh vertex (mesh
+  // numbering, the same on every rank).
+  PetscErrorCode set_solution(const std::vector<Eigen::Vector3d>& positions, Vec x) const;
   // Moves pinned vertex `index` (in the order given to the constructor).
   void set_pin_position(std::size_t index, const Eigen::Vector3d& position);
   // Every pin is displaced by load_factor * pin_motion from its position.
@@ -163,6 +166,15 @@ public:
   PetscErrorCode gather_positions(Vec x, std::vector<Eigen::Vector3d>* positions);
   // Strains and tensions of every triangle, in mesh numbering, on rank 0.
   PetscErrorCode gather_strains(Vec x, std::vector<element::MembraneStrain>* strains);
+  // Strains and tensions of the triangles this rank assembles, with their
+  // mesh indices (no communication: what the creep update needs).
+  PetscErrorCode owned_strains(Vec x,
+                               std::vector<std::pair<int, element::MembraneStrain>>* strains);
+  // The friction anchors as (body, vertex, point xyz, normal xyz) rows, all
+  // ranks' on rank 0, for checkpoints; restore_anchors takes the same rows on
+  // every rank.
+  PetscErrorCode gather_anchors(std::vector<std::array<double, 8>>* rows);
+  void restore_anchors(const std::vector<std::array<double, 8>>& rows);
   // Sum over all vertices of the force the pins exert on the cloth, N.
   PetscErrorCode pin_reaction(Vec x, Eigen::Vector3d* reaction);
 

@@ -54,6 +54,8 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
   IncrementalSystem system(problem, x);
   PetscCall(VecDuplicate(x, &f));
   PetscCall(VecDuplicate(x, &work));
+  // Vertices that touch a body in the starting placement stick there.
+  PetscCall(problem.update_contact(x));
 
   const auto measure = [&](DynamicStepReport* step) -> PetscErrorCode {
     ClothEnergy energy;
@@ -174,6 +176,37 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
     if (at_rest) break;
   }
   report->final_time = t;
+  if (options.settle && report->completed) {
+    system.inertia_weight = 0.0;
+    system.damping_weight = 0.0;
+    PetscCall(VecCopy(x, system.previous())); // the last accepted state, kept on failure
+    // The time steps of a relaxation may be solved loosely (-snes_rtol); the
+    // equilibrium is solved to at least 1e-10 of the settle's first residual.
+    PetscReal atol = 0.0, rtol = 0.0, stol = 0.0;
+    PetscInt max_iterations = 0, max_evaluations = 0;
+    PetscCall(
+        SNESGetTolerances(system.snes(), &atol, &rtol, &stol, &max_iterations, &max_evaluations));
+    PetscCall(SNESSetTolerances(system.snes(), atol, std::min(rtol, PetscReal(1e-10)), stol,
+                                max_iterations, max_evaluations));
+    IncrementalSystem::Solve solve;
+    PetscCall(system.solve(x, &solve));
+    PetscCall(SNESSetTolerances(system.snes(), atol, rtol, stol, max_iterations, max_evaluations));
+    report->newton_iterations += solve.newton_iterations;
+    report->linear_iterations += solve.linear_iterations;
+    report->settle_newton_iterations = solve.newton_iterations;
+    report->settle_reason = solve.reason;
+    report->settled = solve.converged;
+    PetscCall(problem.residual(x, f));
+    PetscCall(VecNorm(f, NORM_2, &report->settle_residual_norm));
+    if (solve.converged) {
+      PetscCall(VecSet(v, 0.0));
+      PetscCall(problem.accept_step(x));
+    } else {
+      PetscCall(VecCopy(system.previous(), x));
+      report->completed = false;
+      report->reason = "the static solve after the relaxation failed: SNES " + solve.reason;
+    }
+  }
   report->solve_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   PetscCall(VecDestroy(&f));

@@ -18,9 +18,16 @@
 // once the static residual |grad E - f| falls below that fraction of its
 // value at the start.
 //
-// problem.time is the clock: prescribed pin motions are evaluated at it
-// (solve_dynamic sets pins_follow_time). problem.accept_step runs after
-// every accepted step.
+// `settle` finishes a relaxation with one static Newton solve (no inertia,
+// the friction anchors of the last update held) from the last state, at rest
+// or at time_end: kinetic damping brings the cloth near its equilibrium
+// cheaply, and Newton's quadratic convergence closes the last gap, so that
+// the reactions balance the loads to solver tolerance.
+//
+// problem.time is the clock: prescribed pin motions and body motions are
+// evaluated at it (solve_dynamic sets pins_follow_time). Friction anchors are
+// set for what touches a body at the start (problem.update_contact) and
+// problem.accept_step runs after every accepted step (and after the settle).
 
 #include "fem/cloth_problem.hpp"
 
@@ -39,6 +46,7 @@ struct DynamicOptions {
   double output_interval = 0.0; // s; 0: every step
   double rest_tolerance = 0.0;  // 0: run to time_end
   bool print_progress = false;  // a line on rank 0 every 5 % of the simulated time
+  bool settle = false;          // finish with a static Newton solve
 };
 
 struct DynamicStepReport {
@@ -67,6 +75,12 @@ struct DynamicReport {
   PetscInt velocity_resets = 0;
   double final_time = 0.0;
   double solve_seconds = 0.0;
+  // With DynamicOptions::settle: the final static solve (its iterations are
+  // also counted in newton_iterations and linear_iterations).
+  bool settled = false;
+  std::string settle_reason;
+  PetscInt settle_newton_iterations = 0;
+  double settle_residual_norm = 0.0; // N, |grad E - f| after the settle, before accept_step
 };
 
 // Called collectively with the state after every accepted step (and with the

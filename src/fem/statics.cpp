@@ -67,26 +67,40 @@ PetscErrorCode continuation(IncrementalSystem& system, Vec x, const StaticOption
 
 PetscErrorCode solve_static(ClothProblem& problem, Vec x, const StaticOptions& options,
                             StaticReport* report) {
+  PetscFunctionBeginUser;
+  IncrementalSystem system(problem, x);
+  PetscCall(solve_static(system, x, options, report));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOptions& options,
+                            StaticReport* report) {
   Vec f = nullptr, last = nullptr;
+  ClothProblem& problem = system.problem();
   PetscFunctionBeginUser;
   const auto started = std::chrono::steady_clock::now();
-  IncrementalSystem system(problem, x);
+  system.inertia_weight = 0.0;
+  system.damping_weight = 0.0;
   for (Vec* v : {&f, &last})
     PetscCall(VecDuplicate(x, v));
 
+  // The load goes from options.start_load_factor to problem.load_factor;
+  // `reached` and the increments are fractions of that way.
+  const double start = options.start_load_factor;
   const double target = problem.load_factor;
+  const auto load_at = [&](double fraction) { return start + fraction * (target - start); };
   double reached = 0.0;
-  double increment = target / std::max(1, options.load_steps);
+  double increment = 1.0 / std::max(1, options.load_steps);
   int cutbacks = 0;
   PetscCall(problem.update_contact(x)); // friction anchors for what touches a body at the start
   PetscCall(problem.residual(x, f));
   PetscCall(VecNorm(f, NORM_2, &report->initial_residual_norm));
-  while (reached < target) {
-    const double next = std::min(target, reached + increment);
-    problem.load_factor = next;
+  while (reached < 1.0) {
+    const double next = std::min(1.0, reached + increment);
+    problem.load_factor = next < 1.0 ? load_at(next) : target;
     PetscCall(VecCopy(x, last));
     LoadStepReport step;
-    step.load_factor = next;
+    step.load_factor = problem.load_factor;
     PetscCall(newton(system, x, &step, &step.converged));
     if (!step.converged) {
       PetscCall(VecCopy(last, x));
@@ -104,14 +118,14 @@ PetscErrorCode solve_static(ClothProblem& problem, Vec x, const StaticOptions& o
     }
     PetscCall(VecCopy(last, x));
     if (++cutbacks > options.max_cutbacks) {
-      problem.load_factor = reached;
+      problem.load_factor = load_at(reached);
       break;
     }
     increment *= 0.5;
     PetscCall(PetscInfo(system.snes(), "load step to %g failed (%s); retrying with increment %g\n",
-                        next, step.reason.c_str(), increment));
+                        problem.load_factor, step.reason.c_str(), increment * (target - start)));
   }
-  report->converged = reached >= target;
+  report->converged = reached >= 1.0;
   PetscCall(problem.residual(x, f));
   PetscCall(VecNorm(f, NORM_2, &report->final_residual_norm));
   report->solve_seconds =

@@ -23,6 +23,8 @@
 namespace sartor {
 
 struct StaticOptions {
+  // The solve ramps the load factor from here to problem.load_factor.
+  double start_load_factor = 0.0;
   int load_steps = 1;
   int max_cutbacks = 8;
   double initial_pseudo_step = 1e-2; // dt of the first continuation step, s
@@ -53,6 +55,11 @@ struct StaticReport {
 
 // Solves in place: `x` holds the start and, on return, the last converged state.
 PetscErrorCode solve_static(ClothProblem& problem, Vec x, const StaticOptions& options,
+                            StaticReport* report);
+// The same with a system kept from solve to solve (its SNES and Jacobian),
+// as a time stepper that solves equilibrium at every step does.
+class IncrementalSystem;
+PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOptions& options,
                             StaticReport* report);
 
 } // namespace sartor

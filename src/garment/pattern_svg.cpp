@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -112,6 +113,8 @@ std::string pattern_svg(const Pattern& pattern, const SvgOptions& options) {
          ".grain { stroke: #2060c0; stroke-width: 1.2; marker-end: url(#arrow); }\n"
          ".panel { font: 16px sans-serif; text-anchor: middle; }\n"
          ".line { font: 9px sans-serif; fill: #404040; text-anchor: middle; }\n"
+         ".seam { fill: none; stroke-width: 3; stroke-opacity: 0.8; }\n"
+         ".sweep { stroke-width: 1.5; stroke-dasharray: 5 3; }\n"
          "</style>\n";
 
   for (std::size_t i = 0; i < pattern.panels.size(); ++i) {
@@ -154,8 +157,41 @@ std::string pattern_svg(const Pattern& pattern, const SvgOptions& options) {
     }
     svg << "</g>\n";
   }
+  for (const SvgSeam& seam : options.seams) {
+    std::vector<Vector2d> middles;
+    const std::string colour = certainty_colour(seam.certainty);
+    for (const std::string* id : {&seam.line_a, &seam.line_b}) {
+      for (std::size_t i = 0; i < pattern.panels.size(); ++i) {
+        const Panel& panel = pattern.panels[i];
+        const auto draw = [&](const Curve& curve) {
+          svg << "<path class=\"seam\" stroke=\"" << colour << "\" d=\""
+              << path_of(curve, layout[i], canvas, true) << "\"/>\n";
+          middles.push_back(canvas(layout[i].apply(curve.at(0.5))));
+        };
+        for (const auto& line : panel.outline)
+          if (line.id == *id) draw(line.curve);
+        for (const auto& line : panel.interior)
+          if (line.id == *id) draw(line.curve);
+      }
+    }
+    if (middles.size() == 2) {
+      svg << "<line class=\"sweep\" stroke=\"" << colour << "\" x1=\"" << number(middles[0].x())
+          << "\" y1=\"" << number(middles[0].y()) << "\" x2=\"" << number(middles[1].x())
+          << "\" y2=\"" << number(middles[1].y()) << "\"><title>" << escape_xml(seam.line_a)
+          << " + " << escape_xml(seam.line_b) << ": certainty " << number(seam.certainty)
+          << "</title></line>\n";
+    }
+  }
   svg << "</svg>\n";
   return svg.str();
+}
+
+std::string certainty_colour(double certainty) {
+  const double c = std::clamp(certainty, 0.0, 1.0);
+  char buffer[8];
+  std::snprintf(buffer, sizeof buffer, "#%02x%02x%02x", int(std::lround(230 * (1 - c))), 40,
+                int(std::lround(230 * c)));
+  return buffer;
 }
 
 void write_pattern_svg(const std::string& path, const Pattern& pattern, const SvgOptions& options) {

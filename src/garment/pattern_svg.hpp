@@ -8,13 +8,26 @@
 #include "garment/pattern.hpp"
 
 #include <string>
+#include <vector>
 
 namespace sartor::garment {
+
+// A seam drawn over the pattern: its two lines thick, and a dashed line
+// between their middles, coloured by certainty from red (0) to blue (1).
+struct SvgSeam {
+  std::string line_a;
+  std::string line_b;
+  double certainty = 1;
+};
 
 struct SvgOptions {
   double gap = 0.05;       // m between packs
   bool line_labels = true; // write each line's id
+  std::vector<SvgSeam> seams;
 };
+
+// "#rrggbb" from blue (certainty 1) through purple to red (certainty 0).
+std::string certainty_colour(double certainty);
 
 std::string pattern_svg(const Pattern& pattern, const SvgOptions& options = {});
 // Written atomically (complete or not at all).

@@ -1,0 +1,222 @@
+#include "fem/checkpoint.hpp"
+
+#include "common/error.hpp"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <unistd.h>
+
+namespace sartor {
+
+namespace {
+
+constexpr const char* format_tag = "sartor-checkpoint 1";
+
+class H5Id {
+public:
+  H5Id(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
+  ~H5Id() {
+    if (id_ >= 0) close_(id_);
+  }
+  H5Id(const H5Id&) = delete;
+  H5Id& operator=(const H5Id&) = delete;
+  hid_t get() const { return id_; }
+
+private:
+  hid_t id_;
+  herr_t (*close_)(hid_t);
+};
+
+void write_set(hid_t file, const char* name, hid_t type, const void* data,
+               const std::vector<hsize_t>& dims, const std::string& path) {
+  const H5Id space(H5Screate_simple(int(dims.size()), dims.data(), nullptr), H5Sclose);
+  const H5Id set(H5Dcreate2(file, name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                 H5Dclose);
+  if (set.get() < 0 || H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) {
+    throw InputError(path + ": cannot write " + name);
+  }
+}
+
+void write_rows(hid_t file, const char* name, const std::vector<double>& values,
+                std::size_t columns, const std::string& path) {
+  write_set(file, name, H5T_NATIVE_DOUBLE, values.data(), {values.size() / columns, columns}, path);
+}
+
+// The dataset's values and its dimensions; `required` false: empty when absent.
+std::vector<double> read_rows(hid_t file, const char* name, std::size_t columns,
+                              const std::string& path, bool required = true) {
+  if (H5Lexists(file, name, H5P_DEFAULT) <= 0) {
+    if (!required) return {};
+    throw InputError(path + ": not a complete checkpoint (no dataset " + name + ")");
+  }
+  const H5Id set(H5Dopen2(file, name, H5P_DEFAULT), H5Dclose);
+  const H5Id space(H5Dget_space(set.get()), H5Sclose);
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  std::vector<hsize_t> dims(std::size_t(std::max(rank, 0)));
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  std::size_t count = 1;
+  for (hsize_t d : dims)
+    count *= std::size_t(d);
+  const bool shaped = (columns == 1 && rank <= 1) || (rank == 2 && dims[1] == columns);
+  if (set.get() < 0 || !shaped) {
+    throw InputError(path + ": dataset " + name + " does not have " + std::to_string(columns) +
+                     " column(s)");
+  }
+  std::vector<double> values(count);
+  if (count > 0 &&
+      H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
+    throw InputError(path + ": cannot read dataset " + name);
+  }
+  return values;
+}
+
+double read_scalar(hid_t file, const char* name, const std::string& path) {
+  const auto values = read_rows(file, name, 1, path);
+  if (values.size() != 1) throw InputError(path + ": dataset " + name + " is not a scalar");
+  return values.front();
+}
+
+std::vector<double> flatten(const std::vector<Eigen::Vector3d>& vectors) {
+  std::vector<double> values;
+  values.reserve(3 * vectors.size());
+  for (const auto& v : vectors)
+    values.insert(values.end(), {v.x(), v.y(), v.z()});
+  return values;
+}
+
+std::vector<Eigen::Vector3d> vectors(const std::vector<double>& values) {
+  std::vector<Eigen::Vector3d> result;
+  for (std::size_t i = 0; i + 3 <= values.size(); i += 3)
+    result.emplace_back(values[i], values[i + 1], values[i + 2]);
+  return result;
+}
+
+// The format attribute, or "" when there is none.
+std::string read_format(hid_t file) {
+  if (H5Aexists(file, "format") <= 0) return "";
+  const H5Id attribute(H5Aopen(file, "format", H5P_DEFAULT), H5Aclose);
+  const H5Id type(H5Aget_type(attribute.get()), H5Tclose);
+  if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0) return "";
+  std::string text(H5Tget_size(type.get()), '\0');
+  if (H5Aread(attribute.get(), type.get(), text.data()) < 0) return "";
+  return text.substr(0, text.find('\0'));
+}
+
+// The file's data reach the disk before the rename makes it the checkpoint.
+void flush_to_disk(const std::string& path) {
+  const int descriptor = ::open(path.c_str(), O_RDONLY);
+  if (descriptor < 0) throw InputError(path + ": cannot reopen to flush");
+  const int status = ::fsync(descriptor);
+  ::close(descriptor);
+  if (status != 0) throw InputError(path + ": cannot flush to disk");
+}
+
+} // namespace
+
+void write_checkpoint(const std::string& path, const RunCheckpoint& checkpoint) {
+  const std::string temporary = path + ".tmp";
+  {
+    const H5Id file(H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+                    H5Fclose);
+    if (file.get() < 0) throw InputError(path + ": cannot create checkpoint file " + temporary);
+    const hid_t f = file.get();
+    write_set(f, "/time", H5T_NATIVE_DOUBLE, &checkpoint.time, {1}, path);
+    write_set(f, "/next_step", H5T_NATIVE_DOUBLE, &checkpoint.next_step, {1}, path);
+    write_set(f, "/load_factor", H5T_NATIVE_DOUBLE, &checkpoint.load_factor, {1}, path);
+    const long long step = checkpoint.step;
+    write_set(f, "/step", H5T_NATIVE_LLONG, &step, {1}, path);
+    write_rows(f, "/positions", flatten(checkpoint.positions), 3, path);
+    if (!checkpoint.velocities.empty()) {
+      write_rows(f, "/velocities", flatten(checkpoint.velocities), 3, path);
+    }
+    std::vector<double> creep;
+    for (const ElementCreep& c : checkpoint.creep) {
+      creep.insert(creep.end(), {c.warp.viscoelastic, c.warp.permanent, c.weft.viscoelastic,
+                                 c.weft.permanent, c.tension_warp, c.tension_weft});
+    }
+    write_rows(f, "/creep", creep, 6, path);
+    std::vector<double> anchors;
+    for (const auto& row : checkpoint.anchors)
+      anchors.insert(anchors.end(), row.begin(), row.end());
+    write_rows(f, "/anchors", anchors, 8, path);
+    write_set(f, "/history", H5T_NATIVE_CHAR, checkpoint.history.data(),
+              {checkpoint.history.size()}, path);
+    const H5Id string_type(H5Tcopy(H5T_C_S1), H5Tclose);
+    H5Tset_size(string_type.get(), std::strlen(format_tag));
+    const H5Id scalar(H5Screate(H5S_SCALAR), H5Sclose);
+    const H5Id attribute(
+        H5Acreate2(f, "format", string_type.get(), scalar.get(), H5P_DEFAULT, H5P_DEFAULT),
+        H5Aclose);
+    if (attribute.get() < 0 || H5Awrite(attribute.get(), string_type.get(), format_tag) < 0) {
+      throw InputError(path + ": cannot write the format tag");
+    }
+  }
+  flush_to_disk(temporary);
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    throw InputError(path + ": cannot replace the checkpoint with " + temporary);
+  }
+}
+
+RunCheckpoint read_checkpoint(const std::string& path) {
+  // HDF5 would print its own error stack for a file that is not HDF5.
+  H5E_auto2_t handler = nullptr;
+  void* handler_data = nullptr;
+  H5Eget_auto2(H5E_DEFAULT, &handler, &handler_data);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  struct RestoreHandler {
+    H5E_auto2_t handler;
+    void* data;
+    ~RestoreHandler() { H5Eset_auto2(H5E_DEFAULT, handler, data); }
+  } restore{handler, handler_data};
+
+  const H5Id file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (file.get() < 0) throw InputError(path + ": cannot open as an HDF5 checkpoint");
+  const hid_t f = file.get();
+  if (read_format(f) != format_tag) {
+    throw InputError(path + ": not a Sartor checkpoint (its format is not '" +
+                     std::string(format_tag) + "')");
+  }
+  RunCheckpoint checkpoint;
+  checkpoint.time = read_scalar(f, "/time", path);
+  checkpoint.next_step = read_scalar(f, "/next_step", path);
+  checkpoint.load_factor = read_scalar(f, "/load_factor", path);
+  checkpoint.step = long(read_scalar(f, "/step", path));
+  checkpoint.positions = vectors(read_rows(f, "/positions", 3, path));
+  checkpoint.velocities = vectors(read_rows(f, "/velocities", 3, path, false));
+  const auto creep = read_rows(f, "/creep", 6, path);
+  for (std::size_t i = 0; i + 6 <= creep.size(); i += 6) {
+    ElementCreep c;
+    c.warp = {creep[i], creep[i + 1]};
+    c.weft = {creep[i + 2], creep[i + 3]};
+    c.tension_warp = creep[i + 4];
+    c.tension_weft = creep[i + 5];
+    checkpoint.creep.push_back(c);
+  }
+  const auto anchors = read_rows(f, "/anchors", 8, path);
+  for (std::size_t i = 0; i + 8 <= anchors.size(); i += 8) {
+    std::array<double, 8> row;
+    std::copy_n(anchors.begin() + long(i), 8, row.begin());
+    checkpoint.anchors.push_back(row);
+  }
+  {
+    const H5Id set(H5Dopen2(f, "/history", H5P_DEFAULT), H5Dclose);
+    if (set.get() < 0) throw InputError(path + ": not a complete checkpoint (no /history)");
+    const H5Id space(H5Dget_space(set.get()), H5Sclose);
+    checkpoint.history.resize(std::size_t(H5Sget_simple_extent_npoints(space.get())));
+    if (!checkpoint.history.empty() && H5Dread(set.get(), H5T_NATIVE_CHAR, H5S_ALL, H5S_ALL,
+                                               H5P_DEFAULT, checkpoint.history.data()) < 0) {
+      throw InputError(path + ": cannot read /history");
+    }
+  }
+  if (!std::isfinite(checkpoint.time) || !(checkpoint.next_step > 0.0)) {
+    throw InputError(path + ": time or next step size is not valid");
+  }
+  return checkpoint;
+}
+
+} // namespace sartor

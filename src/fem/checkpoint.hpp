@@ -1,0 +1,45 @@
+#pragma once
+// Checkpoints of a time-stepping run, to resume it after a crash or a kill
+// exactly where it stood (HDF5, one file, rank 0 writes, every rank reads).
+//
+// A checkpoint holds what the next step depends on: time, the next step size,
+// the step count, the load factor, positions and (for dynamics) velocities of
+// every vertex, the creep state of every element, the friction anchors, and
+// the rows the run's history file had so far. It is written to FILE.tmp and
+// renamed over FILE, so a run killed while writing leaves the previous
+// checkpoint intact.
+//
+// Layout (all in SI units): /time, /next_step, /load_factor (scalars),
+// /step (int64), /positions (n x 3), /velocities (n x 3, optional),
+// /creep (t x 6: eps_v warp, eps_p warp, eps_v weft, eps_p weft, tension
+// warp, tension weft), /anchors (k x 8: body, vertex, point, normal),
+// /history (the history CSV text), and the attribute /format = "sartor-checkpoint 1".
+
+#include "fem/creep_coupling.hpp"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace sartor {
+
+struct RunCheckpoint {
+  double time = 0.0;      // s
+  double next_step = 0.0; // s
+  long step = 0;
+  double load_factor = 0.0;
+  std::vector<Eigen::Vector3d> positions;  // m, mesh numbering
+  std::vector<Eigen::Vector3d> velocities; // m/s; empty for quasi-static runs
+  std::vector<ElementCreep> creep;         // per mesh triangle
+  std::vector<std::array<double, 8>> anchors;
+  std::string history; // the run's history file (CSV) up to this state
+};
+
+// Atomic (temporary file and rename). Throws InputError when it cannot write.
+void write_checkpoint(const std::string& path, const RunCheckpoint& checkpoint);
+// Throws InputError naming the file and what is missing or malformed.
+RunCheckpoint read_checkpoint(const std::string& path);
+
+} // namespace sartor

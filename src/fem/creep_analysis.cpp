@@ -1,0 +1,207 @@
+#include "fem/creep_analysis.hpp"
+
+#include "common/error.hpp"
+#include "fem/incremental_system.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace sartor {
+
+namespace {
+
+void check(const CreepOptions& options, double start) {
+  const auto positive = [](double value, const char* name) {
+    if (!(value > 0.0) || !std::isfinite(value)) {
+      throw InputError(std::string("creep: ") + name + " must be a positive number, got " +
+                       std::to_string(value));
+    }
+  };
+  positive(options.time_step, "the time step");
+  positive(options.min_step, "the smallest time step");
+  positive(options.creep_tolerance, "the creep tolerance");
+  if (!(options.time_end > start)) {
+    throw InputError("creep: the end time " + std::to_string(options.time_end) +
+                     " s is not after the start time " + std::to_string(start) + " s");
+  }
+  if (!(options.max_step >= 0.0) || !(options.output_interval >= 0.0)) {
+    throw InputError("creep: the largest time step and the output interval must not be negative");
+  }
+}
+
+// The first multiple of `interval` after `time` (times within `tiny` of a
+// multiple count as on it); infinity without an interval.
+double next_multiple(double time, double interval, double tiny) {
+  if (interval <= 0.0) return INFINITY;
+  return (std::floor((time + tiny) / interval) + 1.0) * interval;
+}
+
+} // namespace
+
+PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
+                           const CreepOptions& options, CreepReport* report,
+                           const CreepObserver& observe, const CreepRestart& restart) {
+  Vec last = nullptr;
+  PetscFunctionBeginUser;
+  const auto started = std::chrono::steady_clock::now();
+  problem.pins_follow_time = true;
+  const RunCheckpoint* resume = restart.resume;
+  if (resume) {
+    problem.time = resume->time;
+    problem.load_factor = resume->load_factor;
+    PetscCall(problem.set_solution(resume->positions, x));
+    creep.restore(resume->creep);
+    problem.restore_anchors(resume->anchors);
+  }
+  const double start = problem.time;
+  check(options, start);
+  const double end = options.time_end;
+  const double tiny = 1e-9 * (end - start);
+  IncrementalSystem system(problem, x);
+  PetscCall(VecDuplicate(x, &last));
+
+  std::vector<double> landings = options.load.times();
+  for (const PinGroupMotion& group : problem.pin_groups) {
+    for (const PinKnot& knot : group.history.knots())
+      landings.push_back(knot.time);
+  }
+  landings.push_back(end);
+  std::sort(landings.begin(), landings.end());
+
+  long step = resume ? resume->step : 0;
+  double dt = resume ? resume->next_step : options.time_step;
+  if (!resume) {
+    problem.load_factor = options.load.after(start);
+    StaticReport initial;
+    PetscCall(solve_static(system, x, options.equilibrium, &initial));
+    report->newton_iterations += initial.newton_iterations;
+    if (!initial.converged) {
+      report->reason = "the initial equilibrium did not converge (" + initial.reason + ")";
+      report->final_time = start;
+      PetscCall(VecDestroy(&last));
+      PetscFunctionReturn(0);
+    }
+    PetscCall(creep.record_tensions(x));
+    CreepStepReport first;
+    first.time = start;
+    first.load_factor = problem.load_factor;
+    first.newton_iterations = initial.newton_iterations;
+    first.output = true;
+    report->steps.push_back(first);
+    if (observe) PetscCall(observe(first, x));
+  }
+
+  double t = start;
+  double next_output = next_multiple(t, options.output_interval, tiny);
+  double next_checkpoint = next_multiple(t, restart.checkpoint_interval, tiny);
+  double next_progress = start + 0.05 * (end - start);
+  int rejected = 0;
+  while (t < end - tiny) {
+    double target = std::min({end, next_output, next_checkpoint});
+    for (double landing : landings) {
+      if (landing > t + tiny) {
+        target = std::min(target, landing);
+        break;
+      }
+    }
+    double h = std::min(dt, target - t);
+    if (target - t - h < 1e-3 * h) h = target - t; // no sliver before a landing
+    const bool shortened = h < dt;
+    const double t1 = h == target - t ? target : t + h;
+    const double factor_before = problem.load_factor;
+    PetscCall(VecCopy(x, last));
+
+    const auto reject = [&](double next_dt) {
+      creep.roll_back();
+      problem.time = t;
+      problem.load_factor = factor_before;
+      dt = next_dt;
+      ++rejected;
+      ++report->rejected_steps;
+    };
+    // Equilibrium at t1 from the load factor the problem holds to `factor`.
+    PetscInt newton_iterations = 0;
+    const auto equilibrium = [&](double factor, bool* converged) -> PetscErrorCode {
+      StaticOptions solve = options.equilibrium;
+      solve.start_load_factor = problem.load_factor;
+      solve.load_steps = 1;
+      problem.load_factor = factor;
+      StaticReport result;
+      PetscFunctionBeginUser;
+      PetscCall(solve_static(system, x, solve, &result));
+      newton_iterations += result.newton_iterations;
+      *converged = result.converged;
+      if (!*converged) report->reason = result.reason;
+      PetscFunctionReturn(0);
+    };
+
+    problem.time = t1;
+    bool converged = false;
+    PetscCall(equilibrium(options.load.before(t1), &converged));
+    double increment = 0.0;
+    if (converged) PetscCall(creep.advance(x, h, &increment));
+    const bool too_large =
+        converged && increment > 2.0 * options.creep_tolerance && h > options.min_step;
+    if (converged && !too_large) PetscCall(equilibrium(options.load.after(t1), &converged));
+    if (!converged || too_large) {
+      PetscCall(VecCopy(last, x));
+      report->newton_iterations += newton_iterations;
+      reject(too_large ? h * std::max(0.2, 0.9 * options.creep_tolerance / increment) : 0.5 * h);
+      if (dt < options.min_step) {
+        report->reason = "the time step fell below " + std::to_string(options.min_step) +
+                         " s at t = " + std::to_string(t) + " s (" + report->reason + ")";
+        break;
+      }
+      continue;
+    }
+    creep.commit();
+    PetscCall(creep.record_tensions(x));
+    t = t1;
+    ++step;
+    report->newton_iterations += newton_iterations;
+
+    const double ideal = increment > 0.0 ? 0.9 * options.creep_tolerance * h / increment : 2.0 * h;
+    dt = std::clamp(ideal, 0.5 * h, 2.0 * (shortened ? std::max(h, dt) : h));
+    if (options.max_step > 0.0) dt = std::min(dt, options.max_step);
+    dt = std::max(dt, options.min_step);
+
+    CreepStepReport accepted;
+    accepted.step = step;
+    accepted.time = t;
+    accepted.dt = h;
+    accepted.load_factor = problem.load_factor;
+    accepted.newton_iterations = newton_iterations;
+    accepted.rejected = rejected;
+    accepted.increment = increment;
+    rejected = 0;
+    if (t >= next_output - tiny || t >= end - tiny || options.output_interval <= 0.0) {
+      accepted.output = true;
+      next_output = next_multiple(t, options.output_interval, tiny);
+    }
+    report->steps.push_back(accepted);
+    if (observe) PetscCall(observe(accepted, x));
+    if (t >= next_checkpoint - tiny) {
+      next_checkpoint = next_multiple(t, restart.checkpoint_interval, tiny);
+      if (restart.write) PetscCall(restart.write(accepted, x, dt));
+    }
+    if (options.print_progress && t >= next_progress - tiny) {
+      PetscCall(PetscPrintf(problem.comm(),
+                            "  creep t = %-10.4g s (%3.0f %%): step %ld, dt %.3g s, load %.3g, "
+                            "creep increment %.2e\n",
+                            t, 100.0 * (t - start) / (end - start), step, h, problem.load_factor,
+                            increment));
+      while (next_progress <= t + tiny)
+        next_progress += 0.05 * (end - start);
+    }
+  }
+  report->completed = t >= end - tiny;
+  if (report->completed) report->reason.clear();
+  report->final_time = t;
+  report->solve_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  PetscCall(VecDestroy(&last));
+  PetscFunctionReturn(0);
+}
+
+} // namespace sartor

@@ -1,0 +1,80 @@
+#pragma once
+// The creep state of a cloth's elements (thesis §5.3, Algorithm 2): every
+// triangle carries, in warp and weft, the viscoelastic and permanent strains
+// of the creep law (material/creep_law.hpp), and the unloaded lengths
+// 1 + eps_v + eps_p that the membrane measures its elastic strain from
+// (ClothProblem::nonelastic).
+//
+// Staggered coupling: equilibrium is solved with the unloaded lengths frozen;
+// then each element's state advances over the step with its tension taken
+// linear in time from the tension recorded at the step's start to the tension
+// at the step's solved end. The law is integrated exactly for such a tension,
+// so under a tension held constant (dead load on a uniform strip) the result
+// does not depend on the step size.
+//
+// Tension is the membrane's: force per unit unloaded width, N/m
+// (element::membrane_strain). A trial advance can be rolled back, so a step
+// that fails (or whose creep increment is too large) leaves no trace.
+//
+// Each rank advances the triangles it assembles; the state of every triangle
+// is kept on every rank's ClothProblem::nonelastic only for the owned ones.
+
+#include "fem/cloth_problem.hpp"
+#include "material/creep_law.hpp"
+
+#include <petscvec.h>
+
+#include <vector>
+
+namespace sartor {
+
+struct CreepMaterial {
+  CreepParameters warp;
+  CreepParameters weft;
+};
+
+// One element's creep state and the tension its next step starts from.
+struct ElementCreep {
+  CreepState warp;
+  CreepState weft;
+  double tension_warp = 0.0; // N/m
+  double tension_weft = 0.0; // N/m
+};
+
+class CreepCoupling {
+public:
+  // `materials`: one per mesh material id, as the problem's ClothMaterials.
+  // Collective.
+  CreepCoupling(ClothProblem& problem, std::vector<CreepMaterial> materials);
+
+  // Collective: the tensions at x become those the next step starts from.
+  PetscErrorCode record_tensions(Vec x);
+  // Collective: advances every element from the committed state over `dt`
+  // seconds, the tension going linearly from the recorded one to that at x,
+  // and sets the problem's unloaded lengths to the trial state. `increment`:
+  // the largest change of a non-elastic strain (eps_v + eps_p) of any element.
+  PetscErrorCode advance(Vec x, double dt, double* increment);
+  // The trial state becomes the committed one (its tensions those at x of
+  // the last advance).
+  void commit();
+  // Back to the committed state.
+  void roll_back();
+
+  // Collective: the committed state of every triangle, in mesh numbering, on
+  // rank 0 (empty elsewhere).
+  PetscErrorCode gather(std::vector<ElementCreep>* states) const;
+  // The committed state of every triangle (the same on every rank), e.g.
+  // from a checkpoint. Throws InputError when the count does not match.
+  void restore(const std::vector<ElementCreep>& states);
+
+private:
+  void apply(const std::vector<ElementCreep>& states);
+
+  ClothProblem& problem_;
+  std::vector<CreepMaterial> materials_;
+  std::vector<int> owned_;              // mesh triangles this rank assembles
+  std::vector<ElementCreep> committed_; // per mesh triangle (owned ones meaningful)
+  std::vector<ElementCreep> trial_;     // per mesh triangle
+};
+
+} // namespace sartor

@@ -1,0 +1,119 @@
+#include "garment/garment_mesh.hpp"
+
+#include "common/error.hpp"
+#include "common/output.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <numeric>
+#include <sstream>
+
+namespace sartor::garment {
+
+namespace {
+
+std::string shortest(double value) {
+  char buffer[32];
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+    if (std::strtod(buffer, nullptr) == value) break;
+  }
+  return buffer;
+}
+
+} // namespace
+
+GarmentMesh build_garment_mesh(const Construction& construction, const PanelMeshOptions& options) {
+  const Pattern& pattern = *construction.pattern;
+  // Lines joined by seams (chains too: a Y-seam contour) share a piece count.
+  const int n = int(construction.lines.size());
+  std::vector<int> parent(static_cast<std::size_t>(n));
+  std::iota(parent.begin(), parent.end(), 0);
+  const std::function<int(int)> root = [&](int k) {
+    return parent[std::size_t(k)] == k ? k : parent[std::size_t(k)] = root(parent[std::size_t(k)]);
+  };
+  for (const auto& seam : construction.seams)
+    if (!construction.lines[std::size_t(seam.line_a)].interior &&
+        !construction.lines[std::size_t(seam.line_b)].interior)
+      parent[std::size_t(root(seam.line_a))] = root(seam.line_b);
+  std::vector<int> pieces(static_cast<std::size_t>(n), 0);
+  for (int k = 0; k < n; ++k) {
+    int& p = pieces[std::size_t(root(k))];
+    p = std::max(p, pieces_for(construction.lines[std::size_t(k)].length, options.edge_length));
+  }
+  PanelMeshOptions forced = options;
+  for (const auto& seam : construction.seams)
+    for (int line : {seam.line_a, seam.line_b})
+      if (!construction.lines[std::size_t(line)].interior)
+        forced.pieces[construction.lines[std::size_t(line)].id] = pieces[std::size_t(root(line))];
+
+  GarmentMesh garment;
+  for (std::size_t p = 0; p < pattern.panels.size(); ++p) {
+    const PanelMesh panel = mesh_panel(pattern.panels[p], forced);
+    const int offset = int(garment.mesh.vertex_count());
+    garment.first_vertex.push_back(offset);
+    garment.triangle_count.push_back(int(panel.mesh.triangle_count()));
+    for (const auto& x : panel.mesh.positions)
+      garment.mesh.positions.push_back(construction.place(int(p), x.head<2>()));
+    for (std::size_t t = 0; t < panel.mesh.triangle_count(); ++t) {
+      const auto& tri = panel.mesh.triangles[t];
+      garment.mesh.triangles.push_back({tri[0] + offset, tri[1] + offset, tri[2] + offset});
+      garment.mesh.material_uv.push_back(panel.mesh.material_uv[t]);
+      garment.mesh.material_ids.push_back(int(p));
+    }
+    for (const auto& line : panel.lines) {
+      std::vector<int> vertices;
+      for (int v : line.vertices)
+        vertices.push_back(v + offset);
+      garment.line_vertices[line.id] = vertices;
+    }
+  }
+  validate(garment.mesh, pattern.source + ": constructed garment");
+  for (std::size_t k = 0; k < construction.seams.size(); ++k) {
+    const FoundSeam& found = construction.seams[k];
+    const LineGeometry& a = construction.lines[std::size_t(found.line_a)];
+    const LineGeometry& b = construction.lines[std::size_t(found.line_b)];
+    Seam seam;
+    seam.name = a.id + "+" + b.id;
+    seam.a = garment.line_vertices.at(a.id);
+    seam.b = garment.line_vertices.at(b.id);
+    seam.reverse = found.reverse;
+    seam.certainty = found.certainty;
+    if (a.interior || b.interior) {
+      garment.t_seams.push_back(seam);
+      garment.t_seam_of.push_back(int(k));
+    } else {
+      garment.seams.push_back(seam);
+      garment.seam_of.push_back(int(k));
+    }
+  }
+  check_seams(garment.mesh, garment.seams, pattern.source + ": constructed seams");
+  return garment;
+}
+
+void write_garment_obj(const std::string& path, const GarmentMesh& garment,
+                       const Pattern& pattern) {
+  std::ostringstream out;
+  out << "# " << (pattern.name.empty() ? pattern.source : pattern.name)
+      << ": constructed by sartor construct (TAGCON); vt = material (u, v) in m\n";
+  for (const auto& p : garment.mesh.positions)
+    out << "v " << shortest(p.x()) << ' ' << shortest(p.y()) << ' ' << shortest(p.z()) << '\n';
+  for (const auto& corners : garment.mesh.material_uv)
+    for (const auto& uv : corners)
+      out << "vt " << shortest(uv.x()) << ' ' << shortest(uv.y()) << '\n';
+  std::size_t triangle = 0;
+  for (std::size_t p = 0; p < pattern.panels.size(); ++p) {
+    out << "g " << pattern.panels[p].id << "\nusemtl " << pattern.panels[p].id << '\n';
+    for (int t = 0; t < garment.triangle_count[p]; ++t, ++triangle) {
+      const auto& tri = garment.mesh.triangles[triangle];
+      out << 'f';
+      for (int c = 0; c < 3; ++c)
+        out << ' ' << tri[std::size_t(c)] + 1 << '/' << 3 * triangle + std::size_t(c) + 1;
+      out << '\n';
+    }
+  }
+  write_file_atomically(path, out.str());
+}
+
+} // namespace sartor::garment

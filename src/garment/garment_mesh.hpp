@@ -1,0 +1,38 @@
+#pragma once
+// The constructed garment as one mesh for the solver: every panel
+// triangulated (mesh/panel_mesher), its vertices placed in 3D by TAGCON, the
+// panels merged (vertex numbers panel after panel, in pattern order), and
+// the seams as the seam list `sartor run --seams-file` reads. Lines that are
+// sewn together are given the same number of equal arc-length pieces (the
+// largest any of them needs), so their seams sew vertex to vertex.
+
+#include "garment/tagcon.hpp"
+#include "mesh/panel_mesher.hpp"
+#include "mesh/seams.hpp"
+#include "mesh/triangle_mesh.hpp"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace sartor::garment {
+
+struct GarmentMesh {
+  TriangleMesh mesh;                                     // material_ids = panel index
+  std::vector<int> first_vertex;                         // per panel, into mesh
+  std::vector<int> triangle_count;                       // per panel
+  std::map<std::string, std::vector<int>> line_vertices; // line id -> mesh vertices, start to end
+  std::vector<Seam> seams;                               // normal and Y-seams (boundary lines)
+  std::vector<Seam> t_seams; // T-seams: an interior line is not a boundary, see docs/tagcon.md
+  std::vector<int> seam_of;  // per entry of seams: index into Construction::seams
+  std::vector<int> t_seam_of;
+};
+
+GarmentMesh build_garment_mesh(const Construction& construction, const PanelMeshOptions& options);
+
+// OBJ with `g PANEL` and `usemtl PANEL` per panel, v = placed positions,
+// vt = material (u, v) in m; written atomically. `sartor run --mesh obj`
+// reads it (groups and materials are ignored there).
+void write_garment_obj(const std::string& path, const GarmentMesh& garment, const Pattern& pattern);
+
+} // namespace sartor::garment

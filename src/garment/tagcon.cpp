@@ -1,0 +1,1000 @@
+#include "garment/tagcon.hpp"
+
+#include "common/error.hpp"
+#include "mesh/mannequin.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace sartor::garment {
+
+namespace {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+constexpr double pi = 3.14159265358979323846;
+constexpr int samples_per_line = 16; // pieces of equal arc length per line
+
+std::string format(double value, int digits = 3) {
+  std::ostringstream out;
+  out.precision(digits);
+  out << value;
+  return out.str();
+}
+
+bool is_limb(Cylinder c) {
+  return c == Cylinder::arm_l || c == Cylinder::arm_r || c == Cylinder::leg_l ||
+         c == Cylinder::leg_r;
+}
+
+// +1 for the wearer's left (+x), -1 for the right.
+double limb_sign(Cylinder c) {
+  return (c == Cylinder::arm_l || c == Cylinder::leg_l) ? 1.0 : -1.0;
+}
+
+// Bones whose flesh a cylinder encloses (for the radius), beyond the
+// side-filtered trunk for the legs.
+std::vector<std::string> bones_of(Cylinder c) {
+  switch (c) {
+  case Cylinder::torso:
+    return {"pelvis",  "torso",   "clavicle_l", "clavicle_r", "hip_l", "hip_r",
+            "thigh_l", "thigh_r", "shin_l",     "shin_r",     "neck"};
+  case Cylinder::arm_l:
+    return {"upper_arm_l", "forearm_l", "hand_l"};
+  case Cylinder::arm_r:
+    return {"upper_arm_r", "forearm_r", "hand_r"};
+  case Cylinder::leg_l:
+    return {"thigh_l", "shin_l", "foot_l"};
+  case Cylinder::leg_r:
+    return {"thigh_r", "shin_r", "foot_r"};
+  case Cylinder::neck:
+    return {"neck"};
+  case Cylinder::head:
+    return {"head", "neck"};
+  }
+  return {};
+}
+
+double distance_to_segment(const Vector3d& p, const Vector3d& a, const Vector3d& b, double* t) {
+  const Vector3d ab = b - a;
+  const double s = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  *t = s;
+  return (p - (a + s * ab)).norm();
+}
+
+// The bone whose flesh a point belongs to: the nearest cone surface.
+int nearest_bone(const Mannequin& body, const Vector3d& p) {
+  double best = 1e300;
+  int owner = 0;
+  for (std::size_t b = 0; b < body.skeleton.size(); ++b) {
+    const Bone& bone = body.skeleton[b];
+    double t = 0;
+    const double d = distance_to_segment(p, bone.start, bone.end, &t) -
+                     ((1 - t) * bone.start_radius + t * bone.end_radius);
+    if (d < best) {
+      best = d;
+      owner = int(b);
+    }
+  }
+  return owner;
+}
+
+std::vector<int> nearest_bones(const Mannequin& body) {
+  std::vector<int> owner(body.mesh.vertices.size(), 0);
+  for (std::size_t v = 0; v < body.mesh.vertices.size(); ++v)
+    owner[v] = nearest_bone(body, body.mesh.vertices[v]);
+  return owner;
+}
+
+Vector3d normal_part(const Vector3d& v, const Vector3d& axis) {
+  return v - v.dot(axis) * axis;
+}
+
+// The pack's bounding box (its members as placed, outlines flattened).
+void pack_box(const Pattern& pattern, const Pack& pack, Vector2d* low, Vector2d* high) {
+  Eigen::AlignedBox2d box;
+  const double tolerance = pattern.flattening_tolerance();
+  for (const auto& member : pack.members)
+    for (const auto& p : pattern.panels[member.panel].outline_polygon(tolerance))
+      box.extend(member.placement.apply(p));
+  *low = box.min();
+  *high = box.max();
+}
+
+bool upper_body_garment(const Pattern& pattern) {
+  for (std::size_t k = 0; k < pattern.packs.size(); ++k) {
+    const Cylinder c = pattern.pack_tag(int(k)).cylinder;
+    if (c == Cylinder::arm_l || c == Cylinder::arm_r || c == Cylinder::neck || c == Cylinder::head)
+      return true;
+  }
+  // A torso pack too long to hang from the waist is a dress: it hangs from
+  // the shoulders.
+  constexpr double longest_waist_garment = 0.8; // m
+  for (const auto& pack : pattern.packs) {
+    if (pattern.panels[pack.members.front().panel].tag.cylinder != Cylinder::torso) continue;
+    Vector2d low, high;
+    pack_box(pattern, pack, &low, &high);
+    if (high.y() - low.y() > longest_waist_garment) return true;
+  }
+  return false;
+}
+
+// The cylinder's axis, anchor and bones from the skeleton.
+FittedCylinder cylinder_axis(Cylinder c, const Mannequin& body, bool upper_body, double clearance,
+                             const std::vector<int>& owner) {
+  FittedCylinder fitted;
+  fitted.cylinder = c;
+  fitted.bones = bones_of(c);
+  const auto front_normal_to = [](const Vector3d& up) {
+    return Vector3d(normal_part(-Vector3d::UnitY(), up).normalized());
+  };
+  switch (c) {
+  case Cylinder::torso: {
+    const Bone& trunk = body.bone("torso");
+    fitted.up = Vector3d::UnitZ();
+    if (upper_body) {
+      double shoulder_top = trunk.end.z();
+      for (std::size_t v = 0; v < owner.size(); ++v) {
+        const std::string& name = body.skeleton[std::size_t(owner[v])].name;
+        if (name == "clavicle_l" || name == "clavicle_r")
+          shoulder_top = std::max(shoulder_top, body.mesh.vertices[v].z());
+      }
+      fitted.top = Vector3d(0, trunk.end.y(), shoulder_top + clearance);
+      fitted.lid = true;
+      fitted.anchor = "shoulder";
+    } else {
+      fitted.top = Vector3d(0, trunk.start.y(), trunk.start.z());
+      fitted.anchor = "waist";
+    }
+    break;
+  }
+  case Cylinder::arm_l:
+  case Cylinder::arm_r: {
+    const std::string side = c == Cylinder::arm_l ? "_l" : "_r";
+    const Bone& upper = body.bone("upper_arm" + side);
+    const Bone& fore = body.bone("forearm" + side);
+    fitted.up = (upper.start - fore.end).normalized();
+    fitted.top = upper.start + 0.04 * fitted.up;
+    fitted.anchor = "shoulder joint";
+    break;
+  }
+  case Cylinder::leg_l:
+  case Cylinder::leg_r: {
+    const std::string side = c == Cylinder::leg_l ? "_l" : "_r";
+    const Bone& thigh = body.bone("thigh" + side);
+    const Bone& shin = body.bone("shin" + side);
+    fitted.up = (thigh.start - shin.end).normalized();
+    const double waist = body.bone("torso").start.z();
+    fitted.top = thigh.start + (waist - thigh.start.z()) / fitted.up.z() * fitted.up;
+    fitted.anchor = "waist";
+    break;
+  }
+  case Cylinder::neck: {
+    const Bone& neck = body.bone("neck");
+    fitted.up = (neck.end - neck.start).normalized();
+    fitted.top = neck.start + 0.09 * fitted.up;
+    fitted.anchor = "neck base + 9 cm";
+    break;
+  }
+  case Cylinder::head: {
+    const Bone& head = body.bone("head");
+    fitted.up = (head.end - head.start).normalized();
+    fitted.top = head.end + 0.12 * fitted.up;
+    fitted.anchor = "crown + 12 cm";
+    break;
+  }
+  }
+  fitted.front = front_normal_to(fitted.up);
+  return fitted;
+}
+
+// Largest distance from the axis of the vertices owned by the cylinder's
+// bones within its covered length (a leg also takes the trunk's flesh on
+// its side of the body).
+double section_radius(const FittedCylinder& c, const Mannequin& body,
+                      const std::vector<int>& owner) {
+  std::set<std::string> bones(c.bones.begin(), c.bones.end());
+  double radius = 0;
+  for (std::size_t v = 0; v < owner.size(); ++v) {
+    const Vector3d& p = body.mesh.vertices[v];
+    const std::string& name = body.skeleton[std::size_t(owner[v])].name;
+    bool mine = bones.count(name) > 0;
+    if (!mine && (c.cylinder == Cylinder::leg_l || c.cylinder == Cylinder::leg_r)) {
+      mine = (name == "pelvis" || name == "torso" || name == "hip_l" || name == "hip_r") &&
+             p.x() * limb_sign(c.cylinder) > 0;
+    }
+    if (!mine) continue;
+    const double axial = (p - c.top).dot(c.up);
+    if (axial > 0.02 || axial < -c.length - 0.02) continue;
+    radius = std::max(radius, normal_part(p - c.top, c.up).norm());
+  }
+  return radius;
+}
+
+// Unrolled half-cylinder coordinates (arc s, axial a) to 3D.
+Vector3d wrap(const FittedCylinder& c, Side side, double radius, double layer_lift,
+              const Vector2d& unrolled) {
+  const Vector3d centre_direction = side == Side::front ? c.front : Vector3d(-c.front);
+  const Vector3d across = c.up.cross(centre_direction);
+  const double angle = unrolled.x() / radius;
+  const Vector3d radial = std::cos(angle) * centre_direction + std::sin(angle) * across;
+  if (c.lid && unrolled.y() > 0)
+    return c.top + layer_lift * c.up + std::max(radius - unrolled.y(), 0.0) * radial;
+  return c.top + unrolled.y() * c.up + radius * radial;
+}
+
+std::array<Vector3d, 2> wrap_frame(const FittedCylinder& c, Side side, double radius,
+                                   const Vector2d& unrolled) {
+  const Vector3d centre_direction = side == Side::front ? c.front : Vector3d(-c.front);
+  const Vector3d across = c.up.cross(centre_direction);
+  const double angle = unrolled.x() / radius;
+  const Vector3d radial = std::cos(angle) * centre_direction + std::sin(angle) * across;
+  const Vector3d around = -std::sin(angle) * centre_direction + std::cos(angle) * across;
+  if (c.lid && unrolled.y() > 0) return {around, -radial};
+  return {around, c.up};
+}
+
+Vector2d closest_on_polyline(const std::vector<Vector2d>& points, const Vector2d& p) {
+  Vector2d best = points.front();
+  double best_distance = 1e300;
+  for (std::size_t k = 1; k < points.size(); ++k) {
+    const Vector2d ab = points[k] - points[k - 1];
+    const double t = std::clamp((p - points[k - 1]).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    const Vector2d q = points[k - 1] + t * ab;
+    if ((q - p).norm() < best_distance) {
+      best_distance = (q - p).norm();
+      best = q;
+    }
+  }
+  return best;
+}
+
+// The point at normalised arc length t of a sampled line (equal pieces).
+Vector3d at_fraction(const std::vector<Vector3d>& samples, double t) {
+  const double x = std::clamp(t, 0.0, 1.0) * double(samples.size() - 1);
+  const std::size_t k = std::min(std::size_t(x), samples.size() - 2);
+  const double f = x - double(k);
+  return (1 - f) * samples[k] + f * samples[k + 1];
+}
+
+bool should_reverse(const LineGeometry& a, const LineGeometry& b) {
+  const double direct =
+      (a.samples.front() - b.samples.front()).norm() + (a.samples.back() - b.samples.back()).norm();
+  const double crossed =
+      (a.samples.front() - b.samples.back()).norm() + (a.samples.back() - b.samples.front()).norm();
+  return crossed < direct;
+}
+
+} // namespace
+
+const char* name_of(SeamKind kind) {
+  switch (kind) {
+  case SeamKind::intra_pack:
+    return "intra_pack";
+  case SeamKind::inter_cylinder:
+    return "inter_cylinder";
+  case SeamKind::inter_half_cylinder:
+    return "inter_half_cylinder";
+  case SeamKind::t_seam:
+    return "t_seam";
+  case SeamKind::y_seam:
+    return "y_seam";
+  }
+  return "?";
+}
+
+bool cylinders_adjacent(Cylinder a, Cylinder b) {
+  if (a == b) return false;
+  const auto pair = [&](Cylinder x, Cylinder y) {
+    return (a == x && b == y) || (a == y && b == x);
+  };
+  return pair(Cylinder::torso, Cylinder::arm_l) || pair(Cylinder::torso, Cylinder::arm_r) ||
+         pair(Cylinder::torso, Cylinder::neck) || pair(Cylinder::torso, Cylinder::head) ||
+         pair(Cylinder::torso, Cylinder::leg_l) || pair(Cylinder::torso, Cylinder::leg_r) ||
+         pair(Cylinder::neck, Cylinder::head) || pair(Cylinder::leg_l, Cylinder::leg_r);
+}
+
+MatchScore match_score(const LineGeometry& i, const LineGeometry& j, bool seamable,
+                       const TagconOptions& options) {
+  MatchScore m;
+  m.distance = std::max(0.0, (options.d_max - (i.centre - j.centre).norm()) / options.d_max);
+  // An interior (T-seam) line has no outward side: its normal is taken
+  // facing the other line.
+  const double dot = i.normal.dot(j.normal);
+  m.orientation = (i.interior || j.interior) ? (1 + std::abs(dot)) / 2 : (1 - dot) / 2;
+  m.length =
+      std::max(0.0, (options.length_diff - std::abs(i.length - j.length)) / options.length_diff);
+  m.curvature = std::max(0.0, (options.curvature_diff - std::abs(i.curvature - j.curvature)) /
+                                  options.curvature_diff);
+  m.seamable = seamable ? 1 : 0;
+  return m;
+}
+
+std::vector<std::array<int, 2>> closest_line_pairs(const std::vector<LineGeometry>& lines,
+                                                   const std::vector<int>& group,
+                                                   const std::vector<int>& panel,
+                                                   double fov_half_angle_deg, double max_distance) {
+  const double cos_fov = std::cos(fov_half_angle_deg * pi / 180);
+  const int n = int(lines.size());
+  std::vector<int> choice(std::size_t(n), -1);
+  for (int i = 0; i < n; ++i) {
+    if (group[std::size_t(i)] < 0) continue;
+    const LineGeometry& li = lines[std::size_t(i)];
+    const double touching = 1e-9 * std::max(1.0, li.length);
+    double best = max_distance;
+    for (int j = 0; j < n; ++j) {
+      if (j == i || group[std::size_t(j)] != group[std::size_t(i)] ||
+          panel[std::size_t(j)] == panel[std::size_t(i)])
+        continue;
+      const Vector2d nearest = closest_on_polyline(lines[std::size_t(j)].samples_2d, li.centre_2d);
+      const Vector2d towards = nearest - li.centre_2d;
+      const double distance = towards.norm();
+      const bool in_view = distance <= touching || towards.dot(li.normal_2d) >= cos_fov * distance;
+      if (in_view && distance <= best) {
+        if (distance < best || choice[std::size_t(i)] < 0) choice[std::size_t(i)] = j;
+        best = distance;
+      }
+    }
+  }
+  std::vector<std::array<int, 2>> pairs;
+  for (int i = 0; i < n; ++i) {
+    const int j = choice[std::size_t(i)];
+    if (j > i && choice[std::size_t(j)] == i) pairs.push_back({i, j});
+  }
+  return pairs;
+}
+
+int best_ring_shift(int size_a, int size_b, const std::function<double(int, int)>& score,
+                    int clicks) {
+  int individual = 0;
+  for (int j = 1; j < size_b; ++j)
+    if (score(0, j) > score(0, individual)) individual = j;
+  int best_shift = individual;
+  double best_sum = -1;
+  for (int click = 0; click <= clicks; ++click) {
+    for (int direction : {-1, 1}) {
+      if (click == 0 && direction == 1) continue;
+      const int shift = ((individual + direction * click) % size_b + size_b) % size_b;
+      double sum = 0;
+      for (int i = 0; i < std::min(size_a, size_b); ++i)
+        sum += score(i, (i + shift) % size_b);
+      if (sum > best_sum + 1e-12) {
+        best_sum = sum;
+        best_shift = shift;
+      }
+    }
+  }
+  return best_shift;
+}
+
+std::vector<FittedCylinder> fit_cylinders(const Pattern& pattern, const Mannequin& body,
+                                          const TagconOptions& options) {
+  const bool upper_body = upper_body_garment(pattern);
+  const std::vector<int> owner = nearest_bones(body);
+  std::vector<FittedCylinder> cylinders;
+  for (Cylinder c : all_cylinders()) {
+    std::vector<int> packs;
+    for (std::size_t k = 0; k < pattern.packs.size(); ++k)
+      if (pattern.pack_tag(int(k)).cylinder == c) packs.push_back(int(k));
+    if (packs.empty()) continue;
+    FittedCylinder fitted = cylinder_axis(c, body, upper_body, options.clearance, owner);
+    double widest = 0;
+    int widest_pack = packs.front();
+    for (int k : packs) {
+      Vector2d low, high;
+      pack_box(pattern, pattern.packs[std::size_t(k)], &low, &high);
+      const double height = high.y() - low.y() - (fitted.lid ? options.lid_depth : 0.0);
+      fitted.length = std::max(fitted.length, height);
+      if (high.x() - low.x() > widest) {
+        widest = high.x() - low.x();
+        widest_pack = k;
+      }
+    }
+    fitted.body_radius = section_radius(fitted, body, owner);
+    if (fitted.body_radius == 0) { // no flesh of its bones in the covered length
+      for (const auto& name : fitted.bones)
+        fitted.body_radius = std::max(fitted.body_radius, body.bone(name).start_radius);
+    }
+    const double fitted_radius = fitted.body_radius + options.clearance;
+    const double widest_allowed = options.max_widening * pi * fitted_radius;
+    if (widest > widest_allowed) {
+      // Thesis Fig. 3.9: a panel that spans two cylinders (sleeves cut in one
+      // with the bodice) cannot be wrapped onto one half cylinder.
+      const Pack& pack = pattern.packs[std::size_t(widest_pack)];
+      Vector2d low, high;
+      pack_box(pattern, pack, &low, &high);
+      const double centre = 0.5 * (low.x() + high.x());
+      std::vector<std::string> beyond;
+      std::string panels;
+      for (const auto& member : pack.members) {
+        const Panel& panel = pattern.panels[std::size_t(member.panel)];
+        panels += (panels.empty() ? "'" : ", '") + panel.id + "'";
+        for (const auto& line : panel.outline) {
+          for (const auto& p : line.curve.flatten(pattern.flattening_tolerance())) {
+            if (std::abs(member.placement.apply(p).x() - centre) > 0.5 * widest_allowed) {
+              beyond.push_back("'" + line.id + "'");
+              break;
+            }
+          }
+        }
+      }
+      std::string lines;
+      for (std::size_t k = 0; k < beyond.size(); ++k)
+        lines += (k ? ", " : "") + beyond[k];
+      throw InputError(pattern.source + ": " + pack.json_path + ": pack '" + pack.id + "' " +
+                       to_string(pattern.pack_tag(widest_pack)) + " is " + format(widest) +
+                       " m wide, but its half cylinder '" + name_of(c) + "' (radius " +
+                       format(fitted_radius) + " m) takes at most " + format(widest_allowed) +
+                       " m: lines " + lines + " of panel " + panels +
+                       " lie beyond it and cannot be placed or seamed. TAGCON wraps every "
+                       "panel onto one cylinder (thesis Fig. 3.9): cut a part that belongs to "
+                       "another cylinder (e.g. a sleeve) as its own panel with its own tag");
+    }
+    fitted.radius = std::max(fitted_radius, widest / pi);
+    cylinders.push_back(fitted);
+  }
+  return cylinders;
+}
+
+int Construction::line_index(const std::string& id) const {
+  for (std::size_t k = 0; k < lines.size(); ++k)
+    if (lines[k].id == id) return int(k);
+  return -1;
+}
+
+Vector3d Construction::place_in_pack(int pack, const Vector2d& point) const {
+  const PackPlacement& placed = packs[std::size_t(pack)];
+  const FittedCylinder& c = cylinders[std::size_t(placed.cylinder)];
+  Vector3d p = wrap(c, placed.tag.side, placed.radius,
+                    std::max(0, placed.tag.layer) * options.layer_gap, point + placed.offset);
+  if (body) {
+    Vector3d normal;
+    const double distance = body(p, &normal);
+    const double wanted = 0.5 * options.clearance;
+    if (distance < wanted) p += (wanted - distance) * normal.normalized();
+  }
+  return p;
+}
+
+std::array<Vector3d, 2> Construction::wrap_tangents(int pack, const Vector2d& point) const {
+  const PackPlacement& placed = packs[std::size_t(pack)];
+  return wrap_frame(cylinders[std::size_t(placed.cylinder)], placed.tag.side, placed.radius,
+                    point + placed.offset);
+}
+
+Vector3d Construction::place(int panel, const Vector2d& point) const {
+  const int pack = pattern->pack_of(panel);
+  for (const auto& member : pattern->packs[std::size_t(pack)].members)
+    if (member.panel == panel) return place_in_pack(pack, member.placement.apply(point));
+  return Vector3d::Zero();
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+LineGeometry line_geometry(const Construction& construction, int panel_index, int pack,
+                           const Placement& member, const Curve& curve, std::string id,
+                           bool interior, int index) {
+  LineGeometry line;
+  line.panel = panel_index;
+  line.index = index;
+  line.interior = interior;
+  line.id = std::move(id);
+  line.length = curve.length();
+  for (const auto& p : curve.split_equal_arc_length(samples_per_line))
+    line.samples_2d.push_back(member.apply(p));
+  const std::size_t n = line.samples_2d.size();
+  Vector3d normal = Vector3d::Zero();
+  Vector2d normal_2d = Vector2d::Zero();
+  double turning = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    line.samples.push_back(construction.place_in_pack(pack, line.samples_2d[k]));
+    const Vector2d tangent =
+        (line.samples_2d[std::min(k + 1, n - 1)] - line.samples_2d[k > 0 ? k - 1 : 0]).normalized();
+    // Counter-clockwise outlines: the outside is to the right of the tangent.
+    const Vector2d outward(tangent.y(), -tangent.x());
+    normal_2d += outward;
+    const auto frame = construction.wrap_tangents(pack, line.samples_2d[k]);
+    normal += outward.x() * frame[0] + outward.y() * frame[1];
+    if (k >= 2) {
+      const Vector2d d0 = line.samples_2d[k - 1] - line.samples_2d[k - 2];
+      const Vector2d d1 = line.samples_2d[k] - line.samples_2d[k - 1];
+      turning += std::abs(std::atan2(d0.x() * d1.y() - d0.y() * d1.x(), d0.dot(d1)));
+    }
+  }
+  line.normal = normal.normalized();
+  line.normal_2d = normal_2d.normalized();
+  line.centre = line.samples[n / 2];
+  line.centre_2d = line.samples_2d[n / 2];
+  line.curvature = turning / line.length;
+  return line;
+}
+
+// A limb line's side: +1 lateral, -1 medial (towards the body's midline),
+// 0 in between (front or back centre).
+int limb_side(const FittedCylinder& c, const LineGeometry& line) {
+  const Vector3d lateral = normal_part(Vector3d(limb_sign(c.cylinder), 0, 0), c.up).normalized();
+  const double offset = normal_part(line.centre - c.top, c.up).dot(lateral);
+  if (offset > 0.4 * c.radius) return 1;
+  if (offset < -0.4 * c.radius) return -1;
+  return 0;
+}
+
+struct Pair {
+  int a, b;
+  double score;
+};
+
+// Best individual match of every line of both sets in the other set, pairs
+// sorted by M descending, created greedily (thesis §3.3.2, inter-half).
+std::vector<Pair> greedy_sorted_matching(const std::vector<int>& first,
+                                         const std::vector<int>& second,
+                                         const std::function<double(int, int)>& score,
+                                         double min_match) {
+  std::vector<Pair> candidates;
+  const auto best_of = [&](int i, const std::vector<int>& others, bool i_first) {
+    int best = -1;
+    double best_score = min_match;
+    for (int j : others) {
+      const double s = i_first ? score(i, j) : score(j, i);
+      if (s > best_score) {
+        best_score = s;
+        best = j;
+      }
+    }
+    if (best >= 0)
+      candidates.push_back(i_first ? Pair{i, best, best_score} : Pair{best, i, best_score});
+  };
+  for (int i : first)
+    best_of(i, second, true);
+  for (int j : second)
+    best_of(j, first, false);
+  std::sort(candidates.begin(), candidates.end(), [](const Pair& x, const Pair& y) {
+    if (x.score != y.score) return x.score > y.score;
+    return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b);
+  });
+  std::set<int> used;
+  std::vector<Pair> chosen;
+  for (const Pair& p : candidates) {
+    if (used.count(p.a) || used.count(p.b)) continue;
+    used.insert(p.a);
+    used.insert(p.b);
+    chosen.push_back(p);
+  }
+  return chosen;
+}
+
+} // namespace
+
+Construction construct(const Pattern& pattern, const Mannequin& body,
+                       const BodyDistance& body_distance, const TagconOptions& options) {
+  Construction result;
+  result.pattern = &pattern;
+  result.options = options;
+  result.body = body_distance;
+  const auto placement_start = Clock::now();
+  result.cylinders = fit_cylinders(pattern, body, options);
+
+  // --- positioning (§3.1.2): each pack's box centred on its half cylinder,
+  // its top at the cylinder's anchor (on the lid when the torso has one).
+  std::map<Cylinder, int> cylinder_index;
+  for (std::size_t k = 0; k < result.cylinders.size(); ++k)
+    cylinder_index[result.cylinders[k].cylinder] = int(k);
+  for (std::size_t k = 0; k < pattern.packs.size(); ++k) {
+    PackPlacement placed;
+    placed.pack = int(k);
+    placed.tag = pattern.pack_tag(int(k));
+    pack_box(pattern, pattern.packs[k], &placed.box_min, &placed.box_max);
+    placed.cylinder = cylinder_index.at(placed.tag.cylinder);
+    const FittedCylinder& c = result.cylinders[std::size_t(placed.cylinder)];
+    placed.radius = c.radius + placed.tag.layer * options.layer_gap;
+    if (placed.radius <= 0.5 * c.radius) {
+      throw InputError(pattern.source + ": " + pattern.packs[k].json_path + ": pack '" +
+                       pattern.packs[k].id + "' is on layer " + std::to_string(placed.tag.layer) +
+                       ", too far inside its cylinder (radius " + format(c.radius) + " m)");
+    }
+    placed.offset = Vector2d(-0.5 * (placed.box_min.x() + placed.box_max.x()),
+                             (c.lid ? options.lid_depth : 0.0) - placed.box_max.y());
+    result.packs.push_back(placed);
+  }
+  // Outer layers sewn by T-seams sit over the T-seam lines beneath them, so
+  // that those lines are in their 3D position (§3.3.3).
+  for (auto& placed : result.packs) {
+    if (placed.tag.layer == 0) continue;
+    Eigen::AlignedBox2d targets;
+    for (const auto& beneath : result.packs) {
+      if (beneath.tag.layer >= placed.tag.layer || beneath.tag.cylinder != placed.tag.cylinder ||
+          beneath.tag.side != placed.tag.side)
+        continue;
+      for (const auto& member : pattern.packs[std::size_t(beneath.pack)].members)
+        for (const auto& line : pattern.panels[std::size_t(member.panel)].interior)
+          if (line.kind == InteriorLine::Kind::t_seam)
+            for (const auto& p : line.curve.flatten(pattern.flattening_tolerance()))
+              targets.extend(member.placement.apply(p) + beneath.offset);
+    }
+    if (!targets.isEmpty()) {
+      placed.offset = targets.center() - 0.5 * (placed.box_min + placed.box_max);
+      continue;
+    }
+    // Y-seam lines over the Y-seam lines beneath.
+    Eigen::AlignedBox2d own;
+    for (const auto& beneath : result.packs) {
+      if (beneath.tag.layer >= placed.tag.layer || beneath.tag.cylinder != placed.tag.cylinder ||
+          beneath.tag.side != placed.tag.side)
+        continue;
+      for (const auto& member : pattern.packs[std::size_t(beneath.pack)].members)
+        for (const auto& line : pattern.panels[std::size_t(member.panel)].outline)
+          if (line.y_seam)
+            for (const auto& p : line.curve.flatten(pattern.flattening_tolerance()))
+              targets.extend(member.placement.apply(p) + beneath.offset);
+    }
+    for (const auto& member : pattern.packs[std::size_t(placed.pack)].members)
+      for (const auto& line : pattern.panels[std::size_t(member.panel)].outline)
+        if (line.y_seam)
+          for (const auto& p : line.curve.flatten(pattern.flattening_tolerance()))
+            own.extend(member.placement.apply(p));
+    if (!targets.isEmpty() && !own.isEmpty()) placed.offset = targets.center() - own.center();
+  }
+
+  for (std::size_t k = 0; k < pattern.packs.size(); ++k) {
+    for (const auto& member : pattern.packs[k].members) {
+      const Panel& panel = pattern.panels[std::size_t(member.panel)];
+      for (std::size_t l = 0; l < panel.outline.size(); ++l)
+        result.lines.push_back(line_geometry(result, member.panel, int(k), member.placement,
+                                             panel.outline[l].curve, panel.outline[l].id, false,
+                                             int(l)));
+      for (std::size_t l = 0; l < panel.interior.size(); ++l)
+        if (panel.interior[l].kind == InteriorLine::Kind::t_seam)
+          result.lines.push_back(line_geometry(result, member.panel, int(k), member.placement,
+                                               panel.interior[l].curve, panel.interior[l].id, true,
+                                               int(l)));
+    }
+  }
+  // Lines in panel order (outline, then interior) for stable output.
+  std::stable_sort(result.lines.begin(), result.lines.end(),
+                   [](const LineGeometry& x, const LineGeometry& y) { return x.panel < y.panel; });
+  result.placement_seconds = seconds_since(placement_start);
+
+  // --- seam creation (§3.3.4) ---
+  const auto seam_start = Clock::now();
+  const int n = int(result.lines.size());
+  const auto tag_of = [&](int line) {
+    return pattern.panels[std::size_t(result.lines[std::size_t(line)].panel)].tag;
+  };
+  const auto pack_of_line = [&](int line) {
+    return pattern.pack_of(result.lines[std::size_t(line)].panel);
+  };
+  const auto cylinder_of = [&](int line) -> const FittedCylinder& {
+    return result.cylinders[std::size_t(cylinder_index.at(tag_of(line).cylinder))];
+  };
+  const auto outline_line = [&](int line) -> const OutlineLine* {
+    const LineGeometry& g = result.lines[std::size_t(line)];
+    return g.interior ? nullptr
+                      : &pattern.panels[std::size_t(g.panel)].outline[std::size_t(g.index)];
+  };
+  std::vector<bool> done(std::size_t(n), false);
+  std::vector<std::string> why(static_cast<std::size_t>(n));
+  const auto add_seam = [&](SeamKind kind, int a, int b, const MatchScore& score) {
+    FoundSeam seam;
+    seam.kind = kind;
+    seam.line_a = a;
+    seam.line_b = b;
+    seam.score = score;
+    seam.certainty = std::clamp(score.value(), 0.01, 1.0);
+    seam.reverse = should_reverse(result.lines[std::size_t(a)], result.lines[std::size_t(b)]);
+    result.seams.push_back(seam);
+  };
+  // M_sa (eq. 3.6) for inter-pack lines: inherently unseamable unless on
+  // two adjacent cylinders or the two halves of one; conventionally
+  // unseamable: a limb's medial (inner) line with a lateral (outer) one.
+  const auto seamable = [&](int i, int j) {
+    const PanelTag a = tag_of(i), b = tag_of(j);
+    if (a.cylinder == b.cylinder) {
+      if (a.side == b.side) return false;
+      if (is_limb(a.cylinder)) {
+        const FittedCylinder& c = cylinder_of(i);
+        if (limb_side(c, result.lines[std::size_t(i)]) *
+                limb_side(c, result.lines[std::size_t(j)]) <
+            0)
+          return false;
+      }
+      return true;
+    }
+    if (!cylinders_adjacent(a.cylinder, b.cylinder)) return false;
+    // Conventionally unseamable: the two legs join at the crotch only, not
+    // along their inseams.
+    if (is_limb(a.cylinder) && is_limb(b.cylinder)) {
+      const double crotch = body.bone("thigh_l").start.z() - 0.15;
+      return result.lines[std::size_t(i)].centre.z() > crotch &&
+             result.lines[std::size_t(j)].centre.z() > crotch;
+    }
+    return true;
+  };
+  const auto score = [&](int i, int j) {
+    return match_score(result.lines[std::size_t(i)], result.lines[std::size_t(j)], seamable(i, j),
+                       options)
+        .value();
+  };
+
+  // Step 2: inter-layer seams. T: an outer layer's outline line to a T-seam
+  // interior line beneath; Y: an outer layer's Y-seam line to a Y-seam line
+  // of layer 0 (which keeps its normal seam too).
+  for (SeamKind kind : {SeamKind::t_seam, SeamKind::y_seam}) {
+    std::vector<int> outer, beneath;
+    for (int i = 0; i < n; ++i) {
+      const LineGeometry& g = result.lines[std::size_t(i)];
+      if (g.interior) {
+        if (kind == SeamKind::t_seam) beneath.push_back(i);
+      } else if (tag_of(i).layer != 0) {
+        if (kind == SeamKind::t_seam || outline_line(i)->y_seam) outer.push_back(i);
+      } else if (kind == SeamKind::y_seam && outline_line(i)->y_seam) {
+        beneath.push_back(i);
+      }
+    }
+    const auto layered_score = [&](int i, int j) {
+      const PanelTag a = tag_of(i), b = tag_of(j);
+      const bool ok = a.cylinder == b.cylinder && a.side == b.side && b.layer < a.layer;
+      return match_score(result.lines[std::size_t(i)], result.lines[std::size_t(j)], ok, options)
+          .value();
+    };
+    std::vector<int> free_outer;
+    for (int i : outer)
+      if (!done[std::size_t(i)]) free_outer.push_back(i);
+    for (const Pair& p :
+         greedy_sorted_matching(free_outer, beneath, layered_score, options.min_match)) {
+      add_seam(kind, p.a, p.b,
+               match_score(result.lines[std::size_t(p.a)], result.lines[std::size_t(p.b)], true,
+                           options));
+      done[std::size_t(p.a)] = true;
+      if (kind == SeamKind::t_seam) done[std::size_t(p.b)] = true;
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    if (done[std::size_t(i)]) continue;
+    if (result.lines[std::size_t(i)].interior) {
+      done[std::size_t(i)] = true;
+      why[std::size_t(i)] = "T-seam line: no outer-layer line matches it";
+    } else if (tag_of(i).layer != 0) {
+      done[std::size_t(i)] = true;
+      why[std::size_t(i)] = "a line of layer " + std::to_string(tag_of(i).layer) +
+                            " joins only by T- and Y-seams, and none matches it";
+    }
+  }
+
+  // Step 3: intra-pack seams (§3.3.1), in each pack's plane.
+  {
+    std::vector<int> group(std::size_t(n), -1), panel(std::size_t(n), -1);
+    for (int i = 0; i < n; ++i) {
+      panel[std::size_t(i)] = result.lines[std::size_t(i)].panel;
+      if (!done[std::size_t(i)]) group[std::size_t(i)] = pack_of_line(i);
+    }
+    for (const auto& pair : closest_line_pairs(
+             result.lines, group, panel, options.fov_half_angle_deg, options.intra_distance)) {
+      const LineGeometry& a = result.lines[std::size_t(pair[0])];
+      const LineGeometry& b = result.lines[std::size_t(pair[1])];
+      MatchScore s = match_score(a, b, true, options);
+      const double gap = (closest_on_polyline(b.samples_2d, a.centre_2d) - a.centre_2d).norm();
+      s.distance = 1 - gap / options.intra_distance;
+      s.orientation = 1;
+      add_seam(SeamKind::intra_pack, pair[0], pair[1], s);
+      done[std::size_t(pair[0])] = done[std::size_t(pair[1])] = true;
+    }
+  }
+
+  // Step 4: the rest are inter-cylinder or inter-half-cylinder lines, by
+  // where their best match lies.
+  std::vector<int> remaining;
+  for (int i = 0; i < n; ++i)
+    if (!done[std::size_t(i)]) remaining.push_back(i);
+  std::vector<int> partner_cylinder(std::size_t(n), -1); // inter-cylinder: the other cylinder
+  std::vector<bool> inter_half(std::size_t(n), false);
+  for (int i : remaining) {
+    double best_cylinder = 0, best_half = 0;
+    int best_cylinder_line = -1, best_half_line = -1;
+    for (int j : remaining) {
+      if (j == i) continue;
+      const double s = score(i, j);
+      if (tag_of(j).cylinder == tag_of(i).cylinder) {
+        if (s > best_half) best_half = s, best_half_line = j;
+      } else if (s > best_cylinder) {
+        best_cylinder = s, best_cylinder_line = j;
+      }
+    }
+    if (std::max(best_cylinder, best_half) < options.min_match) {
+      done[std::size_t(i)] = true;
+      why[std::size_t(i)] =
+          "no line in an adjacent cylinder or the other half cylinder matches it (best M = " +
+          format(std::max(best_cylinder, best_half), 2) + ")";
+    } else if (best_cylinder > best_half) {
+      partner_cylinder[std::size_t(i)] = int(tag_of(best_cylinder_line).cylinder);
+    } else {
+      inter_half[std::size_t(i)] = true;
+      (void)best_half_line;
+    }
+  }
+
+  // Steps 5-6: inter-cylinder seams, ring by ring.
+  std::set<std::pair<int, int>> junctions;
+  for (int i : remaining)
+    if (partner_cylinder[std::size_t(i)] >= 0) {
+      const int a = int(tag_of(i).cylinder), b = partner_cylinder[std::size_t(i)];
+      junctions.insert({std::min(a, b), std::max(a, b)});
+    }
+  for (const auto& [first, second] : junctions) {
+    std::array<std::vector<int>, 2> rings;
+    for (int side = 0; side < 2; ++side) {
+      const int here = side == 0 ? first : second, there = side == 0 ? second : first;
+      for (int i : remaining)
+        if (!done[std::size_t(i)] && int(tag_of(i).cylinder) == here &&
+            partner_cylinder[std::size_t(i)] == there)
+          rings[std::size_t(side)].push_back(i);
+    }
+    const Cylinder cyl_a = Cylinder(first), cyl_b = Cylinder(second);
+    if (rings[0].empty() || rings[1].empty()) {
+      for (const auto& ring : rings)
+        for (int i : ring) {
+          done[std::size_t(i)] = true;
+          why[std::size_t(i)] = std::string("inter-cylinder line with no corresponding line in "
+                                            "the adjacent cylinder '") +
+                                name_of(int(tag_of(i).cylinder) == first ? cyl_b : cyl_a) + "'";
+        }
+      continue;
+    }
+    // The ring axis: the distal cylinder's (both legs: the vertical between them).
+    Vector3d origin, up, front;
+    if ((cyl_a == Cylinder::leg_l || cyl_a == Cylinder::leg_r) &&
+        (cyl_b == Cylinder::leg_l || cyl_b == Cylinder::leg_r)) {
+      const auto& l = result.cylinders[std::size_t(cylinder_index.at(cyl_a))];
+      const auto& r = result.cylinders[std::size_t(cylinder_index.at(cyl_b))];
+      origin = 0.5 * (l.top + r.top);
+      up = Vector3d::UnitZ();
+      front = -Vector3d::UnitY();
+    } else {
+      const Cylinder distal = cyl_a == Cylinder::torso ? cyl_b : cyl_a;
+      const auto& c = result.cylinders[std::size_t(cylinder_index.at(distal))];
+      origin = c.top;
+      up = c.up;
+      front = c.front;
+    }
+    const Vector3d across = up.cross(front);
+    const auto angle = [&](int line) {
+      const Vector3d r = result.lines[std::size_t(line)].centre - origin;
+      return std::atan2(r.dot(across), r.dot(front));
+    };
+    for (auto& ring : rings)
+      std::stable_sort(ring.begin(), ring.end(), [&](int x, int y) { return angle(x) < angle(y); });
+    const bool swapped = rings[0].size() > rings[1].size();
+    const std::vector<int>& small = swapped ? rings[1] : rings[0];
+    const std::vector<int>& large = swapped ? rings[0] : rings[1];
+    const auto ring_score = [&](int i, int j) {
+      return score(small[std::size_t(i)], large[std::size_t(j)]);
+    };
+    const int shift =
+        best_ring_shift(int(small.size()), int(large.size()), ring_score, options.clicks);
+    std::vector<bool> large_used(large.size(), false);
+    for (std::size_t i = 0; i < small.size(); ++i) {
+      const std::size_t j = (i + std::size_t(shift)) % large.size();
+      const int a = small[i], b = large[j];
+      const double m = score(a, b);
+      done[std::size_t(a)] = true;
+      if (m < options.min_match) {
+        why[std::size_t(a)] = "the best ring match pairs it with '" +
+                              result.lines[std::size_t(b)].id + "', but M = " + format(m, 2);
+        continue;
+      }
+      done[std::size_t(b)] = true;
+      large_used[j] = true;
+      add_seam(SeamKind::inter_cylinder, a, b,
+               match_score(result.lines[std::size_t(a)], result.lines[std::size_t(b)],
+                           seamable(a, b), options));
+    }
+    for (std::size_t j = 0; j < large.size(); ++j)
+      if (!large_used[j] && !done[std::size_t(large[j])]) {
+        done[std::size_t(large[j])] = true;
+        why[std::size_t(large[j])] = "left over by the ring match (rings of " +
+                                     std::to_string(small.size()) + " and " +
+                                     std::to_string(large.size()) + " lines)";
+      }
+  }
+
+  // Step 7: inter-half-cylinder seams, cylinder by cylinder.
+  for (const auto& c : result.cylinders) {
+    std::vector<int> front, back;
+    for (int i : remaining)
+      if (!done[std::size_t(i)] && inter_half[std::size_t(i)] && tag_of(i).cylinder == c.cylinder)
+        (tag_of(i).side == Side::front ? front : back).push_back(i);
+    for (const Pair& p : greedy_sorted_matching(front, back, score, options.min_match)) {
+      add_seam(SeamKind::inter_half_cylinder, p.a, p.b,
+               match_score(result.lines[std::size_t(p.a)], result.lines[std::size_t(p.b)], true,
+                           options));
+      done[std::size_t(p.a)] = done[std::size_t(p.b)] = true;
+    }
+    for (int i : front)
+      if (!done[std::size_t(i)]) why[std::size_t(i)] = "its best match in the other half was taken";
+    for (int i : back)
+      if (!done[std::size_t(i)]) why[std::size_t(i)] = "its best match in the other half was taken";
+  }
+
+  // Step 9: delete seams whose sweep penetrates the body.
+  std::vector<FoundSeam> kept;
+  for (const FoundSeam& seam : result.seams) {
+    const LineGeometry& a = result.lines[std::size_t(seam.line_a)];
+    const LineGeometry& b = result.lines[std::size_t(seam.line_b)];
+    double deepest = 0;
+    Vector3d where = Vector3d::Zero();
+    // Only the flesh of the two cylinders' body parts counts: a torso side
+    // seam's sweep may pass behind the hanging arm, as the cloth will.
+    std::set<std::string> parts;
+    for (int line : {seam.line_a, seam.line_b}) {
+      const Cylinder c = tag_of(line).cylinder;
+      for (const auto& bone : bones_of(c))
+        parts.insert(bone);
+      if (c == Cylinder::leg_l || c == Cylinder::leg_r)
+        parts.insert({"pelvis", "torso", "hip_l", "hip_r"});
+    }
+    if (seam.kind != SeamKind::intra_pack && body_distance) {
+      for (int q = 0; q < options.sweep_pairs; ++q) {
+        const double t = (q + 0.5) / options.sweep_pairs;
+        const Vector3d pa = at_fraction(a.samples, t);
+        const Vector3d pb = at_fraction(b.samples, seam.reverse ? 1 - t : t);
+        for (double s : {0.25, 0.5, 0.75}) {
+          const Vector3d x = (1 - s) * pa + s * pb;
+          const double d = body_distance(x, nullptr);
+          if (d < deepest && parts.count(body.skeleton[std::size_t(nearest_bone(body, x))].name))
+            deepest = d, where = x;
+        }
+      }
+    }
+    if (deepest < -options.penetration) {
+      result.deleted.push_back(seam);
+      const std::string reason = "the sweep of its seam with '" + b.id + "' penetrates the body " +
+                                 format(-100 * deepest, 2) + " cm deep at (" + format(where.x()) +
+                                 ", " + format(where.y()) + ", " + format(where.z()) + ")";
+      why[std::size_t(seam.line_a)] = reason;
+      why[std::size_t(seam.line_b)] =
+          "the sweep of its seam with '" + a.id + "' penetrates the body";
+    } else {
+      kept.push_back(seam);
+    }
+  }
+  result.seams = kept;
+  std::vector<bool> seamed(std::size_t(n), false);
+  for (const auto& seam : result.seams)
+    seamed[std::size_t(seam.line_a)] = seamed[std::size_t(seam.line_b)] = true;
+  for (int i = 0; i < n; ++i)
+    if (!seamed[std::size_t(i)])
+      result.unseamed.push_back(
+          {i, why[std::size_t(i)].empty() ? "not matched" : why[std::size_t(i)]});
+  result.seam_seconds = seconds_since(seam_start);
+
+  if (pattern.packs.size() > 1) {
+    for (std::size_t k = 0; k < pattern.packs.size(); ++k) {
+      bool any = false;
+      std::string reasons;
+      for (int i = 0; i < n; ++i) {
+        if (pack_of_line(i) != int(k)) continue;
+        any = any || seamed[std::size_t(i)];
+        reasons += "\n  '" + result.lines[std::size_t(i)].id + "': " + why[std::size_t(i)];
+      }
+      if (!any)
+        throw InputError(pattern.source + ": " + pattern.packs[k].json_path + ": pack '" +
+                         pattern.packs[k].id + "' " + to_string(pattern.pack_tag(int(k))) +
+                         " has no seam: none of its lines could be seamed:" + reasons);
+    }
+  }
+  return result;
+}
+
+} // namespace sartor::garment

@@ -1,0 +1,229 @@
+// Creep in the structure (thesis §5.3, Algorithm 2): load histories, the
+// creep strip under dead load against the material-point law of `sartor
+// creep` for all ten Table 5.1 parameter sets on coarse and fine meshes, the
+// same run on every rank count, and checkpoints that restore a run exactly.
+
+#include "common/error.hpp"
+#include "fem/checkpoint.hpp"
+#include "fem/cloth_problem.hpp"
+#include "fem/creep_analysis.hpp"
+#include "fem/creep_coupling.hpp"
+#include "fem/load_history.hpp"
+#include "material/fabric.hpp"
+#include "material/strip_creep.hpp"
+#include "mesh/generators.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+
+namespace sartor {
+namespace {
+
+bool root() {
+  PetscMPIInt rank = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  return rank == 0;
+}
+
+TEST(LoadHistory, InterpolatesAndJumps) {
+  const LoadHistory history = LoadHistory::parse("0:1; 10:3; 10:0; 20:0", "test");
+  EXPECT_DOUBLE_EQ(history.before(-1.0), 1.0);
+  EXPECT_DOUBLE_EQ(history.after(5.0), 2.0);
+  EXPECT_DOUBLE_EQ(history.before(10.0), 3.0);
+  EXPECT_DOUBLE_EQ(history.after(10.0), 0.0);
+  EXPECT_DOUBLE_EQ(history.after(30.0), 0.0);
+  EXPECT_EQ(history.times(), (std::vector<double>{0.0, 10.0, 20.0}));
+  EXPECT_DOUBLE_EQ(LoadHistory().before(7.0), 1.0);
+}
+
+TEST(LoadHistory, RejectsMalformedKnots) {
+  const auto message = [](const std::string& text) {
+    try {
+      LoadHistory::parse(text, "option --load-history");
+    } catch (const InputError& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message("0:1; 5:x").find("'5:x' is not TIME:FACTOR"), std::string::npos);
+  EXPECT_NE(message("0:1; 5:2; 3:1").find("knot 3"), std::string::npos);
+  EXPECT_NE(message("0:1; 5:2; 5:1; 5:0").find("more than two knots"), std::string::npos);
+  EXPECT_NE(message("").find("no knot"), std::string::npos);
+}
+
+constexpr double strip_length = 0.15;   // m, along the loaded direction
+constexpr double strip_width = 0.08;    // m
+constexpr double strip_force = 196.133; // N: 20 kgf
+constexpr double sample_interval = 300.0;
+
+struct StripResult {
+  std::map<double, double> strain; // output time -> elongation / length (rank 0)
+  CreepReport report;
+};
+
+// The thesis' creep test on a strip whose long side runs along `along`: held
+// on one short edge, the force spread over the other by consistent nodal
+// loads, 1 h loaded, 1 h unloaded.
+StripResult run_strip(MPI_Comm comm, const Fabric& fabric, Direction along, int cells_long,
+                      int cells_wide) {
+  const bool warp = along == Direction::warp;
+  const int axis = warp ? 0 : 1;
+  const TriangleMesh mesh =
+      warp ? mesh::rectangle(strip_length, strip_width, cells_long, cells_wide)
+           : mesh::rectangle(strip_width, strip_length, cells_wide, cells_long);
+  ClothMaterial material(
+      {fabric.in(Direction::warp).elastic, fabric.in(Direction::weft).elastic, 0.0, 0.0});
+  material.membrane.shear_modulus = 0.1 * material.membrane.warp.initial_modulus();
+  material.bending_stiffness = 1e-6;
+  std::vector<int> pins, loaded;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const double s = mesh.positions[v][axis];
+    if (s == 0.0) pins.push_back(int(v));
+    if (std::abs(s - strip_length) < 1e-12) loaded.push_back(int(v));
+  }
+  ClothProblem problem(comm, mesh, material, pins);
+  const double spacing = strip_width / cells_wide;
+  for (int v : loaded) {
+    const double across = mesh.positions[std::size_t(v)][1 - axis];
+    const bool corner = across < 1e-12 || std::abs(across - strip_width) < 1e-12;
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();
+    force[axis] = strip_force / strip_width * spacing * (corner ? 0.5 : 1.0);
+    problem.loads.point_forces.push_back({v, force});
+  }
+  CreepCoupling creep(
+      problem, {CreepMaterial{fabric.in(Direction::warp).creep, fabric.in(Direction::weft).creep}});
+  CreepOptions options;
+  options.time_end = 7200.0;
+  options.time_step = 1.0;
+  options.creep_tolerance = 5e-3;
+  options.load = LoadHistory::parse("0:1; 3600:1; 3600:0", "strip");
+  options.output_interval = sample_interval;
+  StripResult result;
+  const CreepObserver record = [&](const CreepStepReport& step, Vec x) -> PetscErrorCode {
+    std::vector<Eigen::Vector3d> positions;
+    PetscFunctionBeginUser;
+    if (!step.output) PetscFunctionReturn(0);
+    PetscCall(problem.gather_positions(x, &positions));
+    if (positions.empty()) PetscFunctionReturn(0);
+    double mean = 0.0;
+    for (int v : loaded)
+      mean += positions[std::size_t(v)][axis] - strip_length;
+    result.strain[step.time] = mean / double(loaded.size()) / strip_length;
+    PetscFunctionReturn(0);
+  };
+  Vec x = nullptr;
+  EXPECT_EQ(problem.create_solution(&x), 0);
+  EXPECT_EQ(solve_creep(problem, creep, x, options, &result.report, record), 0);
+  EXPECT_EQ(VecDestroy(&x), 0);
+  return result;
+}
+
+// The material-point response of `sartor creep` at the sample times (after
+// a jump: its right side).
+std::map<double, double> strip_reference(const DirectionalMaterial& material) {
+  const TensionHistory history =
+      TensionHistory::creep_recovery(strip_force / strip_width, 3600.0, 3600.0);
+  std::map<double, double> strain;
+  for (const StripState& s :
+       simulate_strip(material, history, uniform_sample_times(history, sample_interval)))
+    strain[s.time] = s.strain_total;
+  return strain;
+}
+
+TEST(CreepStrip, FollowsTheMaterialLawForEveryTable51SetOnCoarseAndFineMeshes) {
+  for (const FabricPreset& preset : fabric_presets()) {
+    const Fabric fabric = preset_fabric(preset.name);
+    for (Direction along : {Direction::warp, Direction::weft}) {
+      const auto reference = strip_reference(fabric.in(along));
+      for (const auto& [cells_long, cells_wide] : {std::pair{2, 1}, std::pair{8, 4}}) {
+        SCOPED_TRACE(std::string(preset.name) + ":" + name_of(along) + " on " +
+                     std::to_string(cells_long) + "x" + std::to_string(cells_wide));
+        const StripResult run = run_strip(PETSC_COMM_WORLD, fabric, along, cells_long, cells_wide);
+        ASSERT_TRUE(run.report.completed) << run.report.reason;
+        if (!root()) continue;
+        ASSERT_EQ(run.strain.size(), reference.size());
+        double worst = 0.0;
+        for (const auto& [time, strain] : run.strain) {
+          ASSERT_EQ(reference.count(time), 1u) << "no reference at t = " << time;
+          const double expected = reference.at(time);
+          worst = std::max(worst, std::abs(strain - expected) / std::abs(expected));
+        }
+        EXPECT_LT(worst, 1e-6);
+        // Loaded, the strip creeps beyond its immediate stretch; unloaded, it
+        // keeps its permanent part.
+        EXPECT_GT(run.strain.at(3600.0 - sample_interval), 1.01 * run.strain.at(0.0));
+        EXPECT_GT(run.strain.at(7200.0), 0.0);
+      }
+    }
+  }
+}
+
+// Every rank count gives the same history: a strip run on all ranks against
+// the same run on this rank alone.
+TEST(CreepStripMpi, SameOnEveryRankCount) {
+  const Fabric fabric = preset_fabric("denim");
+  const StripResult all = run_strip(PETSC_COMM_WORLD, fabric, Direction::weft, 8, 4);
+  const StripResult alone = run_strip(PETSC_COMM_SELF, fabric, Direction::weft, 8, 4);
+  if (!root()) return;
+  ASSERT_EQ(all.strain.size(), alone.strain.size());
+  for (const auto& [time, strain] : all.strain)
+    EXPECT_NEAR(strain, alone.strain.at(time), 1e-12 * std::abs(strain)) << "t = " << time;
+}
+
+TEST(Checkpoint, RoundTripsEveryField) {
+  RunCheckpoint written;
+  written.time = 12.5;
+  written.next_step = 0.25;
+  written.step = 42;
+  written.load_factor = 0.75;
+  written.positions = {{0.1, 0.2, 0.3}, {1.0 / 3.0, -2.0, 1e-300}};
+  written.velocities = {{1, 2, 3}, {4, 5, 6}};
+  ElementCreep element;
+  element.warp = {0.01, 0.002};
+  element.weft = {0.003, 0.0004};
+  element.tension_warp = 123.456;
+  element.tension_weft = -1.0;
+  written.creep = {element, ElementCreep{}};
+  written.anchors = {{0, 1, 0.5, 0.5, 0.0, 0.0, 0.0, 1.0}};
+  written.history = "time_s,x\n0,1\n";
+  const std::string path = "test_checkpoint_roundtrip.h5";
+  write_checkpoint(path, written);
+  const RunCheckpoint read = read_checkpoint(path);
+  std::remove(path.c_str());
+  EXPECT_EQ(read.time, written.time);
+  EXPECT_EQ(read.next_step, written.next_step);
+  EXPECT_EQ(read.step, written.step);
+  EXPECT_EQ(read.load_factor, written.load_factor);
+  ASSERT_EQ(read.positions.size(), 2u);
+  EXPECT_EQ(read.positions[1], written.positions[1]);
+  EXPECT_EQ(read.velocities[0], written.velocities[0]);
+  ASSERT_EQ(read.creep.size(), 2u);
+  EXPECT_EQ(read.creep[0].warp.permanent, 0.002);
+  EXPECT_EQ(read.creep[0].weft.viscoelastic, 0.003);
+  EXPECT_EQ(read.creep[0].tension_warp, 123.456);
+  ASSERT_EQ(read.anchors.size(), 1u);
+  EXPECT_EQ(read.anchors[0][7], 1.0);
+  EXPECT_EQ(read.history, written.history);
+}
+
+TEST(Checkpoint, RejectsWhatIsNotACheckpoint) {
+  const std::string path = "test_checkpoint_garbage.h5";
+  std::ofstream(path) << "not HDF5\n";
+  try {
+    read_checkpoint(path);
+    ADD_FAILURE() << "a text file was read as a checkpoint";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find(path + ": cannot open as an HDF5 checkpoint"),
+              std::string::npos)
+        << error.what();
+  }
+  std::remove(path.c_str());
+  EXPECT_THROW(read_checkpoint("no_such_checkpoint.h5"), InputError);
+}
+
+} // namespace
+} // namespace sartor

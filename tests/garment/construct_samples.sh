@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# `sartor construct` on the sample garments: the files it writes, and
+# seams.json consistent with garment.obj (every line a boundary polyline).
+#
+#   construct_samples.sh SARTOR SAMPLES_DIR OUT_DIR
+set -euo pipefail
+[ $# -eq 3 ] || { echo "usage: $0 SARTOR SAMPLES_DIR OUT_DIR" >&2; exit 2; }
+sartor=$1 samples=$2 out=$3
+python=/usr/bin/python3
+[ -x "$python" ] || { echo "skip: $python not found"; exit 77; }
+for name in tshirt dress; do
+  dir="$out/construct_$name"
+  rm -rf "$dir"
+  "$sartor" construct "$samples/$name.json" --output "$dir" --edge-length 0.04
+  for f in garment.obj seams.json construct.json pattern_seams.svg placement.svg; do
+    [ -s "$dir/$f" ] || { echo "construct_samples: $dir/$f missing" >&2; exit 1; }
+  done
+  "$python" - "$dir" <<'PY'
+import json, os, sys
+d = sys.argv[1]
+seams = json.load(open(os.path.join(d, "seams.json")))["seams"]
+summary = json.load(open(os.path.join(d, "construct.json")))
+nv = sum(1 for row in open(os.path.join(d, "garment.obj")) if row.startswith("v "))
+assert nv == summary["mesh"]["vertices"], (nv, summary["mesh"])
+assert len(seams) == sum(s["in_seam_file"] for s in summary["seams"])
+for s in seams:
+    assert set(s) == {"name", "a", "b", "reverse", "certainty"}, s
+    assert 0 < s["certainty"] <= 1
+    assert all(0 <= v < nv for v in s["a"] + s["b"])
+print(f"construct_samples: {d}: {len(seams)} seams, {nv} vertices")
+PY
+done
