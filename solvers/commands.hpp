@@ -50,4 +50,9 @@ void make_plot(const std::string& script, const std::string& directory);
 // Rank 0 writes; everybody waits, and learns of a failure.
 bool is_root();
 
+// The comma-separated numbers of option --NAME; `count` of them unless it is
+// 0. Throws InputError naming the option and the item that is not a number.
+std::vector<double> option_numbers(const Options& options, const std::string& name,
+                                   std::size_t count);
+
 } // namespace sartor

@@ -29,18 +29,7 @@ const std::vector<OptionSpec>& creep_option_specs() {
 std::vector<CreepMaterial> creep_materials(const Options& options) {
   CreepMaterial material;
   if (options.is_set("creep-parameters")) {
-    std::vector<double> values;
-    std::stringstream stream(options.text("creep-parameters"));
-    std::string item;
-    while (std::getline(stream, item, ',')) {
-      try {
-        std::size_t used = 0;
-        values.push_back(std::stod(item, &used));
-        if (item.find_first_not_of(" \t", used) != std::string::npos) throw InputError("");
-      } catch (const std::exception&) {
-        throw InputError("option --creep-parameters: '" + item + "' is not a number");
-      }
-    }
+    const std::vector<double> values = option_numbers(options, "creep-parameters", 0);
     if (values.size() != 4) {
       throw InputError("option --creep-parameters: expected E,ALPHA,LAMBDA_LOAD,LAMBDA_UNLOAD, "
                        "got " +

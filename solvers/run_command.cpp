@@ -174,29 +174,8 @@ const CommandSpec& run_command() {
 
 namespace {
 
-std::vector<double> numbers(const Options& options, const std::string& name, std::size_t count) {
-  const std::string text = options.text(name);
-  std::vector<double> values;
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, ',')) {
-    try {
-      std::size_t used = 0;
-      values.push_back(std::stod(item, &used));
-      if (used != item.size() || !std::isfinite(values.back())) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw InputError("option --" + name + ": '" + item + "' is not a number");
-    }
-  }
-  if (count != 0 && values.size() != count) {
-    throw InputError("option --" + name + ": expected " + std::to_string(count) +
-                     " comma-separated numbers, got '" + text + "'");
-  }
-  return values;
-}
-
 Eigen::Vector3d vector3(const Options& options, const std::string& name) {
-  const auto v = numbers(options, name, 3);
+  const auto v = option_numbers(options, name, 3);
   return {v[0], v[1], v[2]};
 }
 
@@ -321,7 +300,7 @@ ClothMaterial build_material(const Options& options) {
 std::vector<int> pinned_vertices(const Options& options, const TriangleMesh& mesh) {
   std::vector<bool> pin(mesh.vertex_count(), false);
   if (options.is_set("pin-box")) {
-    const auto boxes = numbers(options, "pin-box", 0);
+    const auto boxes = option_numbers(options, "pin-box", 0);
     if (boxes.empty() || boxes.size() % 6 != 0) {
       throw InputError("option --pin-box: expected 6 numbers per box (x0,x1,y0,y1,z0,z1), got " +
                        std::to_string(boxes.size()));
@@ -342,7 +321,7 @@ std::vector<int> pinned_vertices(const Options& options, const TriangleMesh& mes
       pin[std::size_t(v)] = true;
   }
   if (options.is_set("pin-vertices")) {
-    for (double value : numbers(options, "pin-vertices", 0)) {
+    for (double value : option_numbers(options, "pin-vertices", 0)) {
       const auto v = long(value);
       if (double(v) != value || v < 0 || std::size_t(v) >= mesh.vertex_count()) {
         throw InputError("option --pin-vertices: " + format_number(value) +
@@ -410,7 +389,7 @@ std::vector<PinGroupMotion> pin_groups(const Options& options, const TriangleMes
                      " --pin-motion group(s)");
   }
   const auto boxes =
-      options.is_set("pin-box") ? numbers(options, "pin-box", 0) : std::vector<double>{};
+      options.is_set("pin-box") ? option_numbers(options, "pin-box", 0) : std::vector<double>{};
   const std::size_t box_count = boxes.size() / 6;
   std::vector<int> group_of(pinned.size(), 0);
   for (std::size_t g = 0; g < groups.size(); ++g) {
@@ -457,7 +436,7 @@ void add_edge_force(const Options& options, const TriangleMesh& mesh, ClothLoads
   }
   if (!options.is_set("edge-force")) return;
   const Eigen::Vector3d force = vector3(options, "edge-force");
-  const auto box = numbers(options, "edge-force-box", 6);
+  const auto box = option_numbers(options, "edge-force-box", 6);
   const auto inside = [&](int v) {
     const Eigen::Vector3d& p = mesh.positions[std::size_t(v)];
     for (int d = 0; d < 3; ++d) {
@@ -552,7 +531,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   problem.loads.gravity = vector3(options, "gravity");
   problem.loads.pressure = options.real("pressure");
   if (options.is_set("point-force")) {
-    const auto f = numbers(options, "point-force", 4);
+    const auto f = option_numbers(options, "point-force", 4);
     const auto v = long(f[0]);
     if (double(v) != f[0] || v < 0 || std::size_t(v) >= mesh.vertex_count()) {
       throw InputError("option --point-force: vertex " + format_number(f[0]) +

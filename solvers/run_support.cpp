@@ -4,13 +4,38 @@
 #include <nlohmann/json.hpp>
 #include <petscsys.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <spawn.h>
+#include <sstream>
+#include <stdexcept>
 #include <sys/wait.h>
 
 extern char** environ;
 
 namespace sartor {
+
+std::vector<double> option_numbers(const Options& options, const std::string& name,
+                                   std::size_t count) {
+  const std::string text = options.text(name);
+  std::vector<double> values;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, ',')) {
+    try {
+      std::size_t used = 0;
+      values.push_back(std::stod(item, &used));
+      if (used != item.size() || !std::isfinite(values.back())) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw InputError("option --" + name + ": '" + item + "' is not a number");
+    }
+  }
+  if (count != 0 && values.size() != count) {
+    throw InputError("option --" + name + ": expected " + std::to_string(count) +
+                     " comma-separated numbers, got '" + text + "'");
+  }
+  return values;
+}
 
 bool is_root() {
   PetscMPIInt rank = 0;

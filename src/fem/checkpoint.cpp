@@ -1,6 +1,7 @@
 #include "fem/checkpoint.hpp"
 
 #include "common/error.hpp"
+#include "fem/h5_handle.hpp"
 
 #include <hdf5.h>
 
@@ -17,26 +18,11 @@ namespace {
 
 constexpr const char* format_tag = "sartor-checkpoint 1";
 
-class H5Id {
-public:
-  H5Id(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-  ~H5Id() {
-    if (id_ >= 0) close_(id_);
-  }
-  H5Id(const H5Id&) = delete;
-  H5Id& operator=(const H5Id&) = delete;
-  hid_t get() const { return id_; }
-
-private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
-
 void write_set(hid_t file, const char* name, hid_t type, const void* data,
                const std::vector<hsize_t>& dims, const std::string& path) {
-  const H5Id space(H5Screate_simple(int(dims.size()), dims.data(), nullptr), H5Sclose);
-  const H5Id set(H5Dcreate2(file, name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                 H5Dclose);
+  const H5Handle space(H5Screate_simple(int(dims.size()), dims.data(), nullptr), H5Sclose);
+  const H5Handle set(
+      H5Dcreate2(file, name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
   if (set.get() < 0 || H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) {
     throw InputError(path + ": cannot write " + name);
   }
@@ -54,8 +40,8 @@ std::vector<double> read_rows(hid_t file, const char* name, std::size_t columns,
     if (!required) return {};
     throw InputError(path + ": not a complete checkpoint (no dataset " + name + ")");
   }
-  const H5Id set(H5Dopen2(file, name, H5P_DEFAULT), H5Dclose);
-  const H5Id space(H5Dget_space(set.get()), H5Sclose);
+  const H5Handle set(H5Dopen2(file, name, H5P_DEFAULT), H5Dclose);
+  const H5Handle space(H5Dget_space(set.get()), H5Sclose);
   const int rank = H5Sget_simple_extent_ndims(space.get());
   std::vector<hsize_t> dims(std::size_t(std::max(rank, 0)));
   H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
@@ -99,8 +85,8 @@ std::vector<Eigen::Vector3d> vectors(const std::vector<double>& values) {
 // The format attribute, or "" when there is none.
 std::string read_format(hid_t file) {
   if (H5Aexists(file, "format") <= 0) return "";
-  const H5Id attribute(H5Aopen(file, "format", H5P_DEFAULT), H5Aclose);
-  const H5Id type(H5Aget_type(attribute.get()), H5Tclose);
+  const H5Handle attribute(H5Aopen(file, "format", H5P_DEFAULT), H5Aclose);
+  const H5Handle type(H5Aget_type(attribute.get()), H5Tclose);
   if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0) return "";
   std::string text(H5Tget_size(type.get()), '\0');
   if (H5Aread(attribute.get(), type.get(), text.data()) < 0) return "";
@@ -121,8 +107,8 @@ void flush_to_disk(const std::string& path) {
 void write_checkpoint(const std::string& path, const RunCheckpoint& checkpoint) {
   const std::string temporary = path + ".tmp";
   {
-    const H5Id file(H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
-                    H5Fclose);
+    const H5Handle file(H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+                        H5Fclose);
     if (file.get() < 0) throw InputError(path + ": cannot create checkpoint file " + temporary);
     const hid_t f = file.get();
     write_set(f, "/time", H5T_NATIVE_DOUBLE, &checkpoint.time, {1}, path);
@@ -146,10 +132,10 @@ void write_checkpoint(const std::string& path, const RunCheckpoint& checkpoint) 
     write_rows(f, "/anchors", anchors, 8, path);
     write_set(f, "/history", H5T_NATIVE_CHAR, checkpoint.history.data(),
               {checkpoint.history.size()}, path);
-    const H5Id string_type(H5Tcopy(H5T_C_S1), H5Tclose);
+    const H5Handle string_type(H5Tcopy(H5T_C_S1), H5Tclose);
     H5Tset_size(string_type.get(), std::strlen(format_tag));
-    const H5Id scalar(H5Screate(H5S_SCALAR), H5Sclose);
-    const H5Id attribute(
+    const H5Handle scalar(H5Screate(H5S_SCALAR), H5Sclose);
+    const H5Handle attribute(
         H5Acreate2(f, "format", string_type.get(), scalar.get(), H5P_DEFAULT, H5P_DEFAULT),
         H5Aclose);
     if (attribute.get() < 0 || H5Awrite(attribute.get(), string_type.get(), format_tag) < 0) {
@@ -174,7 +160,7 @@ RunCheckpoint read_checkpoint(const std::string& path) {
     ~RestoreHandler() { H5Eset_auto2(H5E_DEFAULT, handler, data); }
   } restore{handler, handler_data};
 
-  const H5Id file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  const H5Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   if (file.get() < 0) throw InputError(path + ": cannot open as an HDF5 checkpoint");
   const hid_t f = file.get();
   if (read_format(f) != format_tag) {
@@ -204,9 +190,9 @@ RunCheckpoint read_checkpoint(const std::string& path) {
     checkpoint.anchors.push_back(row);
   }
   {
-    const H5Id set(H5Dopen2(f, "/history", H5P_DEFAULT), H5Dclose);
+    const H5Handle set(H5Dopen2(f, "/history", H5P_DEFAULT), H5Dclose);
     if (set.get() < 0) throw InputError(path + ": not a complete checkpoint (no /history)");
-    const H5Id space(H5Dget_space(set.get()), H5Sclose);
+    const H5Handle space(H5Dget_space(set.get()), H5Sclose);
     checkpoint.history.resize(std::size_t(H5Sget_simple_extent_npoints(space.get())));
     if (!checkpoint.history.empty() && H5Dread(set.get(), H5T_NATIVE_CHAR, H5S_ALL, H5S_ALL,
                                                H5P_DEFAULT, checkpoint.history.data()) < 0) {

@@ -3,6 +3,7 @@
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
+#include "fem/h5_handle.hpp"
 #include "mesh/obj.hpp"
 
 #include <hdf5.h>
@@ -14,22 +15,6 @@
 namespace sartor {
 
 namespace {
-
-// Owns an HDF5 identifier.
-class H5Handle {
-public:
-  H5Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-  ~H5Handle() {
-    if (id_ >= 0) close_(id_);
-  }
-  H5Handle(const H5Handle&) = delete;
-  H5Handle& operator=(const H5Handle&) = delete;
-  hid_t get() const { return id_; }
-
-private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
 
 void write_dataset(hid_t file, const std::string& name, hid_t type, const void* data,
                    std::vector<hsize_t> dims, const std::string& path) {

@@ -649,6 +649,14 @@ PetscErrorCode ClothProblem::gather_strains(Vec x, std::vector<element::Membrane
   PetscFunctionReturn(0);
 }
 
+std::vector<int> ClothProblem::owned_triangles() const {
+  std::vector<int> owned;
+  owned.reserve(triangles_.size());
+  for (const LocalTriangle& t : triangles_)
+    owned.push_back(t.index);
+  return owned;
+}
+
 PetscErrorCode
 ClothProblem::owned_strains(Vec x, std::vector<std::pair<int, element::MembraneStrain>>* strains) {
   const PetscScalar* values = nullptr;

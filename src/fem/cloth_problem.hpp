@@ -166,6 +166,8 @@ public:
   PetscErrorCode gather_positions(Vec x, std::vector<Eigen::Vector3d>* positions);
   // Strains and tensions of every triangle, in mesh numbering, on rank 0.
   PetscErrorCode gather_strains(Vec x, std::vector<element::MembraneStrain>* strains);
+  // Mesh indices of the triangles this rank assembles.
+  std::vector<int> owned_triangles() const;
   // Strains and tensions of the triangles this rank assembles, with their
   // mesh indices (no communication: what the creep update needs).
   PetscErrorCode owned_strains(Vec x,

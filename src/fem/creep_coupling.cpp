@@ -1,7 +1,6 @@
 #include "fem/creep_coupling.hpp"
 
 #include "common/error.hpp"
-#include "fem/petsc_call.hpp"
 
 #include <algorithm>
 #include <array>
@@ -27,13 +26,7 @@ CreepCoupling::CreepCoupling(ClothProblem& problem, std::vector<CreepMaterial> m
   }
   committed_.assign(mesh.triangle_count(), {});
   trial_ = committed_;
-  std::vector<std::pair<int, element::MembraneStrain>> strains;
-  Vec x = nullptr;
-  SartorPetscCall(problem.create_solution(&x));
-  SartorPetscCall(problem.owned_strains(x, &strains));
-  SartorPetscCall(VecDestroy(&x));
-  for (const auto& [triangle, strain] : strains)
-    owned_.push_back(triangle);
+  owned_ = problem.owned_triangles();
   apply(committed_);
 }
 

@@ -44,7 +44,6 @@ struct ElementCreep {
 class CreepCoupling {
 public:
   // `materials`: one per mesh material id, as the problem's ClothMaterials.
-  // Collective.
   CreepCoupling(ClothProblem& problem, std::vector<CreepMaterial> materials);
 
   // Collective: the tensions at x become those the next step starts from.
