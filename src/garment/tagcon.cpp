@@ -793,35 +793,121 @@ Construction construct(const Pattern& pattern, const Mannequin& body,
     }
   }
 
-  // Step 4: the rest are inter-cylinder or inter-half-cylinder lines, by
-  // where their best match lies.
+  // Step 4: classify the rest by the garment construction theory of the
+  // cylinder abstraction (thesis Fig. 3.2). Cylinders join end to end (a
+  // sleeve's cap to the torso, a collar's lower edge to the neckline, a
+  // hood's neck edge to the torso's top opening), the arms on the torso's
+  // sides and the legs on each other's inner sides at the crotch; the two
+  // halves of a cylinder join along its length (and across the lid of a
+  // shoulder-anchored torso: the shoulders). In a half's unrolled plane:
+  //  * a line whose normal lies within 45 degrees of the axis faces an end
+  //    of its cylinder: an inter-cylinder line with the cylinder the
+  //    pattern has there (a non-seam line where there is none, step 5);
+  //  * on the torso, an upward line that reaches the half's centre line or
+  //    faces it borders the top opening (neck, or head without a neck),
+  //    which is centred on the axis; a line facing down faces its bottom end;
+  //  * every other line runs along its cylinder: an inter-half-cylinder
+  //    line, except that a torso line may join an arm's cap and a leg line
+  //    the other leg (above the crotch, M_sa), when its best M there
+  //    exceeds its best M with the other half's lines along the cylinder.
   std::vector<int> remaining;
   for (int i = 0; i < n; ++i)
     if (!done[std::size_t(i)]) remaining.push_back(i);
+  const double cos_end = std::cos(pi / 4);
+  const auto used = [&](Cylinder c) { return cylinder_index.count(c) > 0; };
+  enum class Role { along, top_end, bottom_end };
+  const auto role_of = [&](int line) {
+    const LineGeometry& g = result.lines[std::size_t(line)];
+    if (tag_of(line).cylinder == Cylinder::torso) {
+      const PackPlacement& placed = result.packs[std::size_t(pack_of_line(line))];
+      const double centre_line = 0.5 * (placed.box_min.x() + placed.box_max.x());
+      double low = 1e300, high = -1e300;
+      for (const Vector2d& p : g.samples_2d) {
+        low = std::min(low, p.x() - centre_line);
+        high = std::max(high, p.x() - centre_line);
+      }
+      const double reach = 1e-3 * std::max(g.length, 1e-3);
+      const bool reaches_centre = low <= reach && high >= -reach;
+      const bool faces_centre = g.normal_2d.x() * (g.centre_2d.x() - centre_line) < 0;
+      if (g.normal_2d.y() > 0 && (reaches_centre || faces_centre)) return Role::top_end;
+      return g.normal_2d.y() <= -cos_end ? Role::bottom_end : Role::along;
+    }
+    if (g.normal_2d.y() >= cos_end) return Role::top_end;
+    if (g.normal_2d.y() <= -cos_end) return Role::bottom_end;
+    return Role::along;
+  };
+  // The cylinder joined at a line's end of its cylinder; -1 where the
+  // pattern has none. `up` points to the shoulder on limbs, to the crown on
+  // the neck and head.
+  const auto cylinder_at_end = [&](int line, Role role) -> int {
+    const Cylinder c = tag_of(line).cylinder;
+    const bool top = role == Role::top_end;
+    const auto if_used = [&](Cylinder other) { return used(other) ? int(other) : -1; };
+    switch (c) {
+    case Cylinder::torso: {
+      if (top) return used(Cylinder::neck) ? int(Cylinder::neck) : if_used(Cylinder::head);
+      const bool left = result.lines[std::size_t(line)].centre.x() > 0;
+      return if_used(left ? Cylinder::leg_l : Cylinder::leg_r);
+    }
+    case Cylinder::arm_l:
+    case Cylinder::arm_r:
+    case Cylinder::leg_l:
+    case Cylinder::leg_r:
+      return top ? if_used(Cylinder::torso) : -1;
+    case Cylinder::neck:
+      return if_used(top ? Cylinder::head : Cylinder::torso);
+    case Cylinder::head:
+      if (top) return -1;
+      return used(Cylinder::neck) ? int(Cylinder::neck) : if_used(Cylinder::torso);
+    }
+    return -1;
+  };
+  std::vector<Role> role(std::size_t(n), Role::along);
+  for (int i : remaining)
+    role[std::size_t(i)] = role_of(i);
   std::vector<int> partner_cylinder(std::size_t(n), -1); // inter-cylinder: the other cylinder
   std::vector<bool> inter_half(std::size_t(n), false);
   for (int i : remaining) {
-    double best_cylinder = 0, best_half = 0;
-    int best_cylinder_line = -1, best_half_line = -1;
-    for (int j : remaining) {
-      if (j == i) continue;
-      const double s = score(i, j);
-      if (tag_of(j).cylinder == tag_of(i).cylinder) {
-        if (s > best_half) best_half = s, best_half_line = j;
-      } else if (s > best_cylinder) {
-        best_cylinder = s, best_cylinder_line = j;
+    const Cylinder c = tag_of(i).cylinder;
+    if (role[std::size_t(i)] != Role::along) {
+      const int other = cylinder_at_end(i, role[std::size_t(i)]);
+      if (other >= 0) {
+        partner_cylinder[std::size_t(i)] = other;
+      } else {
+        done[std::size_t(i)] = true;
+        why[std::size_t(i)] =
+            std::string("faces the ") + (role[std::size_t(i)] == Role::top_end ? "top" : "bottom") +
+            " end of its cylinder '" + name_of(c) + "', where the pattern has no adjacent cylinder";
       }
+      continue;
     }
-    if (std::max(best_cylinder, best_half) < options.min_match) {
+    // Along its cylinder: the other half, or a cylinder joined on this side.
+    double best_half = 0, best_side = 0;
+    int side_cylinder = -1;
+    for (int j : remaining) {
+      const Cylinder d = tag_of(j).cylinder;
+      const bool along = role[std::size_t(j)] == Role::along;
+      if (d == c) {
+        if (along) best_half = std::max(best_half, score(i, j));
+        continue;
+      }
+      const bool arm_cap = c == Cylinder::torso && (d == Cylinder::arm_l || d == Cylinder::arm_r) &&
+                           role[std::size_t(j)] == Role::top_end;
+      const auto is_leg = [](Cylinder x) { return x == Cylinder::leg_l || x == Cylinder::leg_r; };
+      const bool other_leg = is_leg(c) && is_leg(d) && along;
+      if (!arm_cap && !other_leg) continue;
+      const double s = score(i, j);
+      if (s > best_side) best_side = s, side_cylinder = int(d);
+    }
+    if (std::max(best_half, best_side) < options.min_match) {
       done[std::size_t(i)] = true;
-      why[std::size_t(i)] =
-          "no line in an adjacent cylinder or the other half cylinder matches it (best M = " +
-          format(std::max(best_cylinder, best_half), 2) + ")";
-    } else if (best_cylinder > best_half) {
-      partner_cylinder[std::size_t(i)] = int(tag_of(best_cylinder_line).cylinder);
+      why[std::size_t(i)] = "runs along its cylinder, but no line of the other half or of a "
+                            "cylinder joined on its side matches it (best M = " +
+                            format(std::max(best_half, best_side), 2) + ")";
+    } else if (best_side > best_half) {
+      partner_cylinder[std::size_t(i)] = side_cylinder;
     } else {
       inter_half[std::size_t(i)] = true;
-      (void)best_half_line;
     }
   }
 

@@ -154,16 +154,13 @@ TEST(TagconGarments, TShirt) {
 TEST(TagconGarments, Dress) {
   EXPECT_EQ(found_seams("dress"), expected_seams("dress"));
 }
-// Known deviations (see docs/tagcon.md, "Status"): the pants miss the back
-// crotch seam, the blouse's collar lines and the hooded top's neck ring are
-// classified wrongly.
-TEST(TagconGarments, DISABLED_Pants) {
+TEST(TagconGarments, Pants) {
   EXPECT_EQ(found_seams("pants"), expected_seams("pants"));
 }
-TEST(TagconGarments, DISABLED_Blouse) {
+TEST(TagconGarments, Blouse) {
   EXPECT_EQ(found_seams("blouse"), expected_seams("blouse"));
 }
-TEST(TagconGarments, DISABLED_HoodedTop) {
+TEST(TagconGarments, HoodedTop) {
   EXPECT_EQ(found_seams("hooded_top"), expected_seams("hooded_top"));
 }
 
