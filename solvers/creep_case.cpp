@@ -19,6 +19,12 @@ const std::vector<OptionSpec>& creep_option_specs() {
        "creep: target largest non-elastic strain increment of a time step"},
       {"min-time-step", "S", "1e-6", "creep: a step cut below this ends the run, s"},
       {"max-time-step", "S", "0", "creep: largest time step, s (0: no limit)"},
+      {"creep-scheme", "NAME", "staggered",
+       "creep: staggered (thesis Algorithm 2: solve, update, solve) or monolithic (the creep "
+       "update inside Newton's residual, consistent tangent)"},
+      {"creep-dynamics", "", "",
+       "creep: each step a backward Euler step with inertia (--density) and --damping "
+       "instead of static equilibrium (the dynamic variant)"},
       {"creep-parameters", "E,ALPHA,LL,LU", "",
        "creep: E (N/m), alpha, lambda_load, lambda_unload (1/s) for both directions [the "
        "fabric's]"},
@@ -55,9 +61,18 @@ CreepOptions creep_options(const Options& options) {
   creep.min_step = options.positive_real("min-time-step");
   creep.max_step = options.nonnegative_real("max-time-step");
   creep.creep_tolerance = options.positive_real("creep-tolerance");
+  const std::string scheme = options.text("creep-scheme");
+  if (scheme == "monolithic") {
+    creep.scheme = CreepScheme::monolithic;
+  } else if (scheme != "staggered") {
+    throw InputError("option --creep-scheme: unknown scheme '" + scheme +
+                     "' (staggered, monolithic)");
+  }
   if (options.is_set("load-history")) {
     creep.load = LoadHistory::parse(options.text("load-history"), "option --load-history");
   }
+  creep.dynamic = options.flag("creep-dynamics");
+  creep.damping = options.nonnegative_real("damping");
   creep.output_interval = options.nonnegative_real("output-interval");
   creep.equilibrium.load_steps = int(std::max(1L, options.integer("load-steps")));
   creep.print_progress = true;
@@ -70,7 +85,8 @@ std::string history_header(bool probe) {
          (probe ? ",probe_dx_m,probe_dy_m,probe_dz_m" : "") + "\n";
 }
 
-RunCheckpoint checked_checkpoint(const std::string& path, const ClothProblem& problem) {
+RunCheckpoint checked_checkpoint(const std::string& path, const ClothProblem& problem,
+                                 bool dynamic) {
   RunCheckpoint checkpoint = read_checkpoint(path);
   const TriangleMesh& mesh = problem.mesh();
   if (checkpoint.positions.size() != mesh.vertex_count() ||
@@ -80,6 +96,11 @@ RunCheckpoint checked_checkpoint(const std::string& path, const ClothProblem& pr
                      " triangles, the case " + std::to_string(mesh.vertex_count()) + " and " +
                      std::to_string(mesh.triangle_count()) +
                      ": it belongs to another case or mesh");
+  }
+  if (dynamic != !checkpoint.velocities.empty()) {
+    throw InputError(path + ": the checkpoint is of a " +
+                     (dynamic ? "quasi-static" : "dynamic (--creep-dynamics)") +
+                     " run; resume it as one");
   }
   return checkpoint;
 }
@@ -91,9 +112,10 @@ CreepRunResult run_creep_case(const Options& options, ClothProblem& problem, Vec
                               CreepCoupling& creep, const CreepStateObserver& observe) {
   const CreepOptions settings = creep_options(options);
   CreepRunResult result;
+  result.scheme = options.text("creep-scheme");
   std::optional<RunCheckpoint> resume;
   if (!checkpointing.restart_file.empty()) {
-    resume = checked_checkpoint(checkpointing.restart_file, problem);
+    resume = checked_checkpoint(checkpointing.restart_file, problem, settings.dynamic);
     result.resumed = true;
     result.resumed_time = resume->time;
     result.history_csv = resume->history;
@@ -137,7 +159,8 @@ CreepRunResult run_creep_case(const Options& options, ClothProblem& problem, Vec
   CreepRestart restart;
   restart.resume = resume ? &*resume : nullptr;
   restart.checkpoint_interval = checkpointing.interval;
-  restart.write = [&](const CreepStepReport& step, Vec state, double next_step) -> PetscErrorCode {
+  restart.write = [&](const CreepStepReport& step, Vec state, Vec velocity,
+                      double next_step) -> PetscErrorCode {
     RunCheckpoint checkpoint;
     PetscFunctionBeginUser;
     checkpoint.time = step.time;
@@ -145,6 +168,11 @@ CreepRunResult run_creep_case(const Options& options, ClothProblem& problem, Vec
     checkpoint.step = step.step;
     checkpoint.load_factor = problem.load_factor;
     PetscCall(problem.gather_positions(state, &checkpoint.positions));
+    if (velocity) {
+      PetscCall(problem.gather_positions(velocity, &checkpoint.velocities));
+      for (int pin : problem.pinned()) // gathered as their places: a pin's velocity is not a dof
+        if (!checkpoint.velocities.empty()) checkpoint.velocities[std::size_t(pin)].setZero();
+    }
     PetscCall(creep.gather(&checkpoint.creep));
     PetscCall(problem.gather_anchors(&checkpoint.anchors));
     checkpoint.history = result.history_csv;

@@ -27,6 +27,7 @@ struct CaseCheckpointing {
 
 struct CreepRunResult {
   CreepReport report;
+  std::string scheme;      // --creep-scheme
   std::string history_csv; // creep.csv: one row per accepted state, from the run's start
   bool resumed = false;
   double resumed_time = 0.0; // s, when resumed

@@ -724,7 +724,8 @@ void add_creep_summary(const CreepRunResult& run, nlohmann::json& summary) {
   long accepted = 0;
   for (const auto& step : report.steps)
     accepted += step.step > 0 ? 1 : 0;
-  summary["creep"] = {{"completed", report.completed},
+  summary["creep"] = {{"scheme", run.scheme},
+                      {"completed", report.completed},
                       {"reason", report.completed ? "reached the end time" : report.reason},
                       {"final_time_s", report.final_time},
                       {"steps", accepted},

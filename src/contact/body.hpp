@@ -32,6 +32,13 @@ public:
   void add(double time, const Value& value);
   Value at(double time) const;
   bool empty() const { return samples_.empty(); }
+  // The sample times, increasing.
+  std::vector<double> times() const {
+    std::vector<double> result;
+    for (const auto& sample : samples_)
+      result.push_back(sample.first);
+    return result;
+  }
 
 private:
   Value fallback_;

@@ -224,4 +224,82 @@ MembraneStrain membrane_strain(MembraneModel model, const MembraneMaterial& mate
   return strain;
 }
 
+namespace {
+
+// The tensions of membrane_strain as functions of the columns a and b of F_e,
+// with their gradients: row r of per_a is d tension_r / d a.
+struct ColumnTensions {
+  Eigen::Vector2d tension;
+  Eigen::Matrix<double, 2, 3> per_a = Eigen::Matrix<double, 2, 3>::Zero();
+  Eigen::Matrix<double, 2, 3> per_b = Eigen::Matrix<double, 2, 3>::Zero();
+};
+
+ColumnTensions column_tensions(MembraneModel model, const MembraneMaterial& material,
+                               const Vector3d& a, const Vector3d& b) {
+  ColumnTensions t;
+  switch (model) {
+  case MembraneModel::baraff_witkin: {
+    // tension_warp = T_warp(|a| - 1), tension_weft = T_weft(|b| - 1).
+    const Stretch sa = stretch_of(a);
+    const Stretch sb = stretch_of(b);
+    t.tension << material.warp.tension(sa.length - 1.0), material.weft.tension(sb.length - 1.0);
+    t.per_a.row(0) = material.warp.stiffness(sa.length - 1.0) * sa.unit.transpose();
+    t.per_b.row(1) = material.weft.stiffness(sb.length - 1.0) * sb.unit.transpose();
+    break;
+  }
+  case MembraneModel::saint_venant_kirchhoff: {
+    // tension_warp = S11 |a|, S11 = T_warp(E11) + c12 E22, and the same for weft.
+    const Stretch sa = stretch_of(a);
+    const Stretch sb = stretch_of(b);
+    const double e11 = 0.5 * (a.squaredNorm() - 1.0);
+    const double e22 = 0.5 * (b.squaredNorm() - 1.0);
+    const double c12 = coupling_modulus(material);
+    const double s11 = material.warp.tension(e11) + c12 * e22;
+    const double s22 = material.weft.tension(e22) + c12 * e11;
+    t.tension << s11 * sa.length, s22 * sb.length;
+    t.per_a.row(0) = (material.warp.stiffness(e11) * sa.length * a + s11 * sa.unit).transpose();
+    t.per_b.row(0) = (c12 * sa.length * b).transpose();
+    t.per_a.row(1) = (c12 * sb.length * a).transpose();
+    t.per_b.row(1) = (material.weft.stiffness(e22) * sb.length * b + s22 * sb.unit).transpose();
+    break;
+  }
+  }
+  return t;
+}
+
+} // namespace
+
+MembraneCreepSensitivity membrane_creep_sensitivity(MembraneModel model,
+                                                    const MembraneMaterial& material,
+                                                    const TriangleRest& rest,
+                                                    const NonelasticStrain& nonelastic,
+                                                    const Vector9& x) {
+  // a = F e1 / (1 + n_warp) and b = F e2 / (1 + n_weft), so da/dn_warp =
+  // -a / (1 + n_warp) and db/dn_weft = -b / (1 + n_weft). The force of corner
+  // i is A [(1 + n_weft) c0_i dW/da + (1 + n_warp) d0_i dW/db] with the
+  // weights c0 = (1 + n_warp) c, d0 = (1 + n_weft) d independent of n.
+  const Columns k = columns(rest, nonelastic, x);
+  const Density w = density(model, material, k.a, k.b);
+  const ColumnTensions t = column_tensions(model, material, k.a, k.b);
+  const double stretch_warp = 1.0 + nonelastic.warp;
+  const double stretch_weft = 1.0 + nonelastic.weft;
+  const Vector3d a_per_warp = -k.a / stretch_warp;
+  const Vector3d b_per_weft = -k.b / stretch_weft;
+
+  MembraneCreepSensitivity s;
+  s.tension = t.tension;
+  for (int i = 0; i < 3; ++i) {
+    s.tension_per_position.middleCols<3>(3 * i) = k.c(i) * t.per_a + k.d(i) * t.per_b;
+    // c0_i da/dn_warp = -c_i a: the 1/(1 + n_warp) cancels (and so for weft).
+    s.force_per_nonelastic.block<3, 1>(3 * i, 0) =
+        rest.area * stretch_weft *
+        (k.d(i) * w.grad_b - (k.c(i) * w.haa + k.d(i) * w.hab.transpose()) * k.a);
+    s.force_per_nonelastic.block<3, 1>(3 * i, 1) =
+        rest.area * stretch_warp * (k.c(i) * w.grad_a - (k.c(i) * w.hab + k.d(i) * w.hbb) * k.b);
+  }
+  s.tension_per_nonelastic.col(0) = t.per_a * a_per_warp;
+  s.tension_per_nonelastic.col(1) = t.per_b * b_per_weft;
+  return s;
+}
+
 } // namespace sartor::element

@@ -77,4 +77,21 @@ MembraneStrain membrane_strain(MembraneModel model, const MembraneMaterial& mate
                                const TriangleRest& rest, const NonelasticStrain& nonelastic,
                                const Vector9& x);
 
+// How the element answers a change of its own unloaded lengths, for the
+// monolithic creep coupling, whose non-elastic strains n = (n_warp, n_weft)
+// depend on the tensions: the tensions of membrane_strain and their
+// derivatives with respect to the positions and to n, and the derivative of
+// the element's force (the energy gradient of membrane()) with respect to n.
+struct MembraneCreepSensitivity {
+  Eigen::Vector2d tension = Eigen::Vector2d::Zero(); // (warp, weft), N/m
+  Eigen::Matrix<double, 2, 9> tension_per_position = Eigen::Matrix<double, 2, 9>::Zero();
+  Eigen::Matrix2d tension_per_nonelastic = Eigen::Matrix2d::Zero();
+  Eigen::Matrix<double, 9, 2> force_per_nonelastic = Eigen::Matrix<double, 9, 2>::Zero();
+};
+MembraneCreepSensitivity membrane_creep_sensitivity(MembraneModel model,
+                                                    const MembraneMaterial& material,
+                                                    const TriangleRest& rest,
+                                                    const NonelasticStrain& nonelastic,
+                                                    const Vector9& x);
+
 } // namespace sartor::element

@@ -436,9 +436,13 @@ PetscErrorCode ClothProblem::residual(Vec x, Vec f) {
   PetscCall(VecGetArray(local_f_, &forces));
   for (const LocalTriangle& t : triangles_) {
     const element::Vector9 xe = gather<9>(values, t.dofs);
+    const element::NonelasticStrain strain =
+        nonelastic_response
+            ? nonelastic_response->respond(t.index, *t.material, t.rest, xe, false).strain
+            : nonelastic[std::size_t(t.index)];
     scatter_add<9>(forces, t.dofs,
                    element::membrane(t.material->membrane_model, t.material->membrane, t.rest,
-                                     nonelastic[std::size_t(t.index)], xe, element::Want::gradient)
+                                     strain, xe, element::Want::gradient)
                        .gradient);
     element::Vector9 external = element::Vector9::Zero();
     const double mass = t.material->areal_density * t.rest.area / 3.0;
@@ -484,9 +488,22 @@ PetscErrorCode ClothProblem::jacobian(Vec x, Mat J) {
   if (scatter) PetscCall(scatter->begin());
   for (const LocalTriangle& t : triangles_) {
     const element::Vector9 xe = gather<9>(values, t.dofs);
+    NonelasticResponse::Answer response;
+    response.strain = nonelastic[std::size_t(t.index)];
+    if (nonelastic_response) {
+      response = nonelastic_response->respond(t.index, *t.material, t.rest, xe, true);
+    }
     auto result = element::membrane(t.material->membrane_model, t.material->membrane, t.rest,
-                                    nonelastic[std::size_t(t.index)], xe, element::Want::hessian);
+                                    response.strain, xe, element::Want::hessian);
     if (t.material->project_membrane) element::project_to_psd<9>(result.hessian);
+    if (nonelastic_response) {
+      // The force also moves with the unloaded lengths: dF/dn dn/dx.
+      result.hessian +=
+          element::membrane_creep_sensitivity(t.material->membrane_model, t.material->membrane,
+                                              t.rest, response.strain, xe)
+              .force_per_nonelastic *
+          response.per_position;
+    }
     if (loads.pressure != 0.0) {
       result.hessian -= load_factor * element::follower_pressure(loads.pressure, xe).jacobian;
     }
@@ -657,20 +674,13 @@ std::vector<int> ClothProblem::owned_triangles() const {
   return owned;
 }
 
-PetscErrorCode
-ClothProblem::owned_strains(Vec x, std::vector<std::pair<int, element::MembraneStrain>>* strains) {
+PetscErrorCode ClothProblem::visit_owned_triangles(Vec x, const TriangleVisitor& visit) {
   const PetscScalar* values = nullptr;
   PetscFunctionBeginUser;
   PetscCall(to_local(x));
-  strains->clear();
-  strains->reserve(triangles_.size());
   PetscCall(VecGetArrayRead(local_x_, &values));
-  for (const LocalTriangle& t : triangles_) {
-    strains->emplace_back(t.index,
-                          element::membrane_strain(t.material->membrane_model, t.material->membrane,
-                                                   t.rest, nonelastic[std::size_t(t.index)],
-                                                   gather<9>(values, t.dofs)));
-  }
+  for (const LocalTriangle& t : triangles_)
+    visit(t.index, *t.material, t.rest, gather<9>(values, t.dofs));
   PetscCall(VecRestoreArrayRead(local_x_, &values));
   PetscFunctionReturn(0);
 }

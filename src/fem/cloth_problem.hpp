@@ -27,6 +27,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -82,6 +83,25 @@ struct BodyContact {
   double min_distance = 0.0;    // m: smallest signed distance of a vertex (< 0: inside)
 };
 
+// Unloaded lengths that follow the element's own deformation within a step:
+// the monolithic creep coupling (fem/creep_coupling.hpp), whose non-elastic
+// strains at the end of a step depend on the tension there.
+class NonelasticResponse {
+public:
+  virtual ~NonelasticResponse() = default;
+  struct Answer {
+    element::NonelasticStrain strain;
+    Eigen::Matrix<double, 2, 9> per_position = Eigen::Matrix<double, 2, 9>::Zero(); // dn/dx
+  };
+  // The strains of mesh triangle `triangle` at element positions `x` (NaN
+  // when there are none), and their derivative when `want_derivative`.
+  virtual Answer respond(int triangle, const ClothMaterial& material,
+                         const element::TriangleRest& rest, const element::Vector9& x,
+                         bool want_derivative) const = 0;
+  // Whether the strains depend on the positions now (else they are held).
+  virtual bool moves_with_positions() const = 0;
+};
+
 // Per-triangle results in mesh numbering.
 struct TriangleField {
   std::vector<element::MembraneStrain> strain;
@@ -110,6 +130,10 @@ public:
   // fixed; time stepping advances it.
   double time = 0.0;
   std::vector<element::NonelasticStrain> nonelastic; // per mesh triangle (creep state)
+  // When set, residual and Jacobian take each triangle's non-elastic strains
+  // from it instead of `nonelastic`, and the Jacobian includes their
+  // dependence on the positions (then there is no potential energy).
+  const NonelasticResponse* nonelastic_response = nullptr;
 
   // A global vector of the free positions, filled from the mesh's placement.
   PetscErrorCode create_solution(Vec* x) const;
@@ -161,6 +185,12 @@ public:
   // Preallocated exactly for the element couplings (membrane and hinges).
   PetscErrorCode create_jacobian(Mat* J);
   bool has_follower_load() const { return loads.pressure != 0.0; }
+  // The residual is the gradient of energy(): no follower load, no
+  // position-dependent unloaded lengths.
+  bool has_potential() const {
+    return !has_follower_load() &&
+           !(nonelastic_response && nonelastic_response->moves_with_positions());
+  }
 
   // All vertex positions, in mesh numbering, on rank 0 (empty elsewhere).
   PetscErrorCode gather_positions(Vec x, std::vector<Eigen::Vector3d>* positions);
@@ -168,10 +198,11 @@ public:
   PetscErrorCode gather_strains(Vec x, std::vector<element::MembraneStrain>* strains);
   // Mesh indices of the triangles this rank assembles.
   std::vector<int> owned_triangles() const;
-  // Strains and tensions of the triangles this rank assembles, with their
-  // mesh indices (no communication: what the creep update needs).
-  PetscErrorCode owned_strains(Vec x,
-                               std::vector<std::pair<int, element::MembraneStrain>>* strains);
+  // Calls visit(mesh index, material, rest data, element positions) for every
+  // triangle this rank assembles (no communication: what the creep update needs).
+  using TriangleVisitor = std::function<void(
+      int, const ClothMaterial&, const element::TriangleRest&, const element::Vector9&)>;
+  PetscErrorCode visit_owned_triangles(Vec x, const TriangleVisitor& visit);
   // The friction anchors as (body, vertex, point xyz, normal xyz) rows, all
   // ranks' on rank 0, for checkpoints; restore_anchors takes the same rows on
   // every rank.
@@ -217,8 +248,6 @@ private:
   PetscErrorCode add_seam_forces(Vec x, Vec f);
   PetscErrorCode add_seam_pin_reaction(Vec x, Eigen::Vector3d* reaction);
   std::unique_ptr<SeamCoupling> seams_;
-  template <typename Visit>
-  PetscErrorCode for_each_triangle(const Visit& visit) const;
 
   MPI_Comm comm_;
   const TriangleMesh& mesh_;

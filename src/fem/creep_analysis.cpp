@@ -25,8 +25,10 @@ void check(const CreepOptions& options, double start) {
     throw InputError("creep: the end time " + std::to_string(options.time_end) +
                      " s is not after the start time " + std::to_string(start) + " s");
   }
-  if (!(options.max_step >= 0.0) || !(options.output_interval >= 0.0)) {
-    throw InputError("creep: the largest time step and the output interval must not be negative");
+  if (!(options.max_step >= 0.0) || !(options.output_interval >= 0.0) ||
+      !(options.damping >= 0.0)) {
+    throw InputError(
+        "creep: the largest time step, the output interval and the damping must not be negative");
   }
 }
 
@@ -42,7 +44,7 @@ double next_multiple(double time, double interval, double tiny) {
 PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
                            const CreepOptions& options, CreepReport* report,
                            const CreepObserver& observe, const CreepRestart& restart) {
-  Vec last = nullptr;
+  Vec last = nullptr, velocity = nullptr;
   PetscFunctionBeginUser;
   const auto started = std::chrono::steady_clock::now();
   problem.pins_follow_time = true;
@@ -58,13 +60,41 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
   check(options, start);
   const double end = options.time_end;
   const double tiny = 1e-9 * (end - start);
+  const bool monolithic = options.scheme == CreepScheme::monolithic;
+  // Monolithic: uncoupled however the run ends.
+  struct Uncouple {
+    CreepCoupling& creep;
+    ~Uncouple() { creep.uncouple(); }
+  } uncouple_at_exit{creep};
+  if (monolithic) creep.couple(0.0);
   IncrementalSystem system(problem, x);
   PetscCall(VecDuplicate(x, &last));
+  if (options.dynamic) {
+    PetscCall(VecDuplicate(x, &velocity));
+    PetscCall(VecSet(velocity, 0.0));
+    if (resume && !resume->velocities.empty()) {
+      PetscCall(problem.set_solution(resume->velocities, velocity));
+    }
+  }
+  // Every way out of this function destroys both.
+  struct Destroy {
+    Vec* first;
+    Vec* second;
+    ~Destroy() {
+      VecDestroy(first);
+      VecDestroy(second);
+    }
+  } destroy_at_exit{&last, &velocity};
 
   std::vector<double> landings = options.load.times();
   for (const PinGroupMotion& group : problem.pin_groups) {
     for (const PinKnot& knot : group.history.knots())
       landings.push_back(knot.time);
+  }
+  for (const contact::Body& body : problem.bodies) {
+    for (const std::vector<double>& times :
+         {body.motion.translation.times(), body.motion.angle.times(), body.motion.scale.times()})
+      landings.insert(landings.end(), times.begin(), times.end());
   }
   landings.push_back(end);
   std::sort(landings.begin(), landings.end());
@@ -79,7 +109,6 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
     if (!initial.converged) {
       report->reason = "the initial equilibrium did not converge (" + initial.reason + ")";
       report->final_time = start;
-      PetscCall(VecDestroy(&last));
       PetscFunctionReturn(0);
     }
     PetscCall(creep.record_tensions(x));
@@ -120,15 +149,29 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
       ++rejected;
       ++report->rejected_steps;
     };
-    // Equilibrium at t1 from the load factor the problem holds to `factor`.
+    // Equilibrium at t1 from the load factor the problem holds to `factor`;
+    // dynamic: the backward Euler step from the last accepted state.
     PetscInt newton_iterations = 0;
     const auto equilibrium = [&](double factor, bool* converged) -> PetscErrorCode {
+      PetscFunctionBeginUser;
+      if (options.dynamic) {
+        problem.load_factor = factor;
+        system.inertia_weight = 1.0 / (h * h);
+        system.damping_weight = options.damping / h;
+        PetscCall(VecCopy(last, system.previous()));
+        PetscCall(VecWAXPY(system.predicted(), h, velocity, last));
+        IncrementalSystem::Solve result;
+        PetscCall(system.solve(x, &result));
+        newton_iterations += result.newton_iterations;
+        *converged = result.converged;
+        if (!*converged) report->reason = result.reason;
+        PetscFunctionReturn(0);
+      }
       StaticOptions solve = options.equilibrium;
       solve.start_load_factor = problem.load_factor;
       solve.load_steps = 1;
       problem.load_factor = factor;
       StaticReport result;
-      PetscFunctionBeginUser;
       PetscCall(solve_static(system, x, solve, &result));
       newton_iterations += result.newton_iterations;
       *converged = result.converged;
@@ -138,12 +181,19 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
 
     problem.time = t1;
     bool converged = false;
+    if (monolithic) creep.couple(h);
     PetscCall(equilibrium(options.load.before(t1), &converged));
     double increment = 0.0;
-    if (converged) PetscCall(creep.advance(x, h, &increment));
+    if (converged && monolithic) PetscCall(creep.advance_coupled(x, &increment));
+    if (converged && !monolithic) PetscCall(creep.advance(x, h, &increment));
     const bool too_large =
         converged && increment > 2.0 * options.creep_tolerance && h > options.min_step;
-    if (converged && !too_large) PetscCall(equilibrium(options.load.after(t1), &converged));
+    // Staggered: equilibrium with the new unloaded lengths. Monolithic: x is
+    // already in equilibrium with them, unless the load jumps at t1.
+    const bool solve_again = !monolithic || options.load.after(t1) != options.load.before(t1);
+    if (converged && !too_large && solve_again) {
+      PetscCall(equilibrium(options.load.after(t1), &converged));
+    }
     if (!converged || too_large) {
       PetscCall(VecCopy(last, x));
       report->newton_iterations += newton_iterations;
@@ -157,6 +207,12 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
     }
     creep.commit();
     PetscCall(creep.record_tensions(x));
+    if (options.dynamic) {
+      PetscCall(problem.accept_step(x)); // statics do it inside solve_static
+      // v = (x - x_n) / h
+      PetscCall(VecWAXPY(velocity, -1.0, last, x));
+      PetscCall(VecScale(velocity, 1.0 / h));
+    }
     t = t1;
     ++step;
     report->newton_iterations += newton_iterations;
@@ -183,7 +239,7 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
     if (observe) PetscCall(observe(accepted, x));
     if (t >= next_checkpoint - tiny) {
       next_checkpoint = next_multiple(t, restart.checkpoint_interval, tiny);
-      if (restart.write) PetscCall(restart.write(accepted, x, dt));
+      if (restart.write) PetscCall(restart.write(accepted, x, velocity, dt));
     }
     if (options.print_progress && t >= next_progress - tiny) {
       PetscCall(PetscPrintf(problem.comm(),
@@ -200,7 +256,6 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
   report->final_time = t;
   report->solve_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  PetscCall(VecDestroy(&last));
   PetscFunctionReturn(0);
 }
 

@@ -3,11 +3,12 @@
 // each step solves static equilibrium at the step's end time with the
 // elements' unloaded lengths frozen, advances every element's creep state
 // over the step (fem/creep_coupling.hpp), solves equilibrium again with the
-// new unloaded lengths, and accepts the step. Loads follow a load-factor
+// new unloaded lengths, and accepts the step. The monolithic scheme instead
+// solves once, the creep step of every element inside the residual. Loads follow a load-factor
 // history in time, pins and bodies their own histories (ClothProblem::time).
 //
-// Step size: steps land on the knots of the load history and on output
-// times; otherwise the next step is the last one scaled by
+// Step size: steps land on the knots of the load history, of the pin and
+// body motions, and on output times; otherwise the next step is the last one scaled by
 // 0.9 creep_tolerance / (largest non-elastic strain increment), within
 // [0.5, 2] times the last and [min_step, max_step]. A step whose increment
 // exceeds twice the tolerance, or whose equilibrium fails, is rolled back and
@@ -28,7 +29,14 @@
 
 namespace sartor {
 
+// How equilibrium and the creep update meet within a step (docs/creep-structure.md).
+enum class CreepScheme {
+  staggered,  // thesis Algorithm 2: solve with the unloaded lengths frozen, update, solve again
+  monolithic, // the creep update inside the residual, with its consistent tangent
+};
+
 struct CreepOptions {
+  CreepScheme scheme = CreepScheme::staggered;
   double time_end = 3600.0;      // s, absolute
   double time_step = 1.0;        // s, the first step
   double min_step = 1e-6;        // s: a step cut below this ends the run
@@ -37,7 +45,13 @@ struct CreepOptions {
   LoadHistory load;
   double output_interval = 0.0; // s; 0: every step
   StaticOptions equilibrium;    // of the initial solve (load steps, cut-backs)
-  bool print_progress = false;  // a line on rank 0 every 5 % of the simulated time
+  // The dynamic variant (the thesis' own simulator): each step's equilibrium
+  // is a backward Euler step with the lumped masses and mass-proportional
+  // damping (fem/dynamics.hpp), from the last accepted positions and
+  // velocities; the initial state is static equilibrium at rest.
+  bool dynamic = false;
+  double damping = 0.0;        // alpha, 1/s (dynamic)
+  bool print_progress = false; // a line on rank 0 every 5 % of the simulated time
 };
 
 struct CreepStepReport {
@@ -69,8 +83,9 @@ struct CreepRestart {
   const RunCheckpoint* resume = nullptr; // start from this state instead of solving
   double checkpoint_interval = 0.0;      // s of simulated time; 0: none
   // Writes a checkpoint of the state after `step` (collective; the caller
-  // adds what it keeps, such as its history rows).
-  std::function<PetscErrorCode(const CreepStepReport& step, Vec x, double next_step)> write;
+  // adds what it keeps, such as its history rows). v: the velocities in the
+  // dynamic variant, else null.
+  std::function<PetscErrorCode(const CreepStepReport& step, Vec x, Vec v, double next_step)> write;
 };
 
 // Collective. x: positions, a solution vector of `problem`, advanced in place

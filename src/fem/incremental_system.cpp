@@ -42,23 +42,41 @@ IncrementalSystem::IncrementalSystem(ClothProblem& problem, Vec like) : problem_
   for (Vec* v : {&residual_, &mass_, &predicted_, &previous_, &work_})
     SartorPetscCall(VecDuplicate(like, v));
   SartorPetscCall(problem.lumped_mass(mass_));
-  SartorPetscCall(SNESCreate(problem.comm(), &snes_));
-  SartorPetscCall(SNESSetFunction(snes_, residual_, form_residual, this));
-  SartorPetscCall(SNESSetJacobian(snes_, jacobian_, jacobian_, form_jacobian, this));
-  // A follower load has no potential; otherwise the line search uses Phi.
-  if (!problem.has_follower_load()) SartorPetscCall(SNESSetObjective(snes_, form_objective, this));
-  // Defaults the options database can override: a residual below round-off
-  // of the membrane forces counts as converged.
-  SartorPetscCall(SNESSetTolerances(snes_, 1e-12 * problem.force_scale(), 1e-10, 1e-14, 100, -1));
-  SartorPetscCall(SNESSetFromOptions(snes_));
   // Keeps the residual norms of each solve (the first is the initial one).
   norms_.assign(1000, 0.0);
-  SartorPetscCall(SNESSetConvergenceHistory(snes_, norms_.data(), nullptr, PetscInt(norms_.size()),
-                                            PETSC_TRUE));
+  snes_has_objective_ = problem.has_potential();
+  SartorPetscCall(create_snes(snes_has_objective_, &snes_));
+}
+
+PetscErrorCode IncrementalSystem::create_snes(bool with_objective, SNES* snes) {
+  PetscFunctionBeginUser;
+  PetscCall(SNESCreate(problem_.comm(), snes));
+  PetscCall(SNESSetFunction(*snes, residual_, form_residual, this));
+  PetscCall(SNESSetJacobian(*snes, jacobian_, jacobian_, form_jacobian, this));
+  // Without a potential (a follower load, monolithic creep) the line search
+  // uses the residual norm; otherwise Phi.
+  if (with_objective) PetscCall(SNESSetObjective(*snes, form_objective, this));
+  // Defaults the options database can override: a residual below round-off
+  // of the membrane forces counts as converged.
+  PetscCall(SNESSetTolerances(*snes, 1e-12 * problem_.force_scale(), 1e-10, 1e-14, 100, -1));
+  PetscCall(SNESSetFromOptions(*snes));
+  PetscCall(SNESSetConvergenceHistory(*snes, norms_.data(), nullptr, PetscInt(norms_.size()),
+                                      PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
+SNES IncrementalSystem::snes() {
+  // A system whose potential comes and goes (monolithic creep holds its
+  // unloaded lengths at some solves) gets a second SNES without the
+  // objective: PETSc cannot unset one.
+  if (problem_.has_potential() || !snes_has_objective_) return snes_;
+  if (!snes_without_potential_) SartorPetscCall(create_snes(false, &snes_without_potential_));
+  return snes_without_potential_;
 }
 
 IncrementalSystem::~IncrementalSystem() {
   SNESDestroy(&snes_);
+  SNESDestroy(&snes_without_potential_);
   MatDestroy(&jacobian_);
   for (Vec* v : {&residual_, &mass_, &predicted_, &previous_, &work_})
     VecDestroy(v);
@@ -66,9 +84,10 @@ IncrementalSystem::~IncrementalSystem() {
 
 PetscErrorCode IncrementalSystem::solve(Vec x, Solve* result) {
   PetscFunctionBeginUser;
-  PetscCall(run_snes(x, result));
+  const SNES snes_now = snes();
+  PetscCall(run_snes(snes_now, x, result));
   PetscErrorCode (*line_search_objective)(SNES, Vec, PetscReal*, void*) = nullptr;
-  PetscCall(SNESGetObjective(snes_, &line_search_objective, nullptr));
+  PetscCall(SNESGetObjective(snes_now, &line_search_objective, nullptr));
   // Close to the solution a Newton step lowers Phi by less than its
   // round-off, and a line search on Phi fails although Newton converges.
   // Once the residual has dropped by 1e-3, or Newton's correction is below
@@ -77,13 +96,13 @@ PetscErrorCode IncrementalSystem::solve(Vec x, Solve* result) {
   // converge quadratically from there and need no merit function.
   SNESLineSearch line_search = nullptr;
   PetscReal position_norm = 0.0, residual_norm = 0.0, correction_norm = 0.0;
-  PetscCall(SNESGetLineSearch(snes_, &line_search));
+  PetscCall(SNESGetLineSearch(snes_now, &line_search));
   PetscCall(SNESLineSearchGetNorms(line_search, &position_norm, &residual_norm, &correction_norm));
   const bool in_newton_basin =
       result->residual_norm <= 1e-3 * norms_[0] || correction_norm <= 1e-6 * position_norm;
   if (result->reason == SNESConvergedReasons[SNES_DIVERGED_LINE_SEARCH] && line_search_objective &&
       in_newton_basin) {
-    PetscCall(PetscInfo(snes_,
+    PetscCall(PetscInfo(snes_now,
                         "line search on the potential stalled at |F| = %g; "
                         "finishing with full Newton steps\n",
                         result->residual_norm));
@@ -93,11 +112,11 @@ PetscErrorCode IncrementalSystem::solve(Vec x, Solve* result) {
     const std::string line_search_type = type;
     PetscReal atol = 0.0, rtol = 0.0, stol = 0.0;
     PetscInt max_iterations = 0, max_evaluations = 0;
-    PetscCall(SNESGetTolerances(snes_, &atol, &rtol, &stol, &max_iterations, &max_evaluations));
+    PetscCall(SNESGetTolerances(snes_now, &atol, &rtol, &stol, &max_iterations, &max_evaluations));
     PetscCall(SNESLineSearchSetType(line_search, SNESLINESEARCHBASIC));
-    PetscCall(SNESSetTolerances(snes_, atol, rtol, stol, 10, max_evaluations));
-    PetscCall(run_snes(x, result));
-    PetscCall(SNESSetTolerances(snes_, atol, rtol, stol, max_iterations, max_evaluations));
+    PetscCall(SNESSetTolerances(snes_now, atol, rtol, stol, 10, max_evaluations));
+    PetscCall(run_snes(snes_now, x, result));
+    PetscCall(SNESSetTolerances(snes_now, atol, rtol, stol, max_iterations, max_evaluations));
     PetscCall(SNESLineSearchSetType(line_search, line_search_type.c_str()));
     PetscCall(SNESLineSearchSetFromOptions(line_search)); // the type's own options again
     result->newton_iterations += first.newton_iterations;
@@ -106,14 +125,14 @@ PetscErrorCode IncrementalSystem::solve(Vec x, Solve* result) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode IncrementalSystem::run_snes(Vec x, Solve* result) {
+PetscErrorCode IncrementalSystem::run_snes(SNES snes, Vec x, Solve* result) {
   SNESConvergedReason reason;
   PetscFunctionBeginUser;
-  PetscCall(SNESSolve(snes_, nullptr, x));
-  PetscCall(SNESGetConvergedReason(snes_, &reason));
-  PetscCall(SNESGetIterationNumber(snes_, &result->newton_iterations));
-  PetscCall(SNESGetLinearSolveIterations(snes_, &result->linear_iterations));
-  PetscCall(SNESGetFunctionNorm(snes_, &result->residual_norm));
+  PetscCall(SNESSolve(snes, nullptr, x));
+  PetscCall(SNESGetConvergedReason(snes, &reason));
+  PetscCall(SNESGetIterationNumber(snes, &result->newton_iterations));
+  PetscCall(SNESGetLinearSolveIterations(snes, &result->linear_iterations));
+  PetscCall(SNESGetFunctionNorm(snes, &result->residual_norm));
   result->reason = SNESConvergedReasons[reason];
   result->converged = reason > 0;
   PetscFunctionReturn(0);

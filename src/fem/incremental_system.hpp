@@ -10,10 +10,10 @@
 // about x_n (mass-proportional damping alpha M v).
 //
 // The SNES takes every choice from the options database (no prefix), with
-// defaults: Newton with a line search on Phi (none with a follower load, which
-// has no potential), MUMPS LU, and a residual tolerance at round-off of the
-// membrane forces. Where the line search on Phi stalls at Phi's round-off
-// after the residual has fallen 1e3-fold, Newton finishes on the residual norm.
+// defaults: Newton with a line search on Phi (on the residual norm while
+// there is no potential: a follower load, monolithic creep), MUMPS LU, and a residual tolerance at
+// round-off of the membrane forces. Where the line search on Phi stalls at Phi's round-off after
+// the residual has fallen 1e3-fold, Newton finishes on the residual norm.
 
 #include "fem/cloth_problem.hpp"
 
@@ -33,7 +33,9 @@ public:
   IncrementalSystem& operator=(const IncrementalSystem&) = delete;
 
   ClothProblem& problem() { return problem_; }
-  SNES snes() const { return snes_; }
+  // The SNES the next solve uses: with the line search on Phi while the
+  // problem has a potential.
+  SNES snes();
   Vec mass() const { return mass_; }
   Vec predicted() const { return predicted_; }
   Vec previous() const { return previous_; }
@@ -57,10 +59,13 @@ public:
   PetscErrorCode objective(Vec x, PetscReal* value);
 
 private:
-  PetscErrorCode run_snes(Vec x, Solve* result);
+  PetscErrorCode create_snes(bool with_objective, SNES* snes);
+  PetscErrorCode run_snes(SNES snes, Vec x, Solve* result);
 
   ClothProblem& problem_;
   SNES snes_ = nullptr;
+  bool snes_has_objective_ = false;
+  SNES snes_without_potential_ = nullptr; // made when first needed
   Mat jacobian_ = nullptr;
   Vec residual_ = nullptr;
   Vec mass_ = nullptr;

@@ -1,5 +1,6 @@
 #include "material/creep_law.hpp"
 
+#include "common/dual.hpp"
 #include "common/error.hpp"
 
 #include <algorithm>
@@ -23,13 +24,20 @@ void require(bool ok, const std::string& context, const char* name, double value
   throw InputError(message.str());
 }
 
+// The law is written once, for any scalar: double for values, Dual for the
+// derivative with respect to the end tension (the monolithic coupling's
+// tangent). Branches follow the value.
+
 // x + expm1(-x) = x^2/2 - x^3/6 + ..., without cancellation for small x.
-double expm1_negative_plus(double x) {
-  if (x > 0.1) return std::expm1(-x) + x;
-  double term = x * x / 2.0;
-  double sum = term;
-  for (int k = 3; k < 20 && std::abs(term) > 1e-17 * sum; ++k) {
-    term *= -x / k;
+template <typename S>
+S expm1_negative_plus(S x) {
+  using std::abs;
+  using std::expm1;
+  if (x > 0.1) return expm1(-x) + x;
+  S term = x * x / 2.0;
+  S sum = term;
+  for (int k = 3; k < 20 && abs(term) > 1e-17 * sum; ++k) {
+    term *= -x / double(k);
     sum += term;
   }
   return sum;
@@ -40,33 +48,39 @@ double expm1_negative_plus(double x) {
 // equal forms: the first keeps full precision when rate*time is small (it
 // adds a small change to eps), the second when it is large (it adds a small
 // remainder to the target).
-double kelvin_update(double strain, double target, double slope, double rate, double time) {
-  const double x = rate * time;
-  const double gap = strain - target;
+template <typename S>
+S kelvin_update(S strain, S target, S slope, double rate, S time) {
+  using std::exp;
+  using std::expm1;
+  const S x = rate * time;
+  const S gap = strain - target;
   if (x < std::log(2.0)) {
-    return strain + gap * std::expm1(-x) + slope * expm1_negative_plus(x) / rate;
+    return strain + gap * expm1(-x) + slope * expm1_negative_plus(x) / rate;
   }
-  return target + slope * time + gap * std::exp(-x) + (slope / rate) * std::expm1(-x);
+  return target + slope * time + gap * exp(-x) + (slope / rate) * expm1(-x);
 }
 
 // Time at which the gap eps - tau of that element reaches zero, or `never`:
 // the gap obeys g' = -rate g - slope, so it is monotone and closes at most once.
-double gap_closing_time(double gap, double slope, double rate) {
+template <typename S>
+S gap_closing_time(S gap, S slope, double rate) {
+  using std::log1p;
   if (gap * slope <= 0.0) return never;
-  return std::log1p(gap * rate / slope) / rate;
+  return log1p(gap * rate / slope) / rate;
 }
 
 // Viscoelastic strain: rate_below while under its target, rate_above at or
 // over it. Once the gap closes the element follows the other branch, whose gap
 // moves away from zero for the rest of the step: at most one switch.
-double advance_viscoelastic(double strain, double target, double slope, double rate_below,
-                            double rate_above, double duration) {
-  const double gap = strain - target;
+template <typename S>
+S advance_viscoelastic(S strain, S target, S slope, double rate_below, double rate_above,
+                       S duration) {
+  const S gap = strain - target;
   const bool below = gap < 0.0 || (gap == 0.0 && slope > 0.0);
   const double rate = below ? rate_below : rate_above;
-  const double closing = gap_closing_time(gap, slope, rate);
+  const S closing = gap_closing_time(gap, slope, rate);
   if (closing >= duration) return kelvin_update(strain, target, slope, rate, duration);
-  const double target_at_switch = target + slope * closing;
+  const S target_at_switch = target + slope * closing;
   return kelvin_update(target_at_switch, target_at_switch, slope, below ? rate_above : rate_below,
                        duration - closing);
 }
@@ -75,32 +89,65 @@ double advance_viscoelastic(double strain, double target, double slope, double r
 // A falling target that the strain catches freezes it for the rest of the
 // step; a rising target that catches a frozen strain makes it creep for the
 // rest of the step: again at most one switch.
-double advance_permanent(double strain, double target, double slope, double rate, double duration) {
-  const double gap = strain - target;
+template <typename S>
+S advance_permanent(S strain, S target, S slope, double rate, S duration) {
+  const S gap = strain - target;
   const bool creeping = gap < 0.0 || (gap == 0.0 && slope > 0.0);
   if (creeping) {
-    const double closing = gap_closing_time(gap, slope, rate);
+    const S closing = gap_closing_time(gap, slope, rate);
     if (closing >= duration) return kelvin_update(strain, target, slope, rate, duration);
     return target + slope * closing;
   }
-  const double reached = slope > 0.0 ? gap / slope : never;
+  const S reached = slope > 0.0 ? gap / slope : S(never);
   if (reached >= duration) return strain;
-  const double target_at_switch = target + slope * reached;
+  const S target_at_switch = target + slope * reached;
   return kelvin_update(target_at_switch, target_at_switch, slope, rate, duration - reached);
 }
 
-CreepState advance_without_sign_change(const CreepParameters& p, const CreepState& state,
-                                       double tension_begin, double tension_end, double duration) {
+template <typename S>
+S saturation(const CreepParameters& p, S tension) {
+  return tension > 0.0 ? tension / p.creep_modulus : S(0.0);
+}
+
+// eps_v, eps_p of one step.
+template <typename S>
+struct Strains {
+  S viscoelastic;
+  S permanent;
+};
+
+template <typename S>
+Strains<S> advance_without_sign_change(const CreepParameters& p, Strains<S> state, S tension_begin,
+                                       S tension_end, S duration) {
   if (duration <= 0.0) return state;
-  const double saturation_begin = saturation_strain(p, tension_begin);
-  const double saturation_slope = (saturation_strain(p, tension_end) - saturation_begin) / duration;
-  CreepState next;
+  const S saturation_begin = saturation(p, tension_begin);
+  const S saturation_slope = (saturation(p, tension_end) - saturation_begin) / duration;
+  Strains<S> next;
   next.viscoelastic = advance_viscoelastic(state.viscoelastic, (1.0 - p.alpha) * saturation_begin,
                                            (1.0 - p.alpha) * saturation_slope, p.lambda_load,
                                            p.lambda_unload, duration);
   next.permanent = advance_permanent(state.permanent, p.alpha * saturation_begin,
                                      p.alpha * saturation_slope, p.lambda_load, duration);
   return next;
+}
+
+template <typename S>
+Strains<S> advance_step(const CreepParameters& p, const CreepState& state, double tension_begin,
+                        S tension_end, double duration) {
+  if (!(duration >= 0.0) || !std::isfinite(duration)) {
+    throw std::invalid_argument("creep step duration must be finite and >= 0");
+  }
+  const Strains<S> start{S(state.viscoelastic), S(state.permanent)};
+  if (duration == 0.0) return start;
+  // eps_sat = max(sigma, 0)/E has a kink where the tension changes sign:
+  // split there so that each piece has a linear target.
+  if ((tension_begin > 0.0 && tension_end < 0.0) || (tension_begin < 0.0 && tension_end > 0.0)) {
+    const S zero_at = duration * tension_begin / (tension_begin - tension_end);
+    const Strains<S> middle =
+        advance_without_sign_change(p, start, S(tension_begin), S(0.0), zero_at);
+    return advance_without_sign_change(p, middle, S(0.0), tension_end, duration - zero_at);
+  }
+  return advance_without_sign_change(p, start, S(tension_begin), tension_end, S(duration));
 }
 
 } // namespace
@@ -117,23 +164,21 @@ void validate(const CreepParameters& p, const std::string& context) {
 }
 
 double saturation_strain(const CreepParameters& p, double tension) {
-  return std::max(tension, 0.0) / p.creep_modulus;
+  return saturation(p, tension);
 }
 
 CreepState advance(const CreepParameters& p, const CreepState& state, double tension_begin,
                    double tension_end, double duration) {
-  if (!(duration >= 0.0) || !std::isfinite(duration)) {
-    throw std::invalid_argument("creep step duration must be finite and >= 0");
-  }
-  if (duration == 0.0) return state;
-  // eps_sat = max(sigma, 0)/E has a kink where the tension changes sign:
-  // split there so that each piece has a linear target.
-  if ((tension_begin > 0.0 && tension_end < 0.0) || (tension_begin < 0.0 && tension_end > 0.0)) {
-    const double zero_at = duration * tension_begin / (tension_begin - tension_end);
-    const CreepState middle = advance_without_sign_change(p, state, tension_begin, 0.0, zero_at);
-    return advance_without_sign_change(p, middle, 0.0, tension_end, duration - zero_at);
-  }
-  return advance_without_sign_change(p, state, tension_begin, tension_end, duration);
+  const Strains<double> next = advance_step(p, state, tension_begin, tension_end, duration);
+  return {next.viscoelastic, next.permanent};
+}
+
+CreepAdvance advance_with_sensitivity(const CreepParameters& p, const CreepState& state,
+                                      double tension_begin, double tension_end, double duration) {
+  const Strains<Dual> next =
+      advance_step(p, state, tension_begin, Dual(tension_end, 1.0), duration);
+  return {{next.viscoelastic.value, next.permanent.value},
+          next.viscoelastic.derivative + next.permanent.derivative};
 }
 
 } // namespace sartor

@@ -41,4 +41,14 @@ double saturation_strain(const CreepParameters& parameters, double tension);
 CreepState advance(const CreepParameters& parameters, const CreepState& state, double tension_begin,
                    double tension_end, double duration);
 
+// The same step, with the derivative of its non-elastic strain (eps_v + eps_p
+// at the end) with respect to `tension_end`, 1/(N/m): exact, the derivative of
+// the branch the step takes (the monolithic coupling's tangent).
+struct CreepAdvance {
+  CreepState state;
+  double nonelastic_per_tension = 0.0;
+};
+CreepAdvance advance_with_sensitivity(const CreepParameters& parameters, const CreepState& state,
+                                      double tension_begin, double tension_end, double duration);
+
 } // namespace sartor

@@ -189,6 +189,61 @@ TEST(MembraneDerivatives, SaintVenantKirchhoffPiecewiseCurves) {
   check_membrane_derivatives(MembraneModel::saint_venant_kirchhoff, true, "StVK piecewise");
 }
 
+// The monolithic creep coupling's sensitivities: tensions against central
+// differences of membrane_strain in x and n, the force's n-derivative against
+// central differences of membrane()'s gradient in n.
+void check_creep_sensitivity(MembraneModel model, bool kinked, const std::string& label) {
+  std::mt19937 random(kinked ? 23 : 19);
+  const MembraneMaterial mat = material(kinked);
+  for (const State state : {State::stretched, State::compressed, State::sheared, State::mixed}) {
+    for (int sample = 0; sample < 10;) {
+      const MembraneCase c = membrane_case(random, state, true);
+      const MembraneStrain strain = membrane_strain(model, mat, c.rest, c.nonelastic, c.x);
+      if (kinked && (near_a_kink(strain.warp) || near_a_kink(strain.weft))) continue;
+      ++sample;
+      SCOPED_TRACE(label + ", " + state_name(state) + ", sample " + std::to_string(sample));
+      const MembraneCreepSensitivity exact =
+          membrane_creep_sensitivity(model, mat, c.rest, c.nonelastic, c.x);
+      EXPECT_EQ(exact.tension, Eigen::Vector2d(strain.tension_warp, strain.tension_weft));
+
+      const auto tension_at = [&](const Vector9& y) -> Eigen::Vector2d {
+        const MembraneStrain s = membrane_strain(model, mat, c.rest, c.nonelastic, y);
+        return {s.tension_warp, s.tension_weft};
+      };
+      const double step = relative_step * c.size;
+      EXPECT_LT(
+          relative_error(numeric_jacobian<2, 9>(tension_at, c.x, step), exact.tension_per_position),
+          tolerance);
+
+      const auto with = [&](const Eigen::Vector2d& n) { return NonelasticStrain{n(0), n(1)}; };
+      const Eigen::Vector2d n(c.nonelastic.warp, c.nonelastic.weft);
+      const auto tension_of_n = [&](const Eigen::Vector2d& m) -> Eigen::Vector2d {
+        const MembraneStrain s = membrane_strain(model, mat, c.rest, with(m), c.x);
+        return {s.tension_warp, s.tension_weft};
+      };
+      const auto force_of_n = [&](const Eigen::Vector2d& m) -> Vector9 {
+        return membrane(model, mat, c.rest, with(m), c.x, Want::gradient).gradient;
+      };
+      EXPECT_LT(relative_error(numeric_jacobian<2, 2>(tension_of_n, n, relative_step),
+                               exact.tension_per_nonelastic),
+                tolerance);
+      EXPECT_LT(relative_error(numeric_jacobian<9, 2>(force_of_n, n, relative_step),
+                               exact.force_per_nonelastic),
+                tolerance);
+    }
+  }
+}
+
+TEST(MembraneCreepSensitivity, BaraffWitkin) {
+  check_creep_sensitivity(MembraneModel::baraff_witkin, false, "BW linear");
+  check_creep_sensitivity(MembraneModel::baraff_witkin, true, "BW piecewise");
+}
+
+TEST(MembraneCreepSensitivity, SaintVenantKirchhoff) {
+  check_creep_sensitivity(MembraneModel::saint_venant_kirchhoff, false, "StVK linear");
+  check_creep_sensitivity(MembraneModel::saint_venant_kirchhoff, true, "StVK piecewise");
+}
+
 // --- bending -------------------------------------------------------------------
 
 struct HingeCase {

@@ -562,6 +562,63 @@ void expect_rejected(const CreepParameters& p, const std::string& parameter) {
   }
 }
 
+// --- the end-tension sensitivity of the monolithic coupling's tangent ---
+
+TEST(CreepLawSensitivity, MatchesCentralDifferencesOnEveryBranch) {
+  // Random ramps from states above and below both targets (loading,
+  // recovery, switches within the step, sign changes of the tension): the
+  // dual-number derivative against a central difference of advance().
+  std::mt19937_64 rng(8128);
+  int checked = 0;
+  for (int set = 0; set < 2000; ++set) {
+    const CreepParameters p = random_parameters(rng);
+    const double tension_begin = uniform(rng, -1000.0, 5000.0);
+    const double tension_end = uniform(rng, -1000.0, 5000.0);
+    const double duration = log_uniform(rng, 1e-2, 1e4);
+    const double scale = 5000.0 / p.creep_modulus;
+    const CreepState start{uniform(rng, 0.0, 1.0) * (1.0 - p.alpha) * scale,
+                           uniform(rng, 0.0, 1.0) * p.alpha * scale};
+    const CreepAdvance step =
+        advance_with_sensitivity(p, start, tension_begin, tension_end, duration);
+    const CreepState plain = advance(p, start, tension_begin, tension_end, duration);
+    EXPECT_EQ(step.state.viscoelastic, plain.viscoelastic);
+    EXPECT_EQ(step.state.permanent, plain.permanent);
+    const double h = 1e-5 * std::max(1.0, std::abs(tension_end));
+    // Central differences are meaningless across a kink (tension sign, a
+    // branch switching exactly at the step's end): skip those few.
+    if (std::abs(tension_end) < 2.0 * h) continue;
+    const double up = advance(p, start, tension_begin, tension_end + h, duration).nonelastic();
+    const double down = advance(p, start, tension_begin, tension_end - h, duration).nonelastic();
+    const double one_sided_up = (up - plain.nonelastic()) / h;
+    const double one_sided_down = (plain.nonelastic() - down) / h;
+    if (std::abs(one_sided_up - one_sided_down) > 1e-4 * std::abs(one_sided_up) + 1e-18) continue;
+    SCOPED_TRACE(describe(p) + " ramp " + ::testing::PrintToString(tension_begin) + " -> " +
+                 ::testing::PrintToString(tension_end) + " over " +
+                 ::testing::PrintToString(duration) + " s");
+    // Truncation O(h^2) plus the difference's round-off, ~1e-16 |eps| / h.
+    const double central = (up - down) / (2.0 * h);
+    EXPECT_NEAR(step.nonelastic_per_tension, central,
+                1e-6 * std::abs(central) + 1e-14 * plain.nonelastic() / h);
+    ++checked;
+    if (HasFailure()) break;
+  }
+  EXPECT_GT(checked, 1800);
+}
+
+TEST(CreepLawSensitivity, HeldSaturationClosedForm) {
+  // From rest, a tension ramp 0 -> s over t: with alpha = 0 the Kelvin
+  // solution is eps = (s/E) (1 - (1 - e^{-l t})/(l t)), linear in s.
+  const CreepParameters p{2000.0, 0.0, 0.03, 0.01};
+  const double t = 40.0;
+  const double x = p.lambda_load * t;
+  const double expected = (1.0 - (-std::expm1(-x)) / x) / p.creep_modulus;
+  const CreepAdvance step = advance_with_sensitivity(p, {}, 0.0, 150.0, t);
+  EXPECT_TRUE(near_relative(step.nonelastic_per_tension, expected, 1e-13));
+  EXPECT_TRUE(near_relative(step.state.nonelastic(), 150.0 * expected, 1e-13));
+  // Compression: no creep, no sensitivity.
+  EXPECT_EQ(advance_with_sensitivity(p, {}, -10.0, -150.0, t).nonelastic_per_tension, 0.0);
+}
+
 TEST(CreepLawValidate, AcceptsTableParametersAndRangeEnds) {
   EXPECT_NO_THROW(validate(cotton_twill_warp(), "cotton_twill:warp"));
   EXPECT_NO_THROW(validate({1.0, 0.0, 1e-9, 1e-9}, "alpha = 0"));

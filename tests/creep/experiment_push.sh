@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# The push test (thesis Fig. 5.6, cases/creep/push.yaml) on an 8 x 8 mesh with
+# E = 3000, 300, 30 N/m: every run converges and reaches its end time, and the
+# residual bulge after withdrawal grows as E falls (each at least 20 % more
+# than the last).
+#   experiment_push.sh SARTOR CASE.yaml POSTPROC.py WORKDIR
+set -euo pipefail
+sartor=$1 case=$2 postproc=$3 work=$4
+python=/usr/bin/python3
+"$python" -c "import h5py, numpy" 2> /dev/null || { echo "skip: $python lacks h5py/numpy"; exit 77; }
+rm -rf "$work" && mkdir -p "$work"
+coarse=(--mesh-nx 8 --mesh-ny 8 --time-end 6 --output-interval 1)
+runs=()
+for modulus in 3000 300 30; do
+  "$sartor" run "$case" "${coarse[@]}" --creep-parameters "$modulus,0.8,0.05,0.05" \
+    --output "$work/E$modulus" > "$work/E$modulus.log"
+  runs+=("$work/E$modulus")
+done
+"$python" "$postproc" push "${runs[@]}" --labels "E=3000,E=300,E=30" --json "$work/push.json"
+"$python" - "$work/push.json" <<'PY'
+import json, sys
+runs = json.load(open(sys.argv[1]))["runs"]
+failures = [f"{r['label']}: converged {r['converged']}, completed {r['completed']}"
+            for r in runs if not (r["converged"] and r["completed"])]
+bulge = [r["residual_bulge_m"] for r in runs]
+if not bulge[0] > 0.0:
+    failures.append(f"no bulge at E=3000: {bulge[0]}")
+for a, b, la, lb in zip(bulge, bulge[1:], runs, runs[1:]):
+    if not b > 1.2 * a:
+        failures.append(f"residual bulge {lb['label']} {b:.4g} m is not 20 % above {la['label']} {a:.4g} m")
+if failures:
+    sys.exit("\n".join(failures))
+PY
