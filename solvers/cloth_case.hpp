@@ -83,9 +83,19 @@ struct CaseState {
   const CreepCoupling* creep = nullptr; // creep runs: the elements' creep state
 };
 using CaseStepObserver = std::function<void(ClothProblem& problem, Vec x, const CaseState& state)>;
+// A cloth handed to solve_case in memory instead of by --mesh (`sartor
+// drape`: the constructed garment). Its mesh's material_ids number `fabrics`
+// (each a preset or FILE.yaml), which replace --fabric; the other material
+// options (--density, --bending-stiffness, ...) apply to every fabric.
+// Several fabrics rule out --seam-merge and --analysis creep (one material).
+struct CaseCloth {
+  TriangleMesh mesh;
+  std::vector<std::string> fabrics;
+};
 CaseResult solve_case(const Options& options, int extra_refinements = 0,
                       const CaseStepObserver& observe = {},
-                      const CaseCheckpointing& checkpointing = {});
+                      const CaseCheckpointing& checkpointing = {},
+                      const CaseCloth* cloth = nullptr);
 
 // The parts of `sartor run`'s summary.json that describe the solve: "mesh",
 // "converged", "solver", "load_steps" (statics) or "dynamics" (time stepping),
@@ -96,6 +106,11 @@ void add_case_summary(const CaseResult& result, nlohmann::json& summary);
 // Rank 0: result.h5, result.xmf, final.obj and summary.json in `directory`.
 void write_case_results(const std::string& directory, const CaseResult& result,
                         const nlohmann::json& summary);
+
+// An observer for solve_case that writes the output states of dynamic and
+// creep runs (positions, strains; creep strains) to DIRECTORY/series.h5 +
+// series.xmf, as `sartor run` does.
+CaseStepObserver series_writer(const std::string& directory);
 
 // Collective: every option in effect, to DIRECTORY/petsc_options.txt.
 void write_petsc_options(const std::string& directory);

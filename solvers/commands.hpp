@@ -39,6 +39,8 @@ const CommandSpec& body_command();
 int run_body(const Invocation&);
 const CommandSpec& construct_command();
 int run_construct(const Invocation&);
+const CommandSpec& drape_command();
+int run_drape(const Invocation&);
 
 // Metadata every output JSON carries: version, command line, options used.
 nlohmann::json run_metadata(const Invocation& invocation, const std::string& command);

@@ -28,6 +28,7 @@ const std::vector<Command>& commands() {
       {sartor::pattern_command, sartor::run_pattern},
       {sartor::body_command, sartor::run_body},
       {sartor::construct_command, sartor::run_construct},
+      {sartor::drape_command, sartor::run_drape},
   };
   return all;
 }

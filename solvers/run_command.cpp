@@ -81,6 +81,8 @@ const std::vector<OptionSpec>& case_option_specs() {
        "--analysis dynamic); groups separated by '|'"},
       {"pin-motion-boxes", "I,..|J,..", "",
        "the --pin-box boxes (numbered from 1) each --pin-motion group moves [all pins]"},
+      {"pin-release", "BOX:T,...", "",
+       "dynamic, creep: the pins of --pin-box BOX (numbered from 1) let go at time T, s"},
       {"pin-rotation-axis", "X,Y,Z", "0,0,1", "axis of the --pin-motion angles"},
       {"pin-rotation-center", "X,Y,Z", "0,0,0", "a point of that axis, m"},
       {"probe", "X,Y,Z", "", "report the displacement of the vertex nearest this point"},
@@ -207,12 +209,16 @@ void snap_to_circle(TriangleMesh& cloth, double radius) {
   }
 }
 
-// The mesh the options describe, with `extra_refinements` more uniform
-// refinements than --mesh-refine asks for; `refinements` gets the total.
-TriangleMesh build_mesh(const Options& options, int extra_refinements, int* refinements) {
+// The mesh the options describe (or `given`, in place of --mesh), with
+// `extra_refinements` more uniform refinements than --mesh-refine asks for;
+// `refinements` gets the total.
+TriangleMesh build_mesh(const Options& options, int extra_refinements, int* refinements,
+                        const TriangleMesh* given) {
   const std::string kind = options.text("mesh");
   TriangleMesh cloth;
-  if (kind == "rectangle") {
+  if (given) {
+    cloth = *given;
+  } else if (kind == "rectangle") {
     cloth =
         mesh::rectangle(options.positive_real("mesh-width"), options.positive_real("mesh-height"),
                         count_option(options, "mesh-nx", 1), count_option(options, "mesh-ny", 1),
@@ -257,8 +263,10 @@ TriangleMesh build_mesh(const Options& options, int extra_refinements, int* refi
   return cloth;
 }
 
-ClothMaterial build_material(const Options& options) {
-  const auto choices = resolve_fabrics(options.text("fabric"));
+// The material of `fabric` (a preset or FILE.yaml) with the options' moduli,
+// models, bending and density.
+ClothMaterial build_material(const Options& options, const std::string& fabric_spec) {
+  const auto choices = resolve_fabrics(fabric_spec);
   const Fabric& fabric = choices.front().fabric;
   const auto curve = [&](const char* option, Direction direction) {
     if (options.is_set(option)) {
@@ -297,6 +305,14 @@ ClothMaterial build_material(const Options& options) {
   return material;
 }
 
+// Whether p lies in the box x0,x1,y0,y1,z0,z1 starting at `box`.
+bool in_box(const double* box, const Eigen::Vector3d& p) {
+  bool inside = true;
+  for (std::size_t d = 0; d < 3; ++d)
+    inside = inside && p[long(d)] >= box[2 * d] && p[long(d)] <= box[2 * d + 1];
+  return inside;
+}
+
 std::vector<int> pinned_vertices(const Options& options, const TriangleMesh& mesh) {
   std::vector<bool> pin(mesh.vertex_count(), false);
   if (options.is_set("pin-box")) {
@@ -306,14 +322,8 @@ std::vector<int> pinned_vertices(const Options& options, const TriangleMesh& mes
                        std::to_string(boxes.size()));
     }
     for (std::size_t b = 0; b < boxes.size(); b += 6) {
-      for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
-        bool inside = true;
-        for (std::size_t d = 0; d < 3; ++d) {
-          const double coordinate = mesh.positions[v][long(d)];
-          inside = inside && coordinate >= boxes[b + 2 * d] && coordinate <= boxes[b + 2 * d + 1];
-        }
-        if (inside) pin[v] = true;
-      }
+      for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+        if (in_box(&boxes[b], mesh.positions[v])) pin[v] = true;
     }
   }
   if (options.flag("pin-boundary")) {
@@ -410,11 +420,8 @@ std::vector<PinGroupMotion> pin_groups(const Options& options, const TriangleMes
       }
       const double* b = &boxes[6 * std::size_t(box - 1)];
       for (std::size_t i = 0; i < pinned.size(); ++i) {
-        const Eigen::Vector3d& p = mesh.positions[std::size_t(pinned[i])];
-        bool inside = true;
-        for (std::size_t d = 0; d < 3; ++d)
-          inside = inside && p[long(d)] >= b[2 * d] && p[long(d)] <= b[2 * d + 1];
-        if (!inside || group_of[i] == int(g + 1)) continue;
+        if (!in_box(b, mesh.positions[std::size_t(pinned[i])]) || group_of[i] == int(g + 1))
+          continue;
         if (group_of[i] != 0) {
           throw InputError("option --pin-motion-boxes: pinned vertex " + std::to_string(pinned[i]) +
                            " is in groups " + std::to_string(group_of[i]) + " and " +
@@ -426,6 +433,64 @@ std::vector<PinGroupMotion> pin_groups(const Options& options, const TriangleMes
     }
   }
   return groups;
+}
+
+// --pin-release "BOX:TIME,...": per pinned vertex, the time its pin lets go
+// (infinity: never). A vertex is let go only when every --pin-box holding it
+// is, at the last of their times; pins of --pin-boundary and --pin-vertices
+// hold throughout.
+std::vector<double> pin_release_times(const Options& options, const TriangleMesh& mesh,
+                                      const std::vector<int>& pinned) {
+  std::vector<double> release(pinned.size(), INFINITY);
+  if (!options.is_set("pin-release")) return release;
+  const auto boxes =
+      options.is_set("pin-box") ? option_numbers(options, "pin-box", 0) : std::vector<double>{};
+  const std::size_t box_count = boxes.size() / 6;
+  std::vector<double> box_release(box_count, INFINITY);
+  for (const std::string& item : split(options.text("pin-release"), ',')) {
+    const auto colon = item.find(':');
+    std::size_t box_used = 0, time_used = 0;
+    long box = 0;
+    double time = NAN;
+    try {
+      if (colon != std::string::npos) {
+        box = std::stol(item.substr(0, colon), &box_used);
+        time = std::stod(item.substr(colon + 1), &time_used);
+      }
+    } catch (const std::exception&) {
+      box_used = 0;
+    }
+    const bool whole = colon != std::string::npos && box_used > 0 &&
+                       item.find_first_not_of(" \t", box_used) >= colon && time_used > 0 &&
+                       item.find_first_not_of(" \t", colon + 1 + time_used) == std::string::npos;
+    if (!whole || !std::isfinite(time) || time < 0.0) {
+      throw InputError("option --pin-release: '" + item +
+                       "' is not BOX:TIME (a --pin-box number and a time >= 0 in s)");
+    }
+    if (box < 1 || std::size_t(box) > box_count) {
+      throw InputError("option --pin-release: box " + std::to_string(box) +
+                       " is not a box of --pin-box (1.." + std::to_string(box_count) + ")");
+    }
+    box_release[std::size_t(box - 1)] = time;
+  }
+  std::vector<bool> listed(mesh.vertex_count(), false);
+  if (options.flag("pin-boundary")) {
+    for (int v : boundary_vertices(mesh))
+      listed[std::size_t(v)] = true;
+  }
+  if (options.is_set("pin-vertices")) {
+    for (double value : option_numbers(options, "pin-vertices", 0))
+      listed[std::size_t(value)] = true; // checked by pinned_vertices
+  }
+  for (std::size_t i = 0; i < pinned.size(); ++i) {
+    const Eigen::Vector3d& p = mesh.positions[std::size_t(pinned[i])];
+    if (listed[std::size_t(pinned[i])]) continue;
+    double latest = -INFINITY;
+    for (std::size_t b = 0; b < box_count; ++b)
+      if (in_box(&boxes[6 * b], p)) latest = std::max(latest, box_release[b]);
+    release[i] = latest;
+  }
+  return release;
 }
 
 // --edge-force: consistent nodal forces of a uniform line load on the
@@ -509,12 +574,29 @@ void broadcast(double* values, int count) {
 } // namespace
 
 CaseResult solve_case(const Options& options, int extra_refinements,
-                      const CaseStepObserver& observe, const CaseCheckpointing& checkpointing) {
+                      const CaseStepObserver& observe, const CaseCheckpointing& checkpointing,
+                      const CaseCloth* cloth) {
   const auto started = std::chrono::steady_clock::now();
   CaseResult result;
-  result.mesh = build_mesh(options, extra_refinements, &result.mesh_refine);
+  result.mesh =
+      build_mesh(options, extra_refinements, &result.mesh_refine, cloth ? &cloth->mesh : nullptr);
   const TriangleMesh& mesh = result.mesh;
-  const ClothMaterial material = build_material(options);
+  std::vector<ClothMaterial> materials;
+  for (const std::string& fabric :
+       cloth ? cloth->fabrics : std::vector<std::string>{options.text("fabric")})
+    materials.push_back(build_material(options, fabric));
+  if (materials.size() > 1 && (options.flag("seam-merge") || options.text("analysis") == "creep")) {
+    throw InputError("the cloth has " + std::to_string(materials.size()) +
+                     " fabrics; --seam-merge and --analysis creep need one: give --fabric");
+  }
+  // Seams take their automatic stiffness from the stiffest fabric.
+  const ClothMaterial& material = *std::max_element(
+      materials.begin(), materials.end(), [](const ClothMaterial& a, const ClothMaterial& b) {
+        const auto stiffness = [](const ClothMaterial& m) {
+          return std::max(m.membrane.warp.initial_modulus(), m.membrane.weft.initial_modulus());
+        };
+        return stiffness(a) < stiffness(b);
+      });
   std::vector<int> pinned = pinned_vertices(options, mesh);
   // Seams (solvers/seam_case.hpp): sewn by springs, or sewn first and merged.
   const std::vector<Seam> seams = case_seams(options, mesh, result.mesh_refine);
@@ -527,7 +609,8 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   result.pinned_vertices = pinned.size();
   result.h = longest_material_edge(mesh);
 
-  ClothProblem problem(PETSC_COMM_WORLD, mesh, material, pinned);
+  const std::vector<double> release_times = pin_release_times(options, mesh, pinned);
+  ClothProblem problem(PETSC_COMM_WORLD, mesh, materials, pinned, release_times);
   problem.loads.gravity = vector3(options, "gravity");
   problem.loads.pressure = options.real("pressure");
   if (options.is_set("point-force")) {
@@ -555,6 +638,9 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   if ((dynamic || creep) && problem.pin_motion != Eigen::Vector3d::Zero()) {
     throw InputError("option --pin-move ramps the pins with the load in statics; with --analysis " +
                      analysis + " give a history in time: --pin-motion \"0:0,0,0; T:DX,DY,DZ\"");
+  }
+  if (!dynamic && !creep && options.is_set("pin-release")) {
+    throw InputError("option --pin-release: pins let go in time; give --analysis dynamic or creep");
   }
   if (!creep && !checkpointing.restart_file.empty()) {
     throw InputError("option --restart: only --analysis creep runs resume from checkpoints");
@@ -812,12 +898,9 @@ void write_petsc_options(const std::string& directory) {
   SartorPetscCall(PetscViewerDestroy(&viewer));
 }
 
-int run_run(const Invocation& invocation) {
-  const Options& options = invocation.options;
-  const std::string directory = options.text("output");
-  // Dynamic runs write their states at output times into series.h5/.xmf.
-  std::unique_ptr<ClothTimeSeries> series;
-  const CaseStepObserver write_state = [&](ClothProblem& problem, Vec x, const CaseState& state) {
+CaseStepObserver series_writer(const std::string& directory) {
+  auto series = std::make_shared<std::unique_ptr<ClothTimeSeries>>();
+  return [directory, series](ClothProblem& problem, Vec x, const CaseState& state) {
     if (!state.output) return;
     std::vector<Eigen::Vector3d> positions;
     std::vector<element::MembraneStrain> strains;
@@ -839,9 +922,16 @@ int run_run(const Invocation& invocation) {
         fields[3].values.push_back(c.weft.permanent);
       }
     }
-    if (!series) series = std::make_unique<ClothTimeSeries>(directory, problem.mesh());
-    series->write(state.time, positions, strains, fields);
+    if (!*series) *series = std::make_unique<ClothTimeSeries>(directory, problem.mesh());
+    (*series)->write(state.time, positions, strains, fields);
   };
+}
+
+int run_run(const Invocation& invocation) {
+  const Options& options = invocation.options;
+  const std::string directory = options.text("output");
+  // Dynamic runs write their states at output times into series.h5/.xmf.
+  const CaseStepObserver write_state = series_writer(directory);
   CaseCheckpointing checkpointing;
   checkpointing.interval = options.nonnegative_real("checkpoint-interval");
   checkpointing.file =

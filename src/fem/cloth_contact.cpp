@@ -20,8 +20,8 @@ Eigen::Vector3d position(const PetscScalar* x, PetscInt offset) {
 
 void ClothProblem::set_up_contact() {
   std::vector<bool> free(mesh_.vertex_count(), true);
-  for (int v : pinned_)
-    free[std::size_t(v)] = false;
+  for (std::size_t i = 0; i < pinned_.size(); ++i)
+    free[std::size_t(pinned_[i])] = releasable(i); // held ones touch bodies once let go
   for (std::size_t v = 0; v < mesh_.vertex_count(); ++v) {
     if (vertex_owned_[v] && free[v]) contact_vertices_.push_back(int(v));
   }

@@ -8,6 +8,7 @@
 
 #include <hdf5.h>
 
+#include <chrono>
 #include <cstdio>
 #include <iomanip>
 #include <sstream>
@@ -178,17 +179,32 @@ void ClothTimeSeries::write(double time, const std::vector<Eigen::Vector3d>& pos
     write_dataset(file.get(), group.str() + "/time", H5T_NATIVE_DOUBLE, &time, {1}, h5);
   }
   times_.push_back(time);
-  std::ostringstream xdmf;
-  xdmf << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
-       << " <Grid Name=\"cloth\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  for (std::size_t k = 0; k < times_.size(); ++k) {
-    std::ostringstream step;
-    step << "/steps/" << std::setw(6) << std::setfill('0') << k;
-    xdmf << grid_text("series.h5", step.str(), "cloth", mesh_.vertex_count(),
-                      mesh_.triangle_count(), &times_[k], extra_names_);
+  grids_ += grid_text("series.h5", group.str(), "cloth", mesh_.vertex_count(),
+                      mesh_.triangle_count(), &times_.back(), extra_names_);
+  // The index is rewritten whole, so rewriting it after every one of many
+  // states would cost their number squared: after the first hundred states
+  // it is rewritten at most once a second (and when the series closes).
+  const auto now = std::chrono::steady_clock::now();
+  if (times_.size() <= 100 || now - index_written_ >= std::chrono::seconds(1)) write_index();
+}
+
+void ClothTimeSeries::write_index() {
+  write_file_atomically(directory_ + "/series.xmf",
+                        "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
+                        " <Grid Name=\"cloth\" GridType=\"Collection\" "
+                        "CollectionType=\"Temporal\">\n" +
+                            grids_ + " </Grid>\n </Domain>\n</Xdmf>\n");
+  index_states_ = times_.size();
+  index_written_ = std::chrono::steady_clock::now();
+}
+
+ClothTimeSeries::~ClothTimeSeries() {
+  if (index_states_ == times_.size()) return;
+  try {
+    write_index();
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "sartor: %s/series.xmf: %s\n", directory_.c_str(), error.what());
   }
-  xdmf << " </Grid>\n </Domain>\n</Xdmf>\n";
-  write_file_atomically(directory_ + "/series.xmf", xdmf.str());
 }
 
 } // namespace sartor

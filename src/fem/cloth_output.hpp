@@ -10,6 +10,7 @@
 #include "element/membrane.hpp"
 #include "mesh/triangle_mesh.hpp"
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -23,7 +24,9 @@ void write_cloth_results(const std::string& directory, const TriangleMesh& mesh,
 //   series.h5   the mesh (/mesh as in result.h5), then one group per state,
 //               /steps/NNNNNN/{time, fields/*, cell_fields/*}
 //   series.xmf  a temporal collection of those states; rewritten after each
-//               state, so a running or stopped simulation opens as it stands
+//               of the first 100 states, then at most once a second, and when
+//               the series closes, so a running or stopped simulation opens
+//               as it stands (a killed one without its last second)
 class ClothTimeSeries {
 public:
   // A per-triangle field beyond the strains and tensions (e.g. creep strains).
@@ -32,6 +35,10 @@ public:
     std::vector<double> values; // per mesh triangle
   };
   ClothTimeSeries(const std::string& directory, const TriangleMesh& mesh);
+  // Completes the XDMF index (series.xmf) if the last states are not in it.
+  ~ClothTimeSeries();
+  ClothTimeSeries(const ClothTimeSeries&) = delete;
+  ClothTimeSeries& operator=(const ClothTimeSeries&) = delete;
   // Every state must have the same extra cell fields.
   void write(double time, const std::vector<Eigen::Vector3d>& positions,
              const std::vector<element::MembraneStrain>& strains,
@@ -39,10 +46,15 @@ public:
   std::size_t states() const { return times_.size(); }
 
 private:
+  void write_index();
+
   std::string directory_;
   const TriangleMesh& mesh_;
   std::vector<double> times_;
   std::vector<std::string> extra_names_;
+  std::string grids_;            // the index's entries, one per state
+  std::size_t index_states_ = 0; // states in series.xmf as last written
+  std::chrono::steady_clock::time_point index_written_;
 };
 
 } // namespace sartor

@@ -94,8 +94,15 @@ ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh, const ClothM
     : ClothProblem(comm, mesh, std::vector<ClothMaterial>{material}, pinned) {}
 
 ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh,
-                           std::vector<ClothMaterial> materials, const std::vector<int>& pinned)
-    : comm_(comm), mesh_(mesh), materials_(std::move(materials)), pinned_(pinned) {
+                           std::vector<ClothMaterial> materials, const std::vector<int>& pinned,
+                           const std::vector<double>& release_times)
+    : comm_(comm), mesh_(mesh), materials_(std::move(materials)), pinned_(pinned),
+      release_times_(release_times) {
+  if (release_times_.empty()) release_times_.assign(pinned_.size(), INFINITY);
+  if (release_times_.size() != pinned_.size()) {
+    throw InputError("cloth: " + std::to_string(release_times_.size()) + " release times for " +
+                     std::to_string(pinned_.size()) + " pins");
+  }
   validate(mesh, "cloth mesh");
   if (materials_.empty()) throw InputError("cloth: no material given");
   for (const ClothMaterial& material : materials_) {
@@ -179,8 +186,8 @@ ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh,
   // Three dofs per vertex; pinned vertices are constrained, so the global
   // system holds the free dofs only.
   std::vector<bool> is_pinned(mesh.vertex_count(), false);
-  for (int v : pinned)
-    is_pinned[std::size_t(v)] = true;
+  for (std::size_t i = 0; i < pinned.size(); ++i)
+    is_pinned[std::size_t(pinned[i])] = !releasable(i);
   PetscSection section = nullptr;
   SartorPetscCall(PetscSectionCreate(comm, &section));
   PetscInt chart_start = 0, chart_end = 0;
@@ -215,6 +222,15 @@ ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh,
     const auto v = std::size_t(-original[std::size_t(p)] - 1);
     SartorPetscCall(PetscSectionGetOffset(local_section, p, &vertex_dof_[v]));
     vertex_owned_[v] = !foreign[std::size_t(p)];
+  }
+  ISLocalToGlobalMapping local_to_global = nullptr;
+  SartorPetscCall(DMGetLocalToGlobalMapping(dm_, &local_to_global));
+  for (std::size_t i = 0; i < pinned_.size(); ++i) {
+    const auto v = std::size_t(pinned_[i]);
+    if (!releasable(i) || !vertex_owned_[v]) continue;
+    PetscInt row = 0;
+    SartorPetscCall(ISLocalToGlobalMappingApply(local_to_global, 1, &vertex_dof_[v], &row));
+    releasable_rows_.push_back({i, row});
   }
 
   // Owned triangles, and the hinges of the owned triangle with the lower index.
@@ -368,12 +384,83 @@ PetscErrorCode ClothProblem::to_local(Vec x) {
   PetscCall(VecGetArray(local_x_, &values));
   for (std::size_t i = 0; i < pinned_.size(); ++i) {
     const PetscInt offset = vertex_dof_[std::size_t(pinned_[i])];
-    if (offset < 0) continue;
+    if (offset < 0 || releasable(i)) continue; // a releasable pin's place is its equation's
     const Eigen::Vector3d& place = places[i];
     for (std::size_t d = 0; d < 3; ++d)
       values[offset + PetscInt(d)] = place[long(d)];
   }
   PetscCall(VecRestoreArray(local_x_, &values));
+  PetscFunctionReturn(0);
+}
+
+bool ClothProblem::holds(std::size_t pin) const {
+  return !pins_follow_time || time < release_times_[pin] ||
+         (hold_at_release && time == release_times_[pin]);
+}
+
+PetscErrorCode ClothProblem::holding_rows(std::vector<HeldRow>* rows) const {
+  PetscFunctionBeginUser;
+  rows->clear();
+  if (releasable_rows_.empty()) PetscFunctionReturn(0);
+  std::vector<Eigen::Vector3d> places;
+  PetscCall(pin_places(&places));
+  for (const ReleasableRow& r : releasable_rows_) {
+    if (holds(r.pin)) rows->push_back({r.row, places[r.pin]});
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::hold(Vec x) {
+  std::vector<HeldRow> rows;
+  PetscInt start = 0;
+  PetscScalar* values = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(holding_rows(&rows));
+  PetscCall(VecGetOwnershipRange(x, &start, nullptr));
+  PetscCall(VecGetArray(x, &values));
+  for (const HeldRow& r : rows) {
+    for (PetscInt d = 0; d < 3; ++d)
+      values[r.first - start + d] = r.place[long(d)];
+  }
+  PetscCall(VecRestoreArray(x, &values));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::replace_held_rows(Vec x, Vec f) {
+  std::vector<HeldRow> rows;
+  PetscInt start = 0;
+  const PetscScalar* positions = nullptr;
+  PetscScalar* values = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(holding_rows(&rows));
+  PetscCall(VecGetOwnershipRange(x, &start, nullptr));
+  PetscCall(VecGetArrayRead(x, &positions));
+  PetscCall(VecGetArray(f, &values));
+  const double scale = largest_modulus();
+  for (const HeldRow& r : rows) {
+    for (PetscInt d = 0; d < 3; ++d) {
+      const PetscInt i = r.first - start + d;
+      values[i] = scale * (positions[i] - r.place[long(d)]);
+    }
+  }
+  PetscCall(VecRestoreArray(f, &values));
+  PetscCall(VecRestoreArrayRead(x, &positions));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::replace_held_rows(Mat J) {
+  std::vector<HeldRow> held;
+  PetscFunctionBeginUser;
+  PetscCall(holding_rows(&held));
+  std::vector<PetscInt> rows;
+  for (const HeldRow& r : held)
+    rows.insert(rows.end(), {r.first, r.first + 1, r.first + 2});
+  bool any = !rows.empty(), anywhere = false;
+  PetscCallMPI(MPIU_Allreduce(&any, &anywhere, 1, MPI_C_BOOL, MPI_LOR, comm_));
+  if (anywhere) {
+    PetscCall(
+        MatZeroRows(J, PetscInt(rows.size()), rows.data(), largest_modulus(), nullptr, nullptr));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -469,6 +556,7 @@ PetscErrorCode ClothProblem::residual(Vec x, Vec f) {
   PetscCall(VecSet(f, 0.0));
   PetscCall(DMLocalToGlobal(dm_, local_f_, ADD_VALUES, f));
   if (seams_) PetscCall(add_seam_forces(x, f));
+  PetscCall(replace_held_rows(x, f));
   PetscFunctionReturn(0);
 }
 
@@ -527,6 +615,7 @@ PetscErrorCode ClothProblem::jacobian(Vec x, Mat J) {
   if (seams_) PetscCall(seams_->add_jacobian(J)); // global indices, across partitions
   PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(replace_held_rows(J));
   PetscFunctionReturn(0);
 }
 
@@ -561,6 +650,8 @@ PetscErrorCode ClothProblem::create_jacobian(Mat* J) {
   if (seams_) PetscCall(seams_->add_pattern(recording)); // seam couplings, global indices
   PetscCall(pattern.preallocate(*J));
   PetscCall(MatSetOption(*J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  // Held rows are zeroed in place: the element scatter keeps its positions.
+  PetscCall(MatSetOption(*J, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
   PetscCall(attach_element_scatter(layout, *J));
   PetscFunctionReturn(0);
 }
@@ -743,9 +834,9 @@ PetscErrorCode ClothProblem::pin_reaction(Vec x, Eigen::Vector3d* reaction) {
   // equilibrium the pin supplies R = grad E - f_ext there.
   double local[3] = {0.0, 0.0, 0.0};
   PetscCall(VecGetArrayRead(local_f_, &forces));
-  for (int v : pinned_) {
-    const PetscInt offset = vertex_dof_[std::size_t(v)];
-    if (offset < 0) continue;
+  for (std::size_t i = 0; i < pinned_.size(); ++i) {
+    const PetscInt offset = vertex_dof_[std::size_t(pinned_[i])];
+    if (offset < 0 || !holds(i)) continue;
     for (int d = 0; d < 3; ++d)
       local[d] += forces[offset + d];
   }

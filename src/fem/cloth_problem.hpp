@@ -27,6 +27,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -115,8 +116,12 @@ public:
   // Several materials: triangle t uses materials[mesh.material_ids[t]] (all
   // materials[0] when the mesh has no ids). They must share the bending
   // model; a hinge between two materials takes the mean of their stiffnesses.
+  // `release_times` (s; one per pin, or empty: none): a pin with a finite
+  // one is let go then, in time stepping (pins_follow_time): until then its
+  // vertex is a free dof whose equations are x = its place, after that it is
+  // free. Statics hold it throughout.
   ClothProblem(MPI_Comm comm, const TriangleMesh& mesh, std::vector<ClothMaterial> materials,
-               const std::vector<int>& pinned);
+               const std::vector<int>& pinned, const std::vector<double>& release_times = {});
   ~ClothProblem();
   ClothProblem(const ClothProblem&) = delete;
   ClothProblem& operator=(const ClothProblem&) = delete;
@@ -150,6 +155,20 @@ public:
   std::vector<PinGroupMotion> pin_groups;
   bool pins_follow_time = false;
   const std::vector<int>& pinned() const { return pinned_; }
+  const std::vector<double>& release_times() const { return release_times_; }
+  // Whether pin `pin` (an index into pinned()) holds its vertex now: before
+  // its release time, and at it while hold_at_release (a solve at the left
+  // limit of the release, as creep steps that end there do).
+  bool holds(std::size_t pin) const;
+  bool hold_at_release = false;
+  // Collective. Released pins (those with a release time) that still hold:
+  // moves their vertices in x to their places (before a solve), and replaces
+  // their rows of a residual f at x, or of an assembled Jacobian, by the
+  // equations x = place, scaled by the membrane's stiffness. Solvers call
+  // the last two after adding their own terms.
+  PetscErrorCode hold(Vec x);
+  PetscErrorCode replace_held_rows(Vec x, Vec f);
+  PetscErrorCode replace_held_rows(Mat J);
 
   // Called once a load or time step is accepted at state x: updates the state
   // carried from step to step (friction anchors, creep), never inside Newton.
@@ -253,6 +272,21 @@ private:
   const TriangleMesh& mesh_;
   std::vector<ClothMaterial> materials_;
   std::vector<int> pinned_;
+  std::vector<double> release_times_; // per pin, infinity: never released
+  // Pins with a release time whose vertex this rank owns, and the vertex's
+  // first row in the global vector.
+  struct ReleasableRow {
+    std::size_t pin;
+    PetscInt row;
+  };
+  std::vector<ReleasableRow> releasable_rows_;
+  // The releasable pins that hold now: first global row, place.
+  struct HeldRow {
+    PetscInt first;
+    Eigen::Vector3d place;
+  };
+  PetscErrorCode holding_rows(std::vector<HeldRow>* rows) const;
+  bool releasable(std::size_t pin) const { return std::isfinite(release_times_[pin]); }
   DM dm_ = nullptr;
   Vec local_x_ = nullptr;
   Vec local_f_ = nullptr;

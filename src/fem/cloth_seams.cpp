@@ -8,6 +8,9 @@
 namespace sartor {
 
 void ClothProblem::set_seams(const std::vector<SeamSpring>& springs) {
+  for (std::size_t i = 0; i < pinned_.size(); ++i) {
+    if (releasable(i)) throw InputError("seams and pins with a release time cannot be combined");
+  }
   // The first global dof of every free vertex: its owner knows it from the
   // DM's local-to-global map, everybody learns it by one Allreduce.
   std::vector<int> pin_index(mesh_.vertex_count(), -1);

@@ -91,6 +91,9 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
     for (const PinKnot& knot : group.history.knots())
       landings.push_back(knot.time);
   }
+  for (double release : problem.release_times()) {
+    if (std::isfinite(release)) landings.push_back(release);
+  }
   for (const contact::Body& body : problem.bodies) {
     for (const std::vector<double>& times :
          {body.motion.translation.times(), body.motion.angle.times(), body.motion.scale.times()})
@@ -182,15 +185,22 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
     problem.time = t1;
     bool converged = false;
     if (monolithic) creep.couple(h);
+    // Pins let go at t1 still hold at its left limit, like a load jump's.
+    const auto& releases = problem.release_times();
+    const bool release_at_t1 = std::find(releases.begin(), releases.end(), t1) != releases.end();
+    problem.hold_at_release = true;
     PetscCall(equilibrium(options.load.before(t1), &converged));
+    problem.hold_at_release = false;
     double increment = 0.0;
     if (converged && monolithic) PetscCall(creep.advance_coupled(x, &increment));
     if (converged && !monolithic) PetscCall(creep.advance(x, h, &increment));
     const bool too_large =
         converged && increment > 2.0 * options.creep_tolerance && h > options.min_step;
     // Staggered: equilibrium with the new unloaded lengths. Monolithic: x is
-    // already in equilibrium with them, unless the load jumps at t1.
-    const bool solve_again = !monolithic || options.load.after(t1) != options.load.before(t1);
+    // already in equilibrium with them, unless the load jumps or pins let go
+    // at t1.
+    const bool solve_again =
+        !monolithic || release_at_t1 || options.load.after(t1) != options.load.before(t1);
     if (converged && !too_large && solve_again) {
       PetscCall(equilibrium(options.load.after(t1), &converged));
     }

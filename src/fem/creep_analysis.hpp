@@ -14,8 +14,9 @@
 // exceeds twice the tolerance, or whose equilibrium fails, is rolled back and
 // retried shorter.
 //
-// At a jump of the load the step ends on the left limit, and the second
-// solve is at the right limit, so the creep law sees the jump exactly.
+// At a jump of the load, or where pins let go (ClothProblem release times),
+// the step ends on the left limit, and the second solve is at the right
+// limit, so the creep law sees the jump exactly.
 
 #include "fem/checkpoint.hpp"
 #include "fem/cloth_problem.hpp"

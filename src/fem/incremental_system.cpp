@@ -84,6 +84,7 @@ IncrementalSystem::~IncrementalSystem() {
 
 PetscErrorCode IncrementalSystem::solve(Vec x, Solve* result) {
   PetscFunctionBeginUser;
+  PetscCall(problem_.hold(x));
   const SNES snes_now = snes();
   PetscCall(run_snes(snes_now, x, result));
   PetscErrorCode (*line_search_objective)(SNES, Vec, PetscReal*, void*) = nullptr;
@@ -168,6 +169,7 @@ PetscErrorCode IncrementalSystem::residual(Vec x, Vec f) {
     PetscCall(VecPointwiseMult(work_, work_, mass_));
     PetscCall(VecAXPY(f, damping_weight, work_));
   }
+  PetscCall(problem_.replace_held_rows(x, f)); // the inertia's share of them too
   PetscFunctionReturn(0);
 }
 
@@ -179,6 +181,7 @@ PetscErrorCode IncrementalSystem::jacobian(Vec x, Mat J) {
     PetscCall(VecCopy(mass_, work_));
     PetscCall(VecScale(work_, weight));
     PetscCall(MatDiagonalSet(J, work_, ADD_VALUES));
+    PetscCall(problem_.replace_held_rows(J));
   }
   PetscFunctionReturn(0);
 }

@@ -17,6 +17,10 @@ for modulus in 3000 300 30; do
   runs+=("$work/E$modulus")
 done
 "$python" "$postproc" push "${runs[@]}" --labels "E=3000,E=300,E=30" --json "$work/push.json"
+# The picture of the three shapes (postproc/plot_shapes.py, beside the script).
+"$python" "$(dirname "$postproc")/plot_shapes.py" "$work/E3000" "$work/E300" "$work/E30" \
+  --labels "E = 3000,E = 300,E = 30" --output "$work/shapes.png"
+[ -s "$work/shapes.png" ] || { echo "no picture of the shapes" >&2; exit 1; }
 "$python" - "$work/push.json" <<'PY'
 import json, sys
 runs = json.load(open(sys.argv[1]))["runs"]

@@ -1,0 +1,410 @@
+// sartor drape: a garment from its pattern to its drape on the mannequin.
+// TAGCON constructs it (solvers/garment_construction.hpp), and the case
+// pipeline of `sartor run` (solvers/cloth_case.hpp) sews and drapes it: the
+// seams pull the panels together while gravity drops them onto the body, in
+// implicit dynamics with kinetic damping, and a final static solve balances
+// the garment's weight by the body's reaction.
+
+#include "common/csv.hpp"
+#include "common/error.hpp"
+#include "common/output.hpp"
+#include "contact/mesh_shape.hpp"
+#include "fem/petsc_call.hpp"
+#include "fem/petsc_options.hpp"
+#include "mesh/body_obj.hpp"
+#include "mesh/mannequin.hpp"
+#include "mesh/seams.hpp"
+#include "solvers/cloth_case.hpp"
+#include "solvers/commands.hpp"
+#include "solvers/garment_construction.hpp"
+
+#include <nlohmann/json.hpp>
+#include <petscsys.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+
+namespace sartor {
+
+namespace {
+
+// What drape changes in the options of `sartor run`: defaults for a garment
+// falling onto the mannequin (as cases/seams/tube_on_cylinder.yaml drapes).
+const std::map<std::string, std::string>& drape_defaults() {
+  static const std::map<std::string, std::string> defaults{
+      {"body", "mannequin mu=0.3 name=mannequin"},
+      {"density", "0.25"},
+      {"bending-stiffness", "1.5e-5"},
+      // Tight garments press on the body (~100 N on the skirt): a stiffer
+      // penalty keeps the vertices within the contact offset.
+      {"contact-stiffness-factor", "5"},
+      {"analysis", "dynamic"},
+      {"time-step", "0.01"},
+      {"time-end", "1"},
+      {"output-interval", "0.1"},
+  };
+  return defaults;
+}
+
+// Flags drape turns on (a flag's default is off): `-settle false` turns one off.
+const std::vector<std::string>& drape_flags() {
+  static const std::vector<std::string> flags{"kinetic-damping", "settle", "membrane-psd",
+                                              "bending-psd"};
+  return flags;
+}
+
+// Options of `sartor run` that describe the mesh or its seams: the pattern does.
+bool is_mesh_option(const std::string& name) {
+  return (name.rfind("mesh", 0) == 0 && name != "mesh-refine" && name != "mesh-rotate-x" &&
+          name != "mesh-translate") ||
+         name == "seams-file";
+}
+
+// The garment without the panels that no sewn seam attaches (a patch pocket
+// whose T-seams are not sewn, docs/tagcon.md): nothing would hold them, and
+// a free panel makes the static equilibrium singular. A garment without
+// seams keeps its panels. Vertices are renumbered, the seams with them.
+struct SewableGarment {
+  TriangleMesh mesh; // material_ids = panel index
+  std::vector<Seam> seams;
+  std::vector<std::string> left_out; // panel ids
+};
+
+SewableGarment sewable_garment(const ConstructedGarment& constructed) {
+  const garment::GarmentMesh& garment = constructed.garment;
+  const std::size_t panels = constructed.pattern.panels.size();
+  std::vector<int> panel_of_vertex(garment.mesh.vertex_count(), -1);
+  for (std::size_t t = 0; t < garment.mesh.triangle_count(); ++t)
+    for (int v : garment.mesh.triangles[t])
+      panel_of_vertex[std::size_t(v)] = garment.mesh.material_ids[t];
+  std::vector<bool> sewn(panels, garment.seams.empty());
+  for (const Seam& seam : garment.seams) {
+    for (const auto* line : {&seam.a, &seam.b})
+      for (int v : *line)
+        sewn[std::size_t(panel_of_vertex[std::size_t(v)])] = true;
+  }
+  SewableGarment kept;
+  std::vector<int> new_index(garment.mesh.vertex_count(), -1);
+  for (std::size_t v = 0; v < garment.mesh.vertex_count(); ++v) {
+    if (!sewn[std::size_t(panel_of_vertex[v])]) continue;
+    new_index[v] = int(kept.mesh.positions.size());
+    kept.mesh.positions.push_back(garment.mesh.positions[v]);
+  }
+  for (std::size_t t = 0; t < garment.mesh.triangle_count(); ++t) {
+    if (!sewn[std::size_t(garment.mesh.material_ids[t])]) continue;
+    std::array<int, 3> triangle{};
+    for (std::size_t c = 0; c < 3; ++c)
+      triangle[c] = new_index[std::size_t(garment.mesh.triangles[t][c])];
+    kept.mesh.triangles.push_back(triangle);
+    kept.mesh.material_uv.push_back(garment.mesh.material_uv[t]);
+    kept.mesh.material_ids.push_back(garment.mesh.material_ids[t]);
+  }
+  for (Seam seam : garment.seams) {
+    for (auto* line : {&seam.a, &seam.b})
+      for (int& v : *line)
+        v = new_index[std::size_t(v)];
+    kept.seams.push_back(seam);
+  }
+  for (std::size_t p = 0; p < panels; ++p)
+    if (!sewn[p]) kept.left_out.push_back(constructed.pattern.panels[p].id);
+  return kept;
+}
+
+// Seams whose springs cross the body at the start: the straight line from a
+// vertex of line a to its partner on line b (by position along the lines)
+// runs inside the mannequin. Such a spring pulls its cloth into the body in
+// the first time steps (contact acts on vertices only); a shallow crossing
+// (a chord of the waist) is pushed back out, a deep one (through an arm) is
+// not. Per seam with a crossing: the crossing vertex pairs and the deepest
+// point of their lines inside the body, m.
+struct BodyCrossing {
+  int pairs = 0;
+  double depth = 0.0;
+};
+
+std::map<std::string, BodyCrossing> seams_crossing_body(const SewableGarment& garment) {
+  const auto body = contact::make_mannequin_shape();
+  std::map<std::string, BodyCrossing> crossing;
+  for (const Seam& seam : garment.seams) {
+    const std::size_t na = seam.a.size(), nb = seam.b.size();
+    for (std::size_t i = 0; i < na; ++i) {
+      const double along = na > 1 ? double(i) / double(na - 1) : 0.0;
+      std::size_t j = std::size_t(std::lround(along * double(nb - 1)));
+      if (seam.reverse) j = nb - 1 - j;
+      const Eigen::Vector3d& from = garment.mesh.positions[std::size_t(seam.a[i])];
+      const Eigen::Vector3d& to = garment.mesh.positions[std::size_t(seam.b[j])];
+      double deepest = 0.0;
+      for (int k = 1; k < 16; ++k)
+        deepest = std::min(deepest, body->query(from + k / 16.0 * (to - from)).distance);
+      if (deepest < 0.0) {
+        BodyCrossing& entry = crossing[seam.name];
+        ++entry.pairs;
+        entry.depth = std::max(entry.depth, -deepest);
+      }
+    }
+  }
+  return crossing;
+}
+
+} // namespace
+
+const CommandSpec& drape_command() {
+  static const CommandSpec spec{
+      "drape",
+      "construct a garment from its pattern and drape it on the mannequin",
+      "sartor drape PATTERN.json [--fabric SPEC] [--output DIR] [--edge-length M] "
+      "[--no-plot] [any option of sartor run]",
+      "Constructs the garment as `sartor construct` does (TAGCON around the built-in\n"
+      "mannequin: docs/tagcon.md), then sews and drapes it as `sartor run` would a\n"
+      "case with --mesh obj and --seams-file: the seam springs pull the panels\n"
+      "together while gravity drops them onto the mannequin (friction mu = 0.3), in\n"
+      "implicit dynamics with kinetic damping, and a final static Newton solve\n"
+      "(--settle) balances the garment's weight by the body's reaction. Each panel\n"
+      "gets the pattern's fabric (--fabric gives every panel one). Every option of\n"
+      "`sartor run` applies, except those describing the mesh and its seams; drape\n"
+      "changes some defaults (shown below) and turns on --kinetic-damping,\n"
+      "--settle, --membrane-psd and --bending-psd (`-settle false` turns one off).\n"
+      "docs/drape.md has the details and measured runs.\n\n"
+      "Output in DIR: what `sartor construct` writes (garment.obj = the placed\n"
+      "panels, seams.json, construct.json, pattern_seams.svg, placement.svg);\n"
+      "drape_seams.json (the seams sewn: a panel that no sewn seam attaches, like a\n"
+      "patch pocket on unsewn T-seams, is left out of the drape); what\n"
+      "`sartor run` writes (result.h5 + result.xmf, series.h5 + series.xmf,\n"
+      "dynamics.csv, final.obj = the draped garment, petsc_options.txt); body.obj\n"
+      "(the mannequin); summary.json (the run's summary and \"drape\": timings,\n"
+      "seam gap, penetration, body reaction against the garment's weight); and\n"
+      "drape.png (front and side views, postproc/plot_drape.py; not with --no-plot).\n\n"
+      "examples:\n"
+      "  sartor drape cases/patterns/skirt.json --output out/drape/skirt\n"
+      "  sartor drape cases/patterns/tshirt.json --fabric silk --edge-length 0.05",
+      [] {
+        std::vector<OptionSpec> options;
+        for (OptionSpec option : case_option_specs()) {
+          const auto changed = drape_defaults().find(option.name);
+          if (changed != drape_defaults().end()) option.fallback = changed->second;
+          if (std::count(drape_flags().begin(), drape_flags().end(), option.name))
+            option.help += " [on in drape]";
+          if (option.name == "fabric") {
+            option.fallback.clear();
+            option.help = "the fabric of every panel, a preset or FILE.yaml [the pattern's]";
+          }
+          if (is_mesh_option(option.name)) {
+            option.fallback.clear();
+            option.help = "sartor run only: the pattern gives the mesh and seams";
+          }
+          options.push_back(option);
+        }
+        for (OptionSpec option : panel_mesh_option_specs()) {
+          // Coarser than construct's 2 cm: the drape's time steps cost Newton solves.
+          if (option.name == "edge-length") option.fallback = "0.04";
+          options.push_back(option);
+        }
+        options.push_back(
+            {"output", "DIR", "out/drape", "output folder (created; files in it are replaced)"});
+        options.push_back({"no-plot", "", "", "write data only, no PNG"});
+        return options;
+      }(),
+      1};
+  return spec;
+}
+
+int run_drape(const Invocation& invocation) {
+  using Clock = std::chrono::steady_clock;
+  const auto started = Clock::now();
+  const Options& options = invocation.options;
+  const std::string path = invocation.command_line.positionals.at(0);
+  const std::string directory = options.text("output");
+  for (const OptionSpec& option : drape_command().options) {
+    if (is_mesh_option(option.name) && options.is_set(option.name)) {
+      throw InputError("option --" + option.name +
+                       " does not apply to sartor drape: the garment's mesh and seams come from "
+                       "the pattern (--edge-length, --min-angle)");
+    }
+  }
+  const std::string body = options.text("body");
+  if (body.rfind("mannequin", 0) != 0) {
+    throw InputError("option --body: sartor drape constructs the garment around the built-in "
+                     "mannequin, so the body must be it (\"mannequin mu=...\"), got '" +
+                     body + "'");
+  }
+
+  // 1. The garment, constructed and written as `sartor construct` writes it.
+  const ConstructedGarment constructed = construct_garment(path, panel_mesh_options(options));
+  print_construction(constructed);
+  const auto constructed_at = Clock::now();
+  write_construction(directory, constructed,
+                     construction_summary(invocation, "drape", path, constructed));
+  if (is_root()) {
+    const Mannequin& mannequin = default_mannequin();
+    write_body_obj(directory + "/body.obj", mannequin.mesh,
+                   {"Sartor body: built-in mannequin, generated procedurally by Sartor",
+                    "the body sartor drape draped " + path + " on; metres"});
+  }
+
+  // 2. The cloth: the sewn panels, one material per distinct fabric.
+  const SewableGarment sewable = sewable_garment(constructed);
+  for (const std::string& panel : sewable.left_out) {
+    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                                "sartor drape: panel '%s' is left out: no sewn seam attaches it\n",
+                                panel.c_str()));
+  }
+  // A crossing deeper than 1 cm is more than the curvature of the body
+  // between two seam vertices: the spring will pull cloth through it.
+  const std::map<std::string, BodyCrossing> crossing = seams_crossing_body(sewable);
+  nlohmann::json crossing_json = nlohmann::json::object();
+  for (const auto& [seam, entry] : crossing) {
+    crossing_json[seam] = {{"pairs", entry.pairs}, {"depth_m", entry.depth}};
+    if (entry.depth <= 0.01) continue;
+    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                                "sartor drape: warning: seam '%s': the springs of %d vertex "
+                                "pair(s) run through the body (%.0f mm deep) and can pull the "
+                                "cloth into it\n",
+                                seam.c_str(), entry.pairs, 1e3 * entry.depth));
+  }
+  const std::string seams_file = directory + "/drape_seams.json";
+  if (is_root()) write_seams(seams_file, sewable.seams);
+  // Every rank reads it in solve_case.
+  SartorPetscCall(MPI_Barrier(PETSC_COMM_WORLD));
+  CaseCloth cloth;
+  cloth.mesh = sewable.mesh;
+  if (options.is_set("fabric")) {
+    cloth.fabrics = {options.text("fabric")};
+    cloth.mesh.material_ids.clear();
+  } else {
+    std::vector<int> fabric_of_panel;
+    for (const auto& panel : constructed.pattern.panels) {
+      auto found = std::find(cloth.fabrics.begin(), cloth.fabrics.end(), panel.fabric);
+      if (found == cloth.fabrics.end()) found = cloth.fabrics.insert(found, panel.fabric);
+      fabric_of_panel.push_back(int(found - cloth.fabrics.begin()));
+    }
+    for (int& id : cloth.mesh.material_ids)
+      id = fabric_of_panel[std::size_t(id)];
+    // One fabric: --fabric names it, for what reads it (creep parameters).
+    if (cloth.fabrics.size() == 1)
+      SartorPetscCall(PetscOptionsSetValue(nullptr, "-fabric", cloth.fabrics.front().c_str()));
+  }
+
+  // 3. Sew and drape: the options of `sartor run` with drape's defaults.
+  SartorPetscCall(PetscOptionsSetValue(nullptr, "-seams_file", seams_file.c_str()));
+  // In the options database, not only in the spec: the pipeline asks
+  // whether --body is set, and a flag's default is off.
+  const auto set_default = [](const std::string& name, const std::string& value) {
+    std::string key = name;
+    std::replace(key.begin(), key.end(), '-', '_');
+    key = "-" + key;
+    SartorPetscCall(set_default_option(key.c_str(), value.c_str()));
+  };
+  for (const auto& [name, value] : drape_defaults())
+    set_default(name, value);
+  for (const std::string& flag : drape_flags())
+    set_default(flag, "true");
+  // The time steps of the relaxation are solved loosely; the settle solves
+  // fully: to 1e-6 of the garment's weight (1.4e-6 N for the skirt), above
+  // the round-off the stiff seam and contact springs leave in the residual
+  // (1e-7 to 1e-6 N on the skirt, growing as the mesh is refined).
+  double area = 0.0;
+  for (const auto& uv : cloth.mesh.material_uv)
+    area += 0.5 * std::abs((uv[1] - uv[0]).x() * (uv[2] - uv[0]).y() -
+                           (uv[1] - uv[0]).y() * (uv[2] - uv[0]).x());
+  const double mass = options.nonnegative_real("density") * area;
+  const std::vector<double> gravity = option_numbers(options, "gravity", 3);
+  const Eigen::Vector3d weight = mass * Eigen::Vector3d(gravity[0], gravity[1], gravity[2]);
+  SartorPetscCall(set_default_option("-snes_rtol", "1e-4"));
+  if (weight.norm() > 0.0)
+    SartorPetscCall(set_default_option("-snes_atol", format_number(1e-6 * weight.norm()).c_str()));
+  const CaseResult result = solve_case(options, 0, series_writer(directory), {}, &cloth);
+
+  // 4. What the drape achieved.
+  Eigen::Vector3d reaction = Eigen::Vector3d::Zero();
+  double penetration = 0.0;
+  for (const BodyContact& report : result.contact.reports) {
+    reaction += report.normal_force + report.friction_force;
+    penetration = std::max(penetration, report.max_penetration);
+  }
+  // At rest the body's reaction on the garment cancels its weight (pins, when
+  // a user adds some, take their share: pin_reaction_N).
+  const Eigen::Vector3d imbalance = reaction + result.pin_reaction + weight;
+  const double seam_gap = result.seams ? result.seams->gap : 0.0;
+  // The residual force of the final static solve (the settle, or statics),
+  // N; negative when there is none (dynamics without --settle). A solve can
+  // stop on a small Newton step (CONVERGED_SNORM_RELATIVE) far from
+  // equilibrium: the drape converged only when the residual is below 1e-3
+  // of the garment's weight.
+  double residual = -1.0;
+  if (result.dynamics && !result.dynamics->settle_reason.empty()) {
+    residual = result.dynamics->settle_residual_norm;
+  } else if (!result.dynamics && !result.creep) {
+    residual = result.report.final_residual_norm;
+  }
+  const bool equilibrium = residual >= 0.0 && residual <= 1e-3 * weight.norm();
+  const bool converged = result.converged && (residual < 0.0 || equilibrium);
+  const double construction_seconds =
+      constructed.construction.placement_seconds + constructed.construction.seam_seconds;
+  const double total_seconds = std::chrono::duration<double>(Clock::now() - started).count();
+
+  nlohmann::json summary = run_metadata(invocation, "drape");
+  summary["pattern"] = path;
+  summary["fabrics"] = cloth.fabrics;
+  summary["construction"] = {{"panels", constructed.pattern.panels.size()},
+                             {"seams", constructed.construction.seams.size()},
+                             {"sewn_seams", constructed.garment.seams.size()},
+                             {"t_seams_not_sewn", constructed.garment.t_seams.size()},
+                             {"panels_left_out", sewable.left_out},
+                             {"seams_across_body", crossing_json},
+                             {"unseamed_lines", constructed.construction.unseamed.size()},
+                             {"file", "construct.json"}};
+  add_case_summary(result, summary);
+  const auto to_json = [](const Eigen::Vector3d& v) { return nlohmann::json{v.x(), v.y(), v.z()}; };
+  summary["drape"] = {
+      {"converged", converged},
+      {"residual_force_N", residual >= 0.0 ? nlohmann::json(residual) : nlohmann::json(nullptr)},
+      {"material_area_m2", area},
+      {"mass_kg", mass},
+      {"weight_N", to_json(weight)},
+      {"body_reaction_N", to_json(reaction)},
+      {"relative_imbalance", weight.norm() > 0 ? imbalance.norm() / weight.norm() : 0.0},
+      {"largest_seam_gap_m", seam_gap},
+      {"max_penetration_m", penetration},
+      {"contact_offset_m", options.real("contact-offset")},
+      {"timing_s",
+       {{"construction", construction_seconds},
+        {"meshing", constructed.mesh_seconds},
+        {"construct_total", std::chrono::duration<double>(constructed_at - started).count()},
+        {"drape", result.solve_seconds},
+        {"drape_setup", result.setup_seconds},
+        {"total", total_seconds}}}};
+  write_case_results(directory, result, summary);
+  write_petsc_options(directory);
+
+  SartorPetscCall(PetscPrintf(
+      PETSC_COMM_WORLD,
+      "sartor drape: %zu triangles, %zu seams sewn; construction %.3f s, drape %.1f s (%s); "
+      "seam gap %.2e m, penetration %.2e m, body reaction %.6g N for a weight of %.6g N; "
+      "wrote %s\n",
+      result.mesh.triangle_count(), constructed.garment.seams.size(), construction_seconds,
+      result.solve_seconds, converged ? "converged" : "not converged", seam_gap, penetration,
+      reaction.norm(), weight.norm(), directory.c_str()));
+  // The picture helps most when the drape failed.
+  if (!options.flag("no-plot")) make_plot("plot_drape.py", directory);
+  if (!result.converged) {
+    const std::string reason = result.dynamics ? result.dynamics->reason : result.report.reason;
+    throw InputError("the drape did not converge (" + reason + "); " + directory +
+                     " holds the last state. Try a longer --time-end, a smaller --time-step, "
+                     "or -snes_monitor");
+  }
+  if (!converged) {
+    throw InputError("the drape is not in equilibrium: the final static solve stopped with a "
+                     "residual force of " +
+                     format_number(residual) + " N for a weight of " +
+                     format_number(weight.norm()) + " N; " + directory +
+                     " holds its state. Look for seams across the body (warnings above) or "
+                     "penetration (summary.json)");
+  }
+  return 0;
+}
+
+} // namespace sartor

@@ -1,0 +1,56 @@
+#pragma once
+// TAGCON construction of a garment on the built-in mannequin, as `sartor
+// construct` runs it and `sartor drape` starts with: read the pattern, place
+// its packs and find its seams (src/garment/tagcon), mesh the panels
+// (src/garment/garment_mesh), and report and write the result.
+
+#include "garment/garment_mesh.hpp"
+#include "garment/pattern.hpp"
+#include "garment/tagcon.hpp"
+#include "mesh/panel_mesher.hpp"
+#include "solvers/cli.hpp"
+#include "solvers/commands.hpp"
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <string>
+#include <vector>
+
+namespace sartor {
+
+struct ConstructedGarment {
+  std::string path; // the pattern file
+  garment::Pattern pattern;
+  garment::TagconOptions tagcon;
+  PanelMeshOptions mesh_options;
+  garment::Construction construction;
+  garment::GarmentMesh garment;
+  double body_seconds = 0.0; // the mannequin and its distance queries, s
+  double mesh_seconds = 0.0; // meshing the panels, s
+};
+
+// --edge-length and --min-angle: how finely the panels are meshed.
+const std::vector<OptionSpec>& panel_mesh_option_specs();
+// Throws InputError for a value out of range.
+PanelMeshOptions panel_mesh_options(const Options& options);
+
+// Reads PATTERN.json and constructs it around the built-in mannequin. Throws
+// InputError for a bad pattern or one TAGCON cannot construct.
+ConstructedGarment construct_garment(const std::string& path, const PanelMeshOptions& mesh_options);
+
+// Prints the one-line summary and the seam table (PetscPrintf, rank 0).
+void print_construction(const ConstructedGarment& garment);
+
+// construct.json: the run's metadata (`command`, the pattern file, the body,
+// units) and the description of the construction (cylinders, packs, panels,
+// seams, lines, T-seams, mesh, timings).
+nlohmann::json construction_summary(const Invocation& invocation, const std::string& command,
+                                    const std::string& pattern_path,
+                                    const ConstructedGarment& garment);
+
+// Rank 0: garment.obj, seams.json, construct.json (= `summary`),
+// pattern_seams.svg and placement.svg in `directory` (created).
+void write_construction(const std::string& directory, const ConstructedGarment& garment,
+                        const nlohmann::json& summary);
+
+} // namespace sartor
