@@ -39,6 +39,27 @@ double next_multiple(double time, double interval, double tiny) {
   return (std::floor((time + tiny) / interval) + 1.0) * interval;
 }
 
+// The times steps must end on, increasing: the knots of the load history,
+// of pin and body motions, the pins' release times, the end.
+std::vector<double> step_landings(const ClothProblem& problem, const CreepOptions& options) {
+  std::vector<double> landings = options.load.times();
+  for (const PinGroupMotion& group : problem.pin_groups) {
+    for (const PinKnot& knot : group.history.knots())
+      landings.push_back(knot.time);
+  }
+  for (double release : problem.release_times()) {
+    if (std::isfinite(release)) landings.push_back(release);
+  }
+  for (const contact::Body& body : problem.bodies) {
+    for (const std::vector<double>& times :
+         {body.motion.translation.times(), body.motion.angle.times(), body.motion.scale.times()})
+      landings.insert(landings.end(), times.begin(), times.end());
+  }
+  landings.push_back(options.time_end);
+  std::sort(landings.begin(), landings.end());
+  return landings;
+}
+
 } // namespace
 
 PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
@@ -86,21 +107,7 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
     }
   } destroy_at_exit{&last, &velocity};
 
-  std::vector<double> landings = options.load.times();
-  for (const PinGroupMotion& group : problem.pin_groups) {
-    for (const PinKnot& knot : group.history.knots())
-      landings.push_back(knot.time);
-  }
-  for (double release : problem.release_times()) {
-    if (std::isfinite(release)) landings.push_back(release);
-  }
-  for (const contact::Body& body : problem.bodies) {
-    for (const std::vector<double>& times :
-         {body.motion.translation.times(), body.motion.angle.times(), body.motion.scale.times()})
-      landings.insert(landings.end(), times.begin(), times.end());
-  }
-  landings.push_back(end);
-  std::sort(landings.begin(), landings.end());
+  const std::vector<double> landings = step_landings(problem, options);
 
   long step = resume ? resume->step : 0;
   double dt = resume ? resume->next_step : options.time_step;
