@@ -99,7 +99,12 @@ FieldValue max(const FieldValue& a, const FieldValue& b) {
 }
 
 constexpr double pi = 3.14159265358979323846;
-constexpr double arm_abduction = 27.0 * pi / 180.0; // arms away from the torso
+// Arms away from the torso, in the A-pose of garment construction: hanging
+// closer (27 degrees was tried), the upper arm's root reaches past the
+// chest's side just below the armpit, where a torso garment's side seams
+// end, so a seam sweep from the front panel to the back one would pass
+// through the arm (thesis step 5 of 3.2 deletes such seams).
+constexpr double arm_abduction = 45.0 * pi / 180.0;
 
 // --- the body's design: joints and flesh, left side (x > 0) -----------------
 
@@ -122,7 +127,9 @@ struct Joints {
     const Eigen::Vector3d down_arm(std::sin(arm_abduction), 0.0, -std::cos(arm_abduction));
     elbow = shoulder + 0.29 * down_arm;
     wrist = elbow + 0.25 * down_arm;
-    fingers = wrist + 0.14 * down_arm;
+    // Short of the fingertips (wrist + 0.165): the hand is thin there, and
+    // at 45 degrees the 2 cm grid leaves less of it than the joint needs.
+    fingers = wrist + 0.12 * down_arm;
   }
 };
 
@@ -243,8 +250,8 @@ constexpr double grid_spacing = 0.02; // m; sets the triangle count (about 36k)
 // tetrahedra around its grid edge. Triangles are wound so that their normal
 // points from the negative (inside) corners to the positive ones.
 BodyMesh marching_tetrahedra() {
-  const Eigen::Vector3d lower(-0.56, -0.24, -0.02);
-  const Eigen::Vector3d upper(0.56, 0.2, 1.78);
+  const Eigen::Vector3d lower(-0.74, -0.24, -0.02); // fingertips at |x| = 0.69
+  const Eigen::Vector3d upper(0.74, 0.2, 1.78);
   // Shifted off round numbers so that no node lies on the sole plane z = 0.
   const Eigen::Vector3d origin = lower - Eigen::Vector3d::Constant(0.37 * grid_spacing);
   std::array<long, 3> n;

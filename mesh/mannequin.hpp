@@ -7,7 +7,7 @@
 // 2-manifold, outward-oriented triangle mesh. The result is deterministic.
 //
 // Frame: metres, z up, feet on z = 0, the body faces -y (its front is at
-// -y), its left side at +x; arms hang 27 degrees away from the torso.
+// -y), its left side at +x; arms 45 degrees away from the torso (an A-pose).
 //
 // The skeleton names the segments that garment placement wraps cylinders
 // around: pelvis, torso, neck, head, clavicle_l/r, upper_arm_l/r,

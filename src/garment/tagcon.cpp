@@ -197,10 +197,17 @@ FittedCylinder cylinder_axis(Cylinder c, const Mannequin& body, bool upper_body,
 
 // Largest distance from the axis of the vertices owned by the cylinder's
 // bones within its covered length (a leg also takes the trunk's flesh on
-// its side of the body).
+// its side of the body). The torso's section is the trunk's: the shoulder
+// girdle reaches out to the arm roots, and a cylinder that wide puts the
+// torso panels' side lines through the arms below the armpits; the lid
+// covers the girdle from above and the arm cylinders its ends.
 double section_radius(const FittedCylinder& c, const Mannequin& body,
                       const std::vector<int>& owner) {
   std::set<std::string> bones(c.bones.begin(), c.bones.end());
+  if (c.cylinder == Cylinder::torso) {
+    bones.erase("clavicle_l");
+    bones.erase("clavicle_r");
+  }
   double radius = 0;
   for (std::size_t v = 0; v < owner.size(); ++v) {
     const Vector3d& p = body.mesh.vertices[v];
@@ -218,12 +225,25 @@ double section_radius(const FittedCylinder& c, const Mannequin& body,
   return radius;
 }
 
+// The angle about the axis of unrolled point (arc s, axial a). On the lid
+// (a > 0, folded in to the radius r = radius - a) the arc s is kept along
+// the circle of radius r, so that a neckline keeps its width: with the
+// cylinder's angle s / radius a 14 cm neck would close to 10 cm, inside
+// the mannequin's neck. Kept within the pack's half.
+double wrap_angle(const FittedCylinder& c, double radius, const Vector2d& unrolled) {
+  if (!(c.lid && unrolled.y() > 0)) return unrolled.x() / radius;
+  const double folded = radius - unrolled.y();
+  const double half = 0.5 * pi;
+  if (folded <= 0) return std::clamp(unrolled.x() / radius, -half, half);
+  return std::clamp(unrolled.x() / folded, -half, half);
+}
+
 // Unrolled half-cylinder coordinates (arc s, axial a) to 3D.
 Vector3d wrap(const FittedCylinder& c, Side side, double radius, double layer_lift,
               const Vector2d& unrolled) {
   const Vector3d centre_direction = side == Side::front ? c.front : Vector3d(-c.front);
   const Vector3d across = c.up.cross(centre_direction);
-  const double angle = unrolled.x() / radius;
+  const double angle = wrap_angle(c, radius, unrolled);
   const Vector3d radial = std::cos(angle) * centre_direction + std::sin(angle) * across;
   if (c.lid && unrolled.y() > 0)
     return c.top + layer_lift * c.up + std::max(radius - unrolled.y(), 0.0) * radial;
@@ -234,7 +254,7 @@ std::array<Vector3d, 2> wrap_frame(const FittedCylinder& c, Side side, double ra
                                    const Vector2d& unrolled) {
   const Vector3d centre_direction = side == Side::front ? c.front : Vector3d(-c.front);
   const Vector3d across = c.up.cross(centre_direction);
-  const double angle = unrolled.x() / radius;
+  const double angle = wrap_angle(c, radius, unrolled);
   const Vector3d radial = std::cos(angle) * centre_direction + std::sin(angle) * across;
   const Vector3d around = -std::sin(angle) * centre_direction + std::cos(angle) * across;
   if (c.lid && unrolled.y() > 0) return {around, -radial};
