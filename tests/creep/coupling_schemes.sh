@@ -66,21 +66,17 @@ refused "box 2 is not a box of --pin-box (1..1)" --pin-release 2:3
 "$study" --sartor "$sartor" --case "$relaxation" --steps 0.5,0.25,0.125 --reference-step 0.015625 \
   --no-plot "$work/study" > "$work/study.log"
 
-"$python" - "$work" <<'PY'
+"$python" - "$work" "$(dirname "$0")/../cli" <<'PY'
 import csv, json, re, sys
 import h5py, numpy as np
 work = sys.argv[1]
+sys.path.insert(0, sys.argv[2])
+import strip_law
 failures = []
 
-law = {float(r["time_s"]): float(r["strain_total"]) for r in csv.DictReader(open(f"{work}/law/creep.csv"))}
+law = strip_law.law_strains(f"{work}/law/creep.csv")
 def against_law(run):
-    compared, worst = 0, 0.0
-    for row in csv.DictReader(open(f"{work}/{run}/creep.csv")):
-        t = float(row["time_s"])
-        if t in law:
-            fe = float(row["probe_dx_m"]) / 0.15
-            worst = max(worst, abs(fe - law[t]) / abs(law[t]))
-            compared += 1
+    compared, worst = strip_law.compare(law, f"{work}/{run}/creep.csv")
     if compared < 121 or worst > 1e-6:
         failures.append(f"{run} vs the creep law: {compared} times, worst relative {worst:.3g}")
     print(f"{run}: {compared} output times against `sartor creep`, worst relative {worst:.2e}")
