@@ -225,17 +225,17 @@ double section_radius(const FittedCylinder& c, const Mannequin& body,
   return radius;
 }
 
-// The angle about the axis of unrolled point (arc s, axial a). On the lid
-// (a > 0, folded in to the radius r = radius - a) the arc s is kept along
-// the circle of radius r, so that a neckline keeps its width: with the
-// cylinder's angle s / radius a 14 cm neck would close to 10 cm, inside
-// the mannequin's neck. Kept within the pack's half.
+// The angle about the axis of unrolled point (arc s, axial a): s / radius,
+// on the lid too (folded in to the radius radius - a), kept within the
+// pack's half. The lid's circles are shorter than the rim, so a panel
+// folded onto it is compressed around the axis (by a / radius; 30 % at the
+// neck points of the sample tops), never stretched: keeping the arc length
+// along the smaller circles instead shears the fold by s / (radius - a),
+// and stretched the T-shirt's shoulders (Green strain up to 0.53).
 double wrap_angle(const FittedCylinder& c, double radius, const Vector2d& unrolled) {
-  if (!(c.lid && unrolled.y() > 0)) return unrolled.x() / radius;
-  const double folded = radius - unrolled.y();
-  const double half = 0.5 * pi;
-  if (folded <= 0) return std::clamp(unrolled.x() / radius, -half, half);
-  return std::clamp(unrolled.x() / folded, -half, half);
+  const double angle = unrolled.x() / radius;
+  if (!(c.lid && unrolled.y() > 0)) return angle;
+  return std::clamp(angle, -0.5 * pi, 0.5 * pi);
 }
 
 // Unrolled half-cylinder coordinates (arc s, axial a) to 3D.

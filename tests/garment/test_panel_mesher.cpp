@@ -197,13 +197,13 @@ TEST(PanelMesher, ForcedCountsAreKeptOnCurvedLines) {
   PanelMeshOptions options;
   options.edge_length = 0.03;
   options.pieces["bk_armhole_r"] = 11;
-  options.pieces["bk_neck"] = 7;
+  options.pieces["bk_neck"] = 9;
   const PanelMesh result = mesh_panel(back, options);
   for (const auto& line : result.lines) {
     if (line.id == "bk_armhole_r" || line.id == "bk_neck") {
       EXPECT_TRUE(line.forced);
       EXPECT_EQ(line.vertices.size(), std::size_t(line.pieces) + 1) << line.id;
-      EXPECT_EQ(line.pieces, line.id == "bk_neck" ? 7 : 11);
+      EXPECT_EQ(line.pieces, line.id == "bk_neck" ? 9 : 11);
     }
   }
 }
