@@ -114,7 +114,8 @@ void emit_to_edges(const std::vector<int>& emitting, const std::vector<double>& 
         std::clamp((t - t_receiving[j]) / (t_receiving[j + 1] - t_receiving[j]), 0.0, 1.0);
     SeamSpring spring;
     spring.seam = seam;
-    spring.stiffness = 0.5 * kappa * tributary[i]; // both lines emit: half each
+    spring.length = 0.5 * tributary[i]; // both lines emit: half each
+    spring.stiffness = kappa * spring.length;
     spring.vertices[0] = emitting[i];
     if (s * (t_receiving[j + 1] - t_receiving[j]) <= match_tolerance) {
       spring.vertices[1] = receiving[j];
@@ -280,7 +281,8 @@ std::vector<SeamSpring> seam_springs(const TriangleMesh& mesh, const std::vector
         spring.seam = int(index);
         spring.vertices[0] = seam.a[i];
         spring.vertices[1] = b[i];
-        spring.stiffness = 0.5 * kappa * (tributary_a[i] + tributary_b[i]);
+        spring.length = 0.5 * (tributary_a[i] + tributary_b[i]);
+        spring.stiffness = kappa * spring.length;
         springs.push_back(spring);
       }
     } else {
@@ -310,18 +312,21 @@ std::vector<std::pair<int, int>> matched_vertex_pairs(const TriangleMesh& mesh,
   return pairs;
 }
 
+double seam_spring_gap(const SeamSpring& spring, const std::vector<Eigen::Vector3d>& positions) {
+  const Eigen::Vector3d& a = positions[std::size_t(spring.vertices[0])];
+  const Eigen::Vector3d& b = positions[std::size_t(spring.vertices[1])];
+  const Eigen::Vector3d anchor =
+      spring.to_edge ? Eigen::Vector3d((1.0 - spring.s) * b +
+                                       spring.s * positions[std::size_t(spring.vertices[2])])
+                     : b;
+  return (a - anchor).norm();
+}
+
 double largest_seam_gap(const std::vector<SeamSpring>& springs,
                         const std::vector<Eigen::Vector3d>& positions) {
   double largest = 0.0;
-  for (const SeamSpring& spring : springs) {
-    const Eigen::Vector3d& a = positions[std::size_t(spring.vertices[0])];
-    const Eigen::Vector3d& b = positions[std::size_t(spring.vertices[1])];
-    const Eigen::Vector3d anchor =
-        spring.to_edge ? Eigen::Vector3d((1.0 - spring.s) * b +
-                                         spring.s * positions[std::size_t(spring.vertices[2])])
-                       : b;
-    largest = std::max(largest, (a - anchor).norm());
-  }
+  for (const SeamSpring& spring : springs)
+    largest = std::max(largest, seam_spring_gap(spring, positions));
   return largest;
 }
 

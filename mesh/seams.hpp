@@ -48,6 +48,7 @@ struct SeamSpring {
   bool to_edge = false;
   double s = 0.0;         // edge parameter (vertex-to-edge only)
   double stiffness = 0.0; // N/m
+  double length = 0.0;    // the length of seam it sews (its tributary), m
   int seam = 0;           // index in the seam list
   int vertex_count() const { return to_edge ? 3 : 2; }
 };
@@ -88,6 +89,9 @@ std::vector<SeamSpring> seam_springs(const TriangleMesh& mesh, const std::vector
 // with itself (a dart's tip) are left out.
 std::vector<std::pair<int, int>> matched_vertex_pairs(const TriangleMesh& mesh,
                                                       const std::vector<Seam>& seams);
+
+// The distance between a spring's emitting vertex and its anchor, m.
+double seam_spring_gap(const SeamSpring& spring, const std::vector<Eigen::Vector3d>& positions);
 
 // The largest distance between a spring's vertex and its anchor on the other
 // line, over all springs, for the given positions (mesh numbering), m.

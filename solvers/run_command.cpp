@@ -103,6 +103,10 @@ const std::vector<OptionSpec>& case_option_specs() {
       {"seam-penalty", "P", "100", "automatic seam stiffness: P x modulus / seam spacing"},
       {"seam-merge", "", "", "sew, then merge matched seam vertices and solve again"},
       {"seam-merge-gap", "M", "1e-4", "--seam-merge: largest seam gap accepted as closed, m"},
+      {"sewing-tension", "N/M", "",
+       "dynamic: sew gradually: each seam spring starts pulling with this force per metre of "
+       "seam and stiffens to its own stiffness by --sewing-time (0 or none: no sewing stage)"},
+      {"sewing-time", "S", "", "the end of the sewing stage, s [half of --time-end]"},
       {"analysis", "KIND", "static",
        "static (equilibrium), dynamic (implicit time stepping) or creep (quasi-static creep "
        "over real time)"},

@@ -23,6 +23,28 @@ int divisions(const Options& options, const std::string& name, const std::string
   return int(value);
 }
 
+// --sewing-tension and --sewing-time: the sewing stage of a dynamic run.
+void set_up_sewing(const Options& options, ClothProblem& problem, SeamReport* report) {
+  if (!options.is_set("sewing-tension") || options.nonnegative_real("sewing-tension") == 0.0) {
+    return;
+  }
+  if (options.text("analysis") != "dynamic") {
+    throw InputError("option --sewing-tension: sewing is a stage of time stepping; give --analysis "
+                     "dynamic (or leave --sewing-tension out)");
+  }
+  const double time_end = options.positive_real("time-end");
+  const double end =
+      options.is_set("sewing-time") ? options.positive_real("sewing-time") : 0.5 * time_end;
+  if (end >= time_end) {
+    throw InputError("option --sewing-time: the sewing stage must end before --time-end (" +
+                     format_number(time_end) + " s), got " + format_number(end) + " s");
+  }
+  problem.sewing_tension = options.nonnegative_real("sewing-tension");
+  problem.sewing_end_time = end;
+  report->sewing_tension = problem.sewing_tension;
+  report->sewing_end_time = end;
+}
+
 } // namespace
 
 mesh::PanelMesh tube_panels_mesh(const Options& options) {
@@ -44,9 +66,10 @@ std::vector<Seam> case_seams(const Options& options, const TriangleMesh& mesh, i
     throw InputError("seams and uniform refinement (--mesh-refine " + std::to_string(refinements) +
                      ") cannot be combined: refine the panels before listing their seam lines");
   }
-  if (seams.empty() && (options.flag("seam-merge") || options.is_set("seam-stiffness"))) {
-    throw InputError("options --seam-merge and --seam-stiffness need seams: give --seams-file or "
-                     "--mesh tube_panels");
+  if (seams.empty() && (options.flag("seam-merge") || options.is_set("seam-stiffness") ||
+                        options.is_set("sewing-tension"))) {
+    throw InputError("options --seam-merge, --seam-stiffness and --sewing-tension need seams: give "
+                     "--seams-file or --mesh tube_panels");
   }
   return seams;
 }
@@ -74,6 +97,7 @@ void attach_seams(const Options& options, const std::vector<Seam>& seams,
   SartorPetscCall(set_default_option("-snes_rtol", "0"));
   const std::vector<SeamSpring> springs =
       case_seam_springs(options, problem.mesh(), seams, material);
+  set_up_sewing(options, problem, report);
   problem.set_seams(springs);
   report->seams = seams.size();
   report->springs = springs.size();
@@ -138,6 +162,8 @@ void add_seam_summary(const SeamReport& report, nlohmann::json& summary) {
                           {"vertex_to_edge_springs", report.vertex_to_edge_springs},
                           {"cross_rank_springs", report.cross_rank_springs},
                           {"largest_gap_m", report.gap},
+                          {"sewing_tension_N_per_m", report.sewing_tension},
+                          {"sewing_end_time_s", report.sewing_end_time},
                           {"merged", report.merged}};
   if (report.merged) {
     seams["merge"] = {{"gap_before_m", report.gap_before_merge},

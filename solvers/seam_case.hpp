@@ -24,6 +24,8 @@ struct SeamReport {
   std::size_t vertex_to_edge_springs = 0;
   PetscInt cross_rank_springs = 0; // springs whose vertices live on different ranks
   double gap = 0.0;                // largest seam gap at the solution, m (0 once merged)
+  double sewing_tension = 0.0;     // --sewing-tension: the springs' pull limit, N/m (0: none)
+  double sewing_end_time = 0.0;    // the end of the sewing stage, s
   // --seam-merge: the sewing solve, its gap, and the vertices before and after.
   bool merged = false;
   double gap_before_merge = 0.0; // m

@@ -43,13 +43,24 @@ double ClothProblem::contact_stiffness(int vertex) const {
                                     vertex_area_[std::size_t(vertex)], mesh_size_);
 }
 
+bool ClothProblem::surely_apart(std::size_t body, int vertex, const Eigen::Vector3d& x) const {
+  if (queried_.size() != bodies.size())
+    queried_.assign(bodies.size(), std::vector<QueriedPlace>(mesh_.vertex_count()));
+  const QueriedPlace& last = queried_[body][std::size_t(vertex)];
+  return last.clock == contact_clock() && last.distance - (x - last.point).norm() > contact.offset;
+}
+
 contact::PointResult ClothProblem::vertex_contact(std::size_t body, int vertex,
                                                   const Eigen::Vector3d& x,
                                                   element::Want want) const {
   const contact::Body& b = bodies[body];
   const double k = contact_stiffness(vertex);
-  contact::PointResult result =
-      contact::penalty(k, contact.offset, b.query(x, contact_clock()), want);
+  contact::PointResult result;
+  if (!surely_apart(body, vertex, x)) {
+    const contact::SurfaceQuery query = b.query(x, contact_clock());
+    queried_[body][std::size_t(vertex)] = {x, query.distance, contact_clock()};
+    result = contact::penalty(k, contact.offset, query, want);
+  }
   if (anchors_.size() == bodies.size()) {
     const FrictionAnchor& anchor = anchors_[body][std::size_t(vertex)];
     if (anchor.active) {
@@ -116,7 +127,8 @@ PetscErrorCode ClothProblem::update_contact(Vec x) {
   PetscCall(VecGetArrayRead(local_x_, &values));
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const contact::Body& body = bodies[b];
-    if (!body.friction.active()) continue;
+    // Panels slide into place while they are sewn: friction starts after.
+    if (!body.friction.active() || sewing()) continue;
     for (int v : contact_vertices_) {
       const Eigen::Vector3d p = position(values, vertex_dof_[std::size_t(v)]);
       const contact::SurfaceQuery q = body.query(p, contact_clock());

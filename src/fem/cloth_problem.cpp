@@ -612,7 +612,7 @@ PetscErrorCode ClothProblem::jacobian(Vec x, Mat J) {
   if (scatter) PetscCall(scatter->end());
   PetscCall(add_contact_jacobian(values, J));
   PetscCall(VecRestoreArrayRead(local_x_, &values));
-  if (seams_) PetscCall(seams_->add_jacobian(J)); // global indices, across partitions
+  if (seams_) PetscCall(add_seam_jacobian(J)); // global indices, across partitions
   PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
   PetscCall(replace_held_rows(J));

@@ -197,6 +197,19 @@ public:
   const SeamCoupling* seam_coupling() const { return seams_.get(); }
   // Collective: the largest gap of a seam spring at x, m (0 without seams).
   PetscErrorCode seam_gap(Vec x, double* gap);
+  // The sewing stage of time stepping: at time 0 each seam spring is only
+  // as stiff as pulls with `sewing_tension` (N/m) times the seam length it
+  // sews across its gap in the mesh's placement, and it stiffens
+  // geometrically to its own stiffness at `sewing_end_time` (s), so that
+  // seams far apart close gradually instead of dragging the cloth through
+  // a body; the bodies have no friction meanwhile, so that the panels slide
+  // into place (docs/seams.md). Set both before set_seams; sewing_tension 0
+  // (or statics) sews with the springs' own stiffness throughout.
+  double sewing_tension = 0.0;
+  double sewing_end_time = 0.0;
+  bool sewing() const {
+    return pins_follow_time && sewing_tension > 0.0 && time <= sewing_end_time;
+  }
 
   PetscErrorCode residual(Vec x, Vec f);
   PetscErrorCode jacobian(Vec x, Mat J);
@@ -263,8 +276,10 @@ private:
   PetscErrorCode attach_element_scatter(const fem::BlockLayout& layout, Mat J) const;
   PetscErrorCode pin_places(std::vector<Eigen::Vector3d>* places) const;
   // Seams (cloth_seams.cpp).
+  PetscErrorCode prepare_seams(std::vector<Eigen::Vector3d>* places);
   PetscErrorCode seam_energy(Vec x, double* energy);
   PetscErrorCode add_seam_forces(Vec x, Vec f);
+  PetscErrorCode add_seam_jacobian(Mat J);
   PetscErrorCode add_seam_pin_reaction(Vec x, Eigen::Vector3d* reaction);
   std::unique_ptr<SeamCoupling> seams_;
 
@@ -323,6 +338,19 @@ private:
   // equilibrium with, for the reported friction forces.
   std::vector<std::vector<FrictionAnchor>> solved_anchors_;
   std::vector<long> sliding_;
+  // Per body and mesh vertex, the last place it was queried at and its
+  // signed distance there. The distance moves no faster than the point, so
+  // a vertex that has moved less than (distance - offset) since, on the same
+  // clock, is still out of contact: energy, residual and Jacobian skip its
+  // query (most of a garment, most of the time; the mannequin's query is
+  // the costliest part of an evaluation).
+  struct QueriedPlace {
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();
+    double distance = -1.0; // m; below the offset: query again
+    double clock = 0.0;
+  };
+  mutable std::vector<std::vector<QueriedPlace>> queried_;
+  bool surely_apart(std::size_t body, int vertex, const Eigen::Vector3d& x) const;
 };
 
 } // namespace sartor

@@ -41,7 +41,16 @@ void ClothProblem::set_seams(const std::vector<SeamSpring>& springs) {
   SartorPetscCall(DMGetGlobalVector(dm_, &layout));
   seams_ = std::make_unique<SeamCoupling>(comm_, layout, std::move(assigned), std::move(first_dof),
                                           std::move(pin_index));
+  if (sewing_tension > 0.0) seams_->start_sewing(sewing_tension, mesh_.positions);
   SartorPetscCall(DMRestoreGlobalVector(dm_, &layout));
+}
+
+// The pins' places, and the seam springs' stiffness of this moment.
+PetscErrorCode ClothProblem::prepare_seams(std::vector<Eigen::Vector3d>* places) {
+  PetscFunctionBeginUser;
+  PetscCall(pin_places(places));
+  seams_->set_sewing_progress(sewing() ? time / sewing_end_time : 1.0);
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode ClothProblem::seam_gap(Vec x, double* gap) {
@@ -57,7 +66,7 @@ PetscErrorCode ClothProblem::seam_gap(Vec x, double* gap) {
 PetscErrorCode ClothProblem::seam_energy(Vec x, double* energy) {
   std::vector<Eigen::Vector3d> places;
   PetscFunctionBeginUser;
-  PetscCall(pin_places(&places));
+  PetscCall(prepare_seams(&places));
   PetscCall(seams_->energy(x, places, energy));
   PetscFunctionReturn(0);
 }
@@ -65,8 +74,16 @@ PetscErrorCode ClothProblem::seam_energy(Vec x, double* energy) {
 PetscErrorCode ClothProblem::add_seam_forces(Vec x, Vec f) {
   std::vector<Eigen::Vector3d> places;
   PetscFunctionBeginUser;
-  PetscCall(pin_places(&places));
+  PetscCall(prepare_seams(&places));
   PetscCall(seams_->add_forces(x, places, f));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::add_seam_jacobian(Mat J) {
+  std::vector<Eigen::Vector3d> places;
+  PetscFunctionBeginUser;
+  PetscCall(prepare_seams(&places));
+  PetscCall(seams_->add_jacobian(J));
   PetscFunctionReturn(0);
 }
 
@@ -75,7 +92,7 @@ PetscErrorCode ClothProblem::add_seam_pin_reaction(Vec x, Eigen::Vector3d* react
   std::vector<Eigen::Vector3d> places;
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   PetscFunctionBeginUser;
-  PetscCall(pin_places(&places));
+  PetscCall(prepare_seams(&places));
   PetscCall(seams_->pinned_force(x, places, &force));
   *reaction += force;
   PetscFunctionReturn(0);

@@ -4,6 +4,7 @@
 #include "fem/petsc_call.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace sartor {
 
@@ -76,29 +77,47 @@ PetscErrorCode SeamCoupling::fetch(Vec x, const std::vector<Eigen::Vector3d>& pi
   PetscFunctionReturn(0);
 }
 
-// Calls visit(spring, result) with the kernel's result for every assigned
-// spring, the result as a dynamic-size (energy, gradient, Hessian).
+void SeamCoupling::start_sewing(double tension, const std::vector<Eigen::Vector3d>& positions) {
+  start_fraction_.clear();
+  for (const SeamSpring& spring : springs_) {
+    const double pull = spring.stiffness * seam_spring_gap(spring, positions);
+    start_fraction_.push_back(pull > 0.0 ? std::min(1.0, tension * spring.length / pull) : 1.0);
+  }
+}
+
+double SeamCoupling::stiffness(std::size_t index) const {
+  const double k = springs_[index].stiffness;
+  if (progress_ >= 1.0 || start_fraction_.empty()) return k;
+  return k * std::pow(start_fraction_[index], 1.0 - progress_);
+}
+
+// Calls visit(spring, state) for every assigned spring with its gap and the
+// kernel's energy and (when `want` asks) gradient.
 template <class Visit>
 PetscErrorCode SeamCoupling::for_each_spring(Vec x, const std::vector<Eigen::Vector3d>& pin_places,
-                                             const Visit& visit) {
+                                             element::Want want, const Visit& visit) {
   std::vector<double> stacked;
   PetscFunctionBeginUser;
   PetscCall(fetch(x, pin_places, &stacked));
   std::size_t at = 0;
-  for (const SeamSpring& spring : springs_) {
+  SpringState state;
+  for (std::size_t index = 0; index < springs_.size(); ++index) {
+    const SeamSpring& spring = springs_[index];
+    const double k = stiffness(index);
     if (spring.to_edge) {
       const Eigen::Map<const Eigen::Matrix<double, 9, 1>> xe(stacked.data() + at);
-      const auto result =
-          element::seam_vertex_edge(spring.stiffness, spring.s, xe, element::Want::gradient);
-      PetscCall(visit(spring, result.energy, Eigen::VectorXd(result.gradient)));
+      const auto result = element::seam_vertex_edge(k, spring.s, xe, want);
+      state = {
+          result.energy, result.gradient,
+          (xe.head<3>() - (1.0 - spring.s) * xe.segment<3>(3) - spring.s * xe.tail<3>()).norm()};
       at += 9;
     } else {
       const Eigen::Map<const Eigen::Matrix<double, 6, 1>> xe(stacked.data() + at);
-      const auto result =
-          element::seam_vertex_vertex(spring.stiffness, xe, element::Want::gradient);
-      PetscCall(visit(spring, result.energy, Eigen::VectorXd(result.gradient)));
+      const auto result = element::seam_vertex_vertex(k, xe, want);
+      state = {result.energy, result.gradient, (xe.head<3>() - xe.tail<3>()).norm()};
       at += 6;
     }
+    PetscCall(visit(spring, state));
   }
   PetscFunctionReturn(0);
 }
@@ -107,11 +126,11 @@ PetscErrorCode SeamCoupling::energy(Vec x, const std::vector<Eigen::Vector3d>& p
                                     double* energy) {
   double local = 0.0;
   PetscFunctionBeginUser;
-  PetscCall(
-      for_each_spring(x, pin_places, [&](const SeamSpring&, double e, const Eigen::VectorXd&) {
-        local += e;
-        return PetscErrorCode(0);
-      }));
+  PetscCall(for_each_spring(x, pin_places, element::Want::energy,
+                            [&](const SeamSpring&, const SpringState& state) {
+                              local += state.energy;
+                              return PetscErrorCode(0);
+                            }));
   PetscCallMPI(MPIU_Allreduce(&local, energy, 1, MPI_DOUBLE, MPI_SUM, comm_));
   PetscFunctionReturn(0);
 }
@@ -119,21 +138,24 @@ PetscErrorCode SeamCoupling::energy(Vec x, const std::vector<Eigen::Vector3d>& p
 PetscErrorCode SeamCoupling::add_forces(Vec x, const std::vector<Eigen::Vector3d>& pin_places,
                                         Vec f) {
   PetscFunctionBeginUser;
-  PetscCall(for_each_spring(
-      x, pin_places, [&](const SeamSpring& spring, double, const Eigen::VectorXd& gradient) {
-        // Vectors, unlike matrices, do not skip negative (pinned) rows.
-        std::vector<PetscInt> rows;
-        std::vector<PetscScalar> values;
-        for (int k = 0; k < spring.vertex_count(); ++k) {
-          for (int d = 0; d < 3; ++d) {
-            const PetscInt row = global_row(spring.vertices[std::size_t(k)], d);
-            if (row < 0) continue;
-            rows.push_back(row);
-            values.push_back(gradient[3 * k + d]);
-          }
-        }
-        return VecSetValues(f, PetscInt(rows.size()), rows.data(), values.data(), ADD_VALUES);
-      }));
+  PetscCall(for_each_spring(x, pin_places, element::Want::gradient,
+                            [&](const SeamSpring& spring, const SpringState& state) {
+                              const Eigen::VectorXd& gradient = state.gradient;
+                              // Vectors, unlike matrices, do not skip negative (pinned) rows.
+                              std::vector<PetscInt> rows;
+                              std::vector<PetscScalar> values;
+                              for (int k = 0; k < spring.vertex_count(); ++k) {
+                                for (int d = 0; d < 3; ++d) {
+                                  const PetscInt row =
+                                      global_row(spring.vertices[std::size_t(k)], d);
+                                  if (row < 0) continue;
+                                  rows.push_back(row);
+                                  values.push_back(gradient[3 * k + d]);
+                                }
+                              }
+                              return VecSetValues(f, PetscInt(rows.size()), rows.data(),
+                                                  values.data(), ADD_VALUES);
+                            }));
   PetscCall(VecAssemblyBegin(f));
   PetscCall(VecAssemblyEnd(f));
   PetscFunctionReturn(0);
@@ -143,10 +165,9 @@ PetscErrorCode SeamCoupling::largest_gap(Vec x, const std::vector<Eigen::Vector3
                                          double* gap) {
   double local = 0.0;
   PetscFunctionBeginUser;
-  // The force on the emitting vertex is k times its gap.
-  PetscCall(for_each_spring(x, pin_places,
-                            [&](const SeamSpring& spring, double, const Eigen::VectorXd& gradient) {
-                              local = std::max(local, gradient.head<3>().norm() / spring.stiffness);
+  PetscCall(for_each_spring(x, pin_places, element::Want::energy,
+                            [&](const SeamSpring&, const SpringState& state) {
+                              local = std::max(local, state.gap);
                               return PetscErrorCode(0);
                             }));
   PetscCallMPI(MPIU_Allreduce(&local, gap, 1, MPI_DOUBLE, MPI_MAX, comm_));
@@ -157,8 +178,9 @@ PetscErrorCode SeamCoupling::pinned_force(Vec x, const std::vector<Eigen::Vector
                                           Eigen::Vector3d* force) {
   double local[3] = {0.0, 0.0, 0.0};
   PetscFunctionBeginUser;
-  PetscCall(for_each_spring(x, pin_places,
-                            [&](const SeamSpring& spring, double, const Eigen::VectorXd& gradient) {
+  PetscCall(for_each_spring(x, pin_places, element::Want::gradient,
+                            [&](const SeamSpring& spring, const SpringState& state) {
+                              const Eigen::VectorXd& gradient = state.gradient;
                               for (int k = 0; k < spring.vertex_count(); ++k) {
                                 if (first_dof_[std::size_t(spring.vertices[std::size_t(k)])] >= 0)
                                   continue;
@@ -175,15 +197,16 @@ PetscErrorCode SeamCoupling::pinned_force(Vec x, const std::vector<Eigen::Vector
 
 PetscErrorCode SeamCoupling::add_jacobian(Mat J) const {
   PetscFunctionBeginUser;
-  for (const SeamSpring& spring : springs_) {
+  for (std::size_t index = 0; index < springs_.size(); ++index) {
+    const SeamSpring& spring = springs_[index];
     const int n = 3 * spring.vertex_count();
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> hessian;
     if (spring.to_edge) {
       hessian =
-          element::seam_vertex_edge(spring.stiffness, spring.s, Eigen::Matrix<double, 9, 1>::Zero())
+          element::seam_vertex_edge(stiffness(index), spring.s, Eigen::Matrix<double, 9, 1>::Zero())
               .hessian;
     } else {
-      hessian = element::seam_vertex_vertex(spring.stiffness, Eigen::Matrix<double, 6, 1>::Zero())
+      hessian = element::seam_vertex_vertex(stiffness(index), Eigen::Matrix<double, 6, 1>::Zero())
                     .hessian;
     }
     std::vector<PetscInt> rows;

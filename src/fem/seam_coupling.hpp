@@ -13,6 +13,7 @@
 //    MatSetValues on global indices (off-process rows are stashed and sent
 //    by the assembly); the same couplings are added to the preallocation.
 
+#include "element/element.hpp"
 #include "mesh/seams.hpp"
 
 #include <petscmat.h>
@@ -51,11 +52,26 @@ public:
   // the pin reaction), N.
   PetscErrorCode pinned_force(Vec x, const std::vector<Eigen::Vector3d>& pin_places,
                               Eigen::Vector3d* force);
+  // Gradual sewing: at the start each spring's stiffness is lowered so that
+  // it pulls with `tension` (N/m) times the seam length it sews across its
+  // gap at `positions` (every mesh vertex; never stiffer than its own); as
+  // set_sewing_progress goes from 0 to 1 it stiffens geometrically to its
+  // own stiffness. Without start_sewing, or at progress 1, springs are
+  // their own.
+  void start_sewing(double tension, const std::vector<Eigen::Vector3d>& positions);
+  void set_sewing_progress(double progress) { progress_ = progress; }
   // Springs (all ranks) that couple a vertex owned by another rank than the
   // one assembling them: the couplings the DMPlex overlap cannot see.
   PetscInt cross_rank_springs() const { return cross_rank_springs_; }
 
 private:
+  struct SpringState {
+    double energy = 0.0;
+    Eigen::VectorXd gradient; // zero unless asked for
+    double gap = 0.0;         // m
+  };
+  // The stiffness of spring `index` at the current sewing progress, N/m.
+  double stiffness(std::size_t index) const;
   // Positions of each assigned spring's vertices, stacked, in spring order.
   PetscErrorCode fetch(Vec x, const std::vector<Eigen::Vector3d>& pin_places,
                        std::vector<double>* stacked);
@@ -63,7 +79,7 @@ private:
   PetscInt global_row(int v, int d) const;
   template <class Visit>
   PetscErrorCode for_each_spring(Vec x, const std::vector<Eigen::Vector3d>& pin_places,
-                                 const Visit& visit);
+                                 element::Want want, const Visit& visit);
 
   MPI_Comm comm_;
   std::vector<SeamSpring> springs_;
@@ -73,6 +89,8 @@ private:
   Vec remote_ = nullptr;       // sequential: the fetched free positions
   VecScatter fetch_ = nullptr;
   PetscInt cross_rank_springs_ = 0;
+  std::vector<double> start_fraction_; // per spring: its start stiffness over its own
+  double progress_ = 1.0;
 };
 
 } // namespace sartor
