@@ -1,7 +1,8 @@
 // Contact in the assembled cloth problem: a consistent Jacobian with
 // penalty and anchors active, a sheet resting on a plane carried by the
 // contact reaction, Coulomb sticking and sliding on an inclined plane, and a
-// drape over a sphere that stays outside it, the same on any number of ranks.
+// drape over a sphere that stays outside it, the same on any number of ranks;
+// skipped body queries that change nothing.
 
 #include "contact/analytic_shapes.hpp"
 #include "fem/cloth_problem.hpp"
@@ -104,6 +105,54 @@ TEST(ContactProblem, JacobianMatchesResidualDifferences) {
   VecDestroy(&x);
   VecDestroy(&v);
   PetscRandomDestroy(&random);
+}
+
+// Vertices that cannot have reached a body since their last query skip it
+// (ClothProblem::surely_apart): evaluations after a move must equal those of
+// a problem that has never queried, including for the vertices the move
+// brings into contact (the sheet's centre, 3 mm above the ball, moved 2 mm
+// down into the 2 mm offset).
+TEST(ContactProblem, SkippedQueriesChangeNothing) {
+  const double offset = 2e-3;
+  const TriangleMesh mesh = placed(mesh::rectangle(0.4, 0.4, 8, 8), Eigen::Matrix3d::Identity(),
+                                   Vector3d(-0.2, -0.2, 0.1 + 1.5 * offset));
+  const auto set_up = [&](ClothProblem& problem) {
+    problem.contact.offset = offset;
+    problem.bodies = {contact::Body(
+        "ball", std::make_shared<contact::Sphere>(Vector3d::Zero(), 0.1), Vector3d::Zero())};
+    problem.loads.gravity = Vector3d(0, 0, -gravity);
+  };
+  ClothProblem queried(PETSC_COMM_WORLD, mesh, fabric(1e-4), {});
+  ClothProblem fresh(PETSC_COMM_WORLD, mesh, fabric(1e-4), {});
+  set_up(queried);
+  set_up(fresh);
+  Vec x = nullptr, moved = nullptr, f_queried = nullptr, f_fresh = nullptr;
+  ASSERT_EQ(queried.create_solution(&x), 0);
+  VecDuplicate(x, &moved);
+  VecDuplicate(x, &f_queried);
+  VecDuplicate(x, &f_fresh);
+  ASSERT_EQ(queried.residual(x, f_queried), 0); // every vertex queried at x
+  ClothEnergy before;
+  ASSERT_EQ(queried.energy(x, &before), 0);
+  EXPECT_EQ(before.contact, 0.0);
+  // Down by 2 mm, plus a little noise.
+  std::vector<Vector3d> positions = mesh.positions;
+  for (std::size_t v = 0; v < positions.size(); ++v)
+    positions[v] += Vector3d(1e-5 * std::sin(double(v)), 1e-5 * std::cos(double(v)), -offset);
+  ASSERT_EQ(queried.set_solution(positions, moved), 0);
+  ASSERT_EQ(queried.residual(moved, f_queried), 0);
+  ASSERT_EQ(fresh.residual(moved, f_fresh), 0);
+  ClothEnergy skipping, cold;
+  ASSERT_EQ(queried.energy(moved, &skipping), 0);
+  ASSERT_EQ(fresh.energy(moved, &cold), 0);
+  EXPECT_GT(cold.contact, 0.0); // the centre is in the offset layer now
+  EXPECT_EQ(skipping.contact, cold.contact);
+  VecAXPY(f_fresh, -1.0, f_queried);
+  PetscReal difference = 1.0;
+  VecNorm(f_fresh, NORM_INFINITY, &difference);
+  EXPECT_EQ(difference, 0.0);
+  for (Vec* v : {&x, &moved, &f_queried, &f_fresh})
+    VecDestroy(v);
 }
 
 TEST(ContactProblem, SheetOnAPlaneIsCarriedByTheContactReaction) {
