@@ -91,8 +91,8 @@ double SeamCoupling::stiffness(std::size_t index) const {
   return k * std::pow(start_fraction_[index], 1.0 - progress_);
 }
 
-// Calls visit(spring, state) for every assigned spring with its gap and the
-// kernel's energy and (when `want` asks) gradient.
+// Calls visit(spring, state) for every assigned spring with its stiffness of
+// the moment and the kernel's energy and (when `want` asks) gradient.
 template <class Visit>
 PetscErrorCode SeamCoupling::for_each_spring(Vec x, const std::vector<Eigen::Vector3d>& pin_places,
                                              element::Want want, const Visit& visit) {
@@ -107,14 +107,12 @@ PetscErrorCode SeamCoupling::for_each_spring(Vec x, const std::vector<Eigen::Vec
     if (spring.to_edge) {
       const Eigen::Map<const Eigen::Matrix<double, 9, 1>> xe(stacked.data() + at);
       const auto result = element::seam_vertex_edge(k, spring.s, xe, want);
-      state = {
-          result.energy, result.gradient,
-          (xe.head<3>() - (1.0 - spring.s) * xe.segment<3>(3) - spring.s * xe.tail<3>()).norm()};
+      state = {k, result.energy, result.gradient};
       at += 9;
     } else {
       const Eigen::Map<const Eigen::Matrix<double, 6, 1>> xe(stacked.data() + at);
       const auto result = element::seam_vertex_vertex(k, xe, want);
-      state = {result.energy, result.gradient, (xe.head<3>() - xe.tail<3>()).norm()};
+      state = {k, result.energy, result.gradient};
       at += 6;
     }
     PetscCall(visit(spring, state));
@@ -165,11 +163,12 @@ PetscErrorCode SeamCoupling::largest_gap(Vec x, const std::vector<Eigen::Vector3
                                          double* gap) {
   double local = 0.0;
   PetscFunctionBeginUser;
-  PetscCall(for_each_spring(x, pin_places, element::Want::energy,
-                            [&](const SeamSpring&, const SpringState& state) {
-                              local = std::max(local, state.gap);
-                              return PetscErrorCode(0);
-                            }));
+  // The force on the emitting vertex is k times its gap.
+  PetscCall(for_each_spring(
+      x, pin_places, element::Want::gradient, [&](const SeamSpring&, const SpringState& state) {
+        local = std::max(local, state.gradient.head<3>().norm() / state.stiffness);
+        return PetscErrorCode(0);
+      }));
   PetscCallMPI(MPIU_Allreduce(&local, gap, 1, MPI_DOUBLE, MPI_MAX, comm_));
   PetscFunctionReturn(0);
 }

@@ -66,9 +66,9 @@ public:
 
 private:
   struct SpringState {
+    double stiffness = 0.0; // N/m, at the current sewing progress
     double energy = 0.0;
     Eigen::VectorXd gradient; // zero unless asked for
-    double gap = 0.0;         // m
   };
   // The stiffness of spring `index` at the current sewing progress, N/m.
   double stiffness(std::size_t index) const;
