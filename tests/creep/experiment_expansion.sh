@@ -19,18 +19,14 @@ for rate in 0.005 0.025 0.05; do
 done
 "$python" "$postproc" expansion "${runs[@]}" --labels "ll=0.005,ll=0.025,ll=0.05" \
   --json "$work/expansion.json"
-"$python" - "$work/expansion.json" <<'PY'
+"$python" - "$work/expansion.json" "$(dirname "$0")" <<'PY'
 import json, sys
+sys.path.insert(0, sys.argv[2])
+from experiment_checks import rising, unfinished
 runs = json.load(open(sys.argv[1]))["runs"]
-failures = [f"{r['label']}: converged {r['converged']}, completed {r['completed']}"
-            for r in runs if not (r["converged"] and r["completed"])]
+failures = unfinished(runs)
 for key in ("excess_circumference", "sag_gap_m"):
-    values = [r[key] for r in runs]
-    if not values[0] > 0.0:
-        failures.append(f"{key} of {runs[0]['label']} is not positive: {values[0]}")
-    for a, b, la, lb in zip(values, values[1:], runs, runs[1:]):
-        if not b > 1.2 * a:
-            failures.append(f"{key}: {lb['label']} {b:.4g} is not 20 % above {la['label']} {a:.4g}")
+    failures += rising(runs, key)
 if failures:
     sys.exit("\n".join(failures))
 PY

@@ -14,11 +14,12 @@ rm -rf "$work" && mkdir -p "$work"
 "$sartor" run "$case" --pin-release 1:3600.5 --time-end 3660.5 --output-interval 300 \
   --output "$work/held_1h" > "$work/held_1h.log"
 "$python" "$postproc" pinch "$work/held_1s" "$work/held_1h" --labels "1 s,1 h" --json "$work/pinch.json"
-"$python" - "$work/pinch.json" "$work" <<'PY'
+"$python" - "$work/pinch.json" "$work" "$(dirname "$0")" <<'PY'
 import json, sys
+sys.path.insert(0, sys.argv[3])
+from experiment_checks import unfinished
 short, long = json.load(open(sys.argv[1]))["runs"]
-failures = [f"held {r['label']}: converged {r['converged']}, completed {r['completed']}"
-            for r in (short, long) if not (r["converged"] and r["completed"])]
+failures = unfinished((short, long), "held ")
 for key, factor in (("residual_sag_m", 1.5), ("residual_nonelastic_strain", 3.0)):
     if not short[key] > 0.0:
         failures.append(f"held 1 s: no {key} ({short[key]})")

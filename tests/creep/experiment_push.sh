@@ -21,17 +21,12 @@ done
 "$python" "$(dirname "$postproc")/plot_shapes.py" "$work/E3000" "$work/E300" "$work/E30" \
   --labels "E = 3000,E = 300,E = 30" --output "$work/shapes.png"
 [ -s "$work/shapes.png" ] || { echo "no picture of the shapes" >&2; exit 1; }
-"$python" - "$work/push.json" <<'PY'
+"$python" - "$work/push.json" "$(dirname "$0")" <<'PY'
 import json, sys
+sys.path.insert(0, sys.argv[2])
+from experiment_checks import rising, unfinished
 runs = json.load(open(sys.argv[1]))["runs"]
-failures = [f"{r['label']}: converged {r['converged']}, completed {r['completed']}"
-            for r in runs if not (r["converged"] and r["completed"])]
-bulge = [r["residual_bulge_m"] for r in runs]
-if not bulge[0] > 0.0:
-    failures.append(f"no bulge at E=3000: {bulge[0]}")
-for a, b, la, lb in zip(bulge, bulge[1:], runs, runs[1:]):
-    if not b > 1.2 * a:
-        failures.append(f"residual bulge {lb['label']} {b:.4g} m is not 20 % above {la['label']} {a:.4g} m")
+failures = unfinished(runs) + rising(runs, "residual_bulge_m", " m")
 if failures:
     sys.exit("\n".join(failures))
 PY

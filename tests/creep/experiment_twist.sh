@@ -19,11 +19,12 @@ for name in "${names[@]}"; do
 done
 labels=$(IFS=,; echo "${names[*]}")
 "$python" "$postproc" twist "${runs[@]}" --labels "$labels" --json "$work/twist.json"
-"$python" - "$work/twist.json" <<'PY'
+"$python" - "$work/twist.json" "$(dirname "$0")" <<'PY'
 import json, sys
+sys.path.insert(0, sys.argv[2])
+from experiment_checks import unfinished
 runs = {r["label"]: r for r in json.load(open(sys.argv[1]))["runs"]}
-failures = [f"{name}: converged {r['converged']}, completed {r['completed']}"
-            for name, r in runs.items() if not (r["converged"] and r["completed"])]
+failures = unfinished(runs.values())
 strain = {name: r["residual_nonelastic_strain"] for name, r in runs.items()}
 failures += [f"{name}: no residual non-elastic strain ({value})"
              for name, value in strain.items() if not value > 0.0]
