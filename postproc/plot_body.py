@@ -15,20 +15,11 @@ import argparse
 import os
 import sys
 
-try:
-    import numpy as np
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.collections import PolyCollection
-except ImportError as missing:  # pragma: no cover - depends on the interpreter
-    sys.exit(
-        "plot_body.py: error: %s. This script needs numpy and matplotlib; run it with "
-        "/usr/bin/python3 (Debian packages python3-numpy, python3-matplotlib)." % missing
-    )
-
 from sartor_plotio import PlotError, read_json, save_figure
+
+import numpy as np
+import matplotlib.pyplot as plt
+from matplotlib.collections import PolyCollection
 
 
 def read_obj(path):

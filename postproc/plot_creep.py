@@ -22,21 +22,11 @@ import argparse
 import os
 import sys
 
-try:
-    import numpy as np
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from matplotlib.gridspec import GridSpec
-except ImportError as missing:  # pragma: no cover - depends on the interpreter
-    sys.exit(
-        "plot_creep.py: error: %s. This script needs numpy and matplotlib; run it with "
-        "/usr/bin/python3 (Debian packages python3-numpy, python3-matplotlib)." % missing
-    )
-
 from sartor_plotio import PlotError, read_csv_columns, read_json, save_figure, time_unit
+
+import numpy as np
+import matplotlib.pyplot as plt
+from matplotlib.gridspec import GridSpec
 
 PROGRAM = "plot_creep.py"
 DPI = 150

@@ -16,21 +16,12 @@ import argparse
 import os
 import sys
 
-try:
-    import numpy as np
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.collections import PolyCollection
-except ImportError as missing:  # pragma: no cover - depends on the interpreter
-    sys.exit(
-        "plot_drape.py: error: %s. This script needs numpy and matplotlib; run it with "
-        "/usr/bin/python3 (Debian packages python3-numpy, python3-matplotlib)." % missing
-    )
-
-from plot_body import read_obj
 from sartor_plotio import PlotError, read_json, save_figure
+from plot_body import read_obj
+
+import numpy as np
+import matplotlib.pyplot as plt
+from matplotlib.collections import PolyCollection
 
 BODY_COLOUR = np.array([0.93, 0.82, 0.72])
 GARMENT_COLOUR = np.array([0.35, 0.5, 0.8])

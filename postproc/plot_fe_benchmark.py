@@ -24,19 +24,10 @@ import math
 import os
 import sys
 
-try:
-    import numpy as np
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-except ImportError as missing:  # pragma: no cover - depends on the interpreter
-    sys.exit(
-        "plot_fe_benchmark.py: error: %s. This script needs numpy and matplotlib; run it with "
-        "/usr/bin/python3 (Debian packages python3-numpy, python3-matplotlib)." % missing
-    )
-
 from sartor_plotio import PlotError, read_csv_columns, read_json, save_figure
+
+import numpy as np
+import matplotlib.pyplot as plt
 
 PROGRAM = "plot_fe_benchmark.py"
 DPI = 150

@@ -23,21 +23,11 @@ import os
 import sys
 import textwrap
 
-try:
-    import numpy as np
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    import matplotlib.ticker
-except ImportError as missing:  # pragma: no cover - depends on the interpreter
-    sys.exit(
-        "plot_fit.py: error: %s. This script needs numpy and matplotlib; run it with "
-        "/usr/bin/python3 (Debian packages python3-numpy, python3-matplotlib)." % missing
-    )
-
 from sartor_plotio import PlotError, read_csv_columns, read_json, save_figure, time_unit
+
+import numpy as np
+import matplotlib.pyplot as plt
+import matplotlib.ticker
 
 PROGRAM = "plot_fit.py"
 DPI = 150

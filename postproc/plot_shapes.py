@@ -16,20 +16,11 @@ import argparse
 import os
 import sys
 
-try:
-    import numpy as np
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-except ImportError as missing:  # pragma: no cover - depends on the interpreter
-    sys.exit(
-        "plot_shapes.py: error: %s. This script needs numpy and matplotlib; run it with "
-        "/usr/bin/python3 (Debian packages python3-numpy, python3-matplotlib)." % missing
-    )
-
-from plot_body import read_obj
 from sartor_plotio import PlotError, save_figure
+from plot_body import read_obj
+
+import numpy as np
+import matplotlib.pyplot as plt
 
 
 def main():

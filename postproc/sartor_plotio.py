@@ -4,8 +4,21 @@
 import csv
 import json
 import os
+import sys
 
-import numpy as np
+# Every plotting script imports this module before numpy and matplotlib, so
+# that a missing package is reported here, once, in the user's terms.
+try:
+    import numpy as np
+    import matplotlib
+
+    matplotlib.use("Agg")
+except ImportError as missing:  # pragma: no cover - depends on the interpreter
+    sys.exit(
+        "%s: error: %s. This script needs numpy and matplotlib; run it with /usr/bin/python3 "
+        "(Debian packages python3-numpy, python3-matplotlib)."
+        % (os.path.basename(sys.argv[0]), missing)
+    )
 
 
 class PlotError(Exception):
