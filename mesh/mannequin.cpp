@@ -14,13 +14,14 @@ namespace sartor {
 
 namespace {
 
-// --- primitives: signed distances with their gradients (exact for the
-// capsule, first-order for the ellipsoid), negative inside ---------------------
+// --- primitives: signed distances with their gradients and Hessians (exact
+// for the capsule, first-order for the ellipsoid), negative inside -----------
 
-struct FieldValue {
-  double value;
-  Eigen::Vector3d gradient;
-};
+using FieldValue = MannequinFieldValue;
+
+Eigen::Matrix3d across_projector(const Eigen::Vector3d& unit) {
+  return Eigen::Matrix3d::Identity() - unit * unit.transpose();
+}
 
 // The convex hull of two spheres (centres a, b; radii ra, rb with
 // |ra - rb| < |b - a|). In the plane of the axis and p, with y along the
@@ -52,13 +53,17 @@ struct TaperedCapsule {
     const auto sphere = [&p](const Eigen::Vector3d& centre, double r) {
       const Eigen::Vector3d d = p - centre;
       const double norm = d.norm();
-      return FieldValue{norm - r,
-                        norm > 0.0 ? Eigen::Vector3d(d / norm) : Eigen::Vector3d::UnitZ()};
+      if (norm == 0.0) return FieldValue{-r, Eigen::Vector3d::UnitZ(), Eigen::Matrix3d::Zero()};
+      const Eigen::Vector3d n = d / norm;
+      return FieldValue{norm - r, n, across_projector(n) / norm};
     };
     if (along_side < 0.0) return sphere(a, ra);
     if (along_side > c * length) return sphere(b, rb);
     const Eigen::Vector3d across = x > 0.0 ? Eigen::Vector3d(radial / x) : unit.unitOrthogonal();
-    return {s * y + c * x - ra, s * unit + c * across};
+    const Eigen::Matrix3d curvature =
+        x > 0.0 ? Eigen::Matrix3d(c * (across_projector(unit) - across * across.transpose()) / x)
+                : Eigen::Matrix3d::Zero();
+    return {s * y + c * x - ra, s * unit + c * across, curvature};
   }
 };
 
@@ -77,21 +82,38 @@ struct Ellipsoid {
     const Eigen::Vector3d q_r4 = q_r2.cwiseQuotient(r2);
     const double k0 = std::sqrt(q.dot(q_r2));
     const double k1 = q_r2.norm();
-    if (k1 == 0.0) return {-radii.minCoeff(), Eigen::Vector3d::UnitZ()};
+    if (k1 == 0.0) return {-radii.minCoeff(), Eigen::Vector3d::UnitZ(), Eigen::Matrix3d::Zero()};
     const Eigen::Vector3d dk0 = q_r2 / k0;
     const Eigen::Vector3d dk1 = q_r4 / k1;
-    const Eigen::Vector3d local = ((2.0 * k0 - 1.0) * k1 * dk0 - k0 * (k0 - 1.0) * dk1) / (k1 * k1);
-    return {k0 * (k0 - 1.0) / k1, frame.transpose() * local};
-  }
-};
+    const Eigen::Matrix3d ddk0 =
+        (Eigen::Matrix3d(r2.cwiseInverse().asDiagonal()) - dk0 * dk0.transpose()) / k0;
+    const Eigen::Matrix3d ddk1 =
+        (Eigen::Matrix3d(r2.cwiseProduct(r2).cwiseInverse().asDiagonal()) - dk1 * dk1.transpose()) /
+        k1;
+    // value g(k0) / k1 with g = k0 (k0 - 1)
+    const double g = k0 * (k0 - 1.0);
+    const double dg = 2.0 * k0 - 1.0;
+    const Eigen::Vector3d local = (dg * k1 * dk0 - g * dk1) / (k1 * k1);
+    const Eigen::Matrix3d cross = dk0 * dk1.transpose();
+    const Eigen::Matrix3d local_hessian =
+        (2.0 * dk0 * dk0.transpose() + dg * ddk0) / k1 -
+        dg * (cross + cross.transpose()) / (k1 * k1) +
+        2.0 * g * dk1 * dk1.transpose() / (k1 * k1 * k1) - g * ddk1 / (k1 * k1);
+    return {g / k1, frame.transpose() * local, frame.transpose() * local_hessian * frame};
+  }};
 
 // Quadratic smooth minimum: equal to min(a, b) where |a - b| >= k, filling
 // the crease between two surfaces with a fillet of size about k otherwise.
+// The blend's weights change across the fillet, which bends it by
+// -(grad a - grad b)(grad a - grad b)^T / (2k) on top of the weighted curvatures.
 FieldValue smooth_min(const FieldValue& a, const FieldValue& b, double k) {
   const double h = std::max(k - std::abs(a.value - b.value), 0.0) / k;
   const double weight_a = a.value < b.value ? 1.0 - 0.5 * h : 0.5 * h;
+  const Eigen::Vector3d difference = a.gradient - b.gradient;
+  Eigen::Matrix3d hessian = weight_a * a.hessian + (1.0 - weight_a) * b.hessian;
+  if (h > 0.0) hessian -= difference * difference.transpose() / (2.0 * k);
   return {std::min(a.value, b.value) - 0.25 * k * h * h,
-          weight_a * a.gradient + (1.0 - weight_a) * b.gradient};
+          weight_a * a.gradient + (1.0 - weight_a) * b.gradient, hessian};
 }
 
 FieldValue max(const FieldValue& a, const FieldValue& b) {
@@ -206,7 +228,7 @@ FieldValue arm_field(const Limbs& l, const Eigen::Vector3d& p) {
 FieldValue leg_field(const Limbs& l, const Eigen::Vector3d& p) {
   const FieldValue leg = smooth_min(l.thigh.distance(p), l.shin.distance(p), 0.03);
   const FieldValue calf = smooth_min(leg, l.calf.distance(p), 0.03);
-  const FieldValue floor{-p.z(), -Eigen::Vector3d::UnitZ()};
+  const FieldValue floor{-p.z(), -Eigen::Vector3d::UnitZ(), Eigen::Matrix3d::Zero()};
   return smooth_min(calf, max(l.foot.distance(p), floor), 0.03);
 }
 
@@ -428,6 +450,10 @@ Mannequin generate_mannequin() {
 
 double mannequin_field(const Eigen::Vector3d& p) {
   return body_field(p).value;
+}
+
+MannequinFieldValue mannequin_field_derivatives(const Eigen::Vector3d& p) {
+  return body_field(p);
 }
 
 const Bone& Mannequin::bone(const std::string& name) const {

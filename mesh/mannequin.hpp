@@ -52,4 +52,16 @@ Mannequin generate_mannequin();
 // roughly a distance in m near the surface), in the mannequin's frame.
 double mannequin_field(const Eigen::Vector3d& p);
 
+// The same with its gradient and Hessian. The function is C1 everywhere but
+// on the soles' rims (a smooth union of smooth pieces); the Hessian jumps
+// where a fillet begins. On the surface |gradient| is 1 on a piece and less
+// in the fillets between two; off it the ellipsoids' first-order distances
+// steepen (contact/mannequin_surface.hpp).
+struct MannequinFieldValue {
+  double value;             // m
+  Eigen::Vector3d gradient; // 1
+  Eigen::Matrix3d hessian;  // 1/m
+};
+MannequinFieldValue mannequin_field_derivatives(const Eigen::Vector3d& p);
+
 } // namespace sartor

@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "contact/analytic_shapes.hpp"
+#include "contact/mannequin_surface.hpp"
 #include "contact/mesh_shape.hpp"
 
 #include <cmath>
@@ -183,7 +184,9 @@ std::pair<std::shared_ptr<const Shape>, Vector3d> make_shape(Fields& fields) {
     std::shared_ptr<const Shape> shape = load_mesh_shape(fields.text_required("file"));
     return {shape, origin};
   }
-  if (kind == "mannequin") return {std::shared_ptr<const Shape>(make_mannequin_shape()), origin};
+  if (kind == "mannequin") {
+    return {std::shared_ptr<const Shape>(make_smooth_mannequin_shape()), origin};
+  }
   fields.fail("unknown body '" + kind +
               "' (plane, sphere, capsule, cylinder, disk, box, mesh, mannequin)");
 }

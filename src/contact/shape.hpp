@@ -14,7 +14,9 @@ namespace sartor::contact {
 struct SurfaceQuery {
   double distance = 0.0;                             // signed, > 0 outside, m
   Eigen::Vector3d closest = Eigen::Vector3d::Zero(); // nearest surface point, m
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); // d distance / d p (unit, outward)
+  // d distance / d p, outward: unit for an exact distance, shorter in the
+  // fillets of a smooth implicit body (mannequin_surface.hpp).
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
   Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero(); // d^2 distance / d p^2, 1/m
 };
 
@@ -27,6 +29,9 @@ public:
   virtual SurfaceQuery query(const Eigen::Vector3d& p) const = 0;
   // One line for logs and summaries, e.g. "sphere r=0.3".
   virtual std::string describe() const = 0;
+  // A bound on |normal| outside the body: the distance falls by at most this
+  // much per metre moved. 1 for an exact distance.
+  virtual double slope_bound() const { return 1.0; }
 };
 
 } // namespace sartor::contact

@@ -47,7 +47,9 @@ bool ClothProblem::surely_apart(std::size_t body, int vertex, const Eigen::Vecto
   if (queried_.size() != bodies.size())
     queried_.assign(bodies.size(), std::vector<QueriedPlace>(mesh_.vertex_count()));
   const QueriedPlace& last = queried_[body][std::size_t(vertex)];
-  return last.clock == contact_clock() && last.distance - (x - last.point).norm() > contact.offset;
+  const double slope = bodies[body].shape().slope_bound();
+  return last.clock == contact_clock() &&
+         last.distance - slope * (x - last.point).norm() > contact.offset;
 }
 
 contact::PointResult ClothProblem::vertex_contact(std::size_t body, int vertex,
@@ -134,7 +136,9 @@ PetscErrorCode ClothProblem::update_contact(Vec x) {
       const contact::SurfaceQuery q = body.query(p, contact_clock());
       FrictionAnchor& anchor = anchors_[b][std::size_t(v)];
       const double gap = contact.offset - q.distance;
-      if (gap <= 0.0) {
+      // A smooth body's gradient is not always of unit length (shape.hpp).
+      const double slope = q.normal.norm();
+      if (gap <= 0.0 || slope == 0.0) {
         anchor.active = false; // left the body: released
         continue;
       }
@@ -143,7 +147,7 @@ PetscErrorCode ClothProblem::update_contact(Vec x) {
         const double k = contact_stiffness(v);
         const contact::AnchorUpdate update = contact::slide_anchor(
             k, p, body.to_world(anchor.point, contact_clock()),
-            body.direction_to_world(anchor.normal, contact_clock()), k * gap,
+            body.direction_to_world(anchor.normal, contact_clock()), k * gap * slope,
             body.friction.static_coefficient, body.friction.kinetic_coefficient);
         if (!update.slid) continue;
         ++sliding_[b];
@@ -151,7 +155,7 @@ PetscErrorCode ClothProblem::update_contact(Vec x) {
       }
       anchor.active = true;
       anchor.point = body.to_body(place, contact_clock());
-      anchor.normal = body.direction_to_body(q.normal, contact_clock());
+      anchor.normal = body.direction_to_body(q.normal / slope, contact_clock());
     }
   }
   PetscCall(VecRestoreArrayRead(local_x_, &values));

@@ -2,6 +2,7 @@
 // arms clear of the torso, joints inside, deterministic.
 
 #include "common/error.hpp"
+#include "contact/mannequin_surface.hpp"
 #include "contact/mesh_shape.hpp"
 #include "mesh/mannequin.hpp"
 
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <random>
 
 namespace {
 
@@ -142,6 +144,77 @@ TEST(Mannequin, SkeletonHasTheNamedBonesWithJointsInsideTheBody) {
 
 TEST(Mannequin, GenerationIsDeterministic) {
   EXPECT_EQ(fingerprint(sartor::generate_mannequin()), fingerprint(mannequin()));
+}
+
+// Points near the surface all over the body: mesh vertices pushed off along
+// their normals by a deterministic random distance in [below, above].
+std::vector<Eigen::Vector3d> points_near_the_surface(std::size_t count, double below = -0.01,
+                                                     double above = 0.03) {
+  const auto& mesh = mannequin().mesh;
+  std::mt19937 random(7);
+  std::uniform_int_distribution<std::size_t> pick(0, mesh.vertices.size() - 1);
+  std::uniform_real_distribution<double> offset(below, above);
+  std::vector<Eigen::Vector3d> points;
+  for (std::size_t i = 0; i < count; ++i) {
+    const Eigen::Vector3d& v = mesh.vertices[pick(random)];
+    points.push_back(v + offset(random) * sartor::mannequin_field_derivatives(v).gradient);
+  }
+  return points;
+}
+
+TEST(SmoothMannequin, GradientAndHessianMatchFiniteDifferencesOfTheField) {
+  const double step = 1e-6;
+  for (const Eigen::Vector3d& p : points_near_the_surface(2000)) {
+    const sartor::MannequinFieldValue at = sartor::mannequin_field_derivatives(p);
+    for (int d = 0; d < 3; ++d) {
+      const Eigen::Vector3d e = step * Eigen::Vector3d::Unit(d);
+      const sartor::MannequinFieldValue plus = sartor::mannequin_field_derivatives(p + e);
+      const sartor::MannequinFieldValue minus = sartor::mannequin_field_derivatives(p - e);
+      ASSERT_NEAR((plus.value - minus.value) / (2 * step), at.gradient[d], 1e-6)
+          << "at " << p.transpose() << ", direction " << d;
+      // Where a fillet begins between the two points the Hessian jumps.
+      const bool fillet_edge =
+          (plus.hessian - minus.hessian).norm() > 1e-3 * (1 + at.hessian.norm());
+      if (fillet_edge) continue;
+      const Eigen::Vector3d column = (plus.gradient - minus.gradient) / (2 * step);
+      ASSERT_LT((column - at.hessian.col(d)).norm(), 1e-5 * (1.0 + at.hessian.norm()))
+          << "at " << p.transpose() << ", direction " << d;
+    }
+    ASSERT_LT((at.hessian - at.hessian.transpose()).norm(), 1e-9 * (1.0 + at.hessian.norm()));
+  }
+}
+
+// Contact skips a vertex's query while it has moved less than its last
+// distance beyond the offset over the shape's slope bound
+// (fem/cloth_contact.cpp), which is sound only if the bound holds.
+TEST(SmoothMannequin, FunctionFallsNoFasterThanItsSlopeBound) {
+  const auto shape = sartor::contact::make_smooth_mannequin_shape();
+  double outside = 0.0;
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> x(-3.0, 3.0), y(-3.0, 3.0), z(-2.0, 4.0);
+  for (int i = 0; i < 200000; ++i) {
+    const sartor::MannequinFieldValue f =
+        sartor::mannequin_field_derivatives(Eigen::Vector3d(x(random), y(random), z(random)));
+    if (f.value > 0.0) outside = std::max(outside, f.gradient.norm());
+  }
+  EXPECT_LT(outside, shape->slope_bound());
+}
+
+TEST(SmoothMannequin, SurfaceIsTheMeshsSurfaceAndQueriesAreConsistent) {
+  const auto shape = sartor::contact::make_smooth_mannequin_shape();
+  for (const auto& v : mannequin().mesh.vertices)
+    ASSERT_NEAR(shape->query(v).distance, 0.0, 1e-9) << v.transpose();
+  // Within contact's range of the surface.
+  for (const Eigen::Vector3d& p : points_near_the_surface(2000, -0.002, 0.002)) {
+    const sartor::contact::SurfaceQuery q = shape->query(p);
+    const sartor::contact::SurfaceQuery mesh_q = mannequin_shape().query(p);
+    // The mesh's chords lie within about 1 mm of the smooth surface.
+    EXPECT_NEAR(q.distance, mesh_q.distance, 1.5e-3) << p.transpose();
+    // One Newton step: a tenth of the contact offset's millimetre at most.
+    EXPECT_NEAR(shape->query(q.closest).distance, 0.0, 1e-4) << p.transpose();
+    // The same side (the 2 cm grid polygonises the 4 cm thin hands coarsely).
+    EXPECT_GT(q.normal.dot(mesh_q.normal), 0.0) << p.transpose();
+  }
 }
 
 } // namespace
