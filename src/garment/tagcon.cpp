@@ -284,11 +284,19 @@ Vector3d at_fraction(const std::vector<Vector3d>& samples, double t) {
   return (1 - f) * samples[k] + f * samples[k + 1];
 }
 
+// The orientation whose seam springs (point to point at equal arc length)
+// start with the least energy. Comparing only the end points' distances can
+// twist a ring's seam: the hood's neck edge, placed round the back of the
+// head, ends 1 cm nearer the front neckline's far end the wrong way round.
 bool should_reverse(const LineGeometry& a, const LineGeometry& b) {
-  const double direct =
-      (a.samples.front() - b.samples.front()).norm() + (a.samples.back() - b.samples.back()).norm();
-  const double crossed =
-      (a.samples.front() - b.samples.back()).norm() + (a.samples.back() - b.samples.front()).norm();
+  double direct = 0.0;
+  double crossed = 0.0;
+  const double last = double(a.samples.size() - 1);
+  for (std::size_t k = 0; k < a.samples.size(); ++k) {
+    const double t = double(k) / last;
+    direct += (a.samples[k] - at_fraction(b.samples, t)).squaredNorm();
+    crossed += (a.samples[k] - at_fraction(b.samples, 1 - t)).squaredNorm();
+  }
   return crossed < direct;
 }
 
