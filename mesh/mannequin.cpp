@@ -95,12 +95,13 @@ struct Ellipsoid {
     const double dg = 2.0 * k0 - 1.0;
     const Eigen::Vector3d local = (dg * k1 * dk0 - g * dk1) / (k1 * k1);
     const Eigen::Matrix3d cross = dk0 * dk1.transpose();
-    const Eigen::Matrix3d local_hessian =
-        (2.0 * dk0 * dk0.transpose() + dg * ddk0) / k1 -
-        dg * (cross + cross.transpose()) / (k1 * k1) +
-        2.0 * g * dk1 * dk1.transpose() / (k1 * k1 * k1) - g * ddk1 / (k1 * k1);
+    const Eigen::Matrix3d local_hessian = (2.0 * dk0 * dk0.transpose() + dg * ddk0) / k1 -
+                                          dg * (cross + cross.transpose()) / (k1 * k1) +
+                                          2.0 * g * dk1 * dk1.transpose() / (k1 * k1 * k1) -
+                                          g * ddk1 / (k1 * k1);
     return {g / k1, frame.transpose() * local, frame.transpose() * local_hessian * frame};
-  }};
+  }
+};
 
 // Quadratic smooth minimum: equal to min(a, b) where |a - b| >= k, filling
 // the crease between two surfaces with a fillet of size about k otherwise.
