@@ -158,6 +158,7 @@ void check_seams(const TriangleMesh& mesh, const std::vector<Seam>& seams,
                        format_number(seam.certainty));
     }
     for (const auto& [side, line] : {std::pair{"a", &seam.a}, std::pair{"b", &seam.b}}) {
+      const std::size_t triangles_on_edge = seam.t_seam && line == &seam.b ? 2 : 1;
       const std::string where = label + ": line " + side;
       if (line->size() < 2) {
         throw InputError(where + " has " + std::to_string(line->size()) +
@@ -180,10 +181,11 @@ void check_seams(const TriangleMesh& mesh, const std::vector<Seam>& seams,
           throw InputError(where + ": vertices " + std::to_string(p) + " and " + std::to_string(q) +
                            " are not joined by a mesh edge");
         }
-        if (found->second.size() != 1) {
+        if (found->second.size() != triangles_on_edge) {
           throw InputError(where + ": edge " + std::to_string(p) + "-" + std::to_string(q) +
-                           " is not on a panel boundary (it has " +
-                           std::to_string(found->second.size()) + " triangles)");
+                           (triangles_on_edge == 1 ? " is not on a panel boundary"
+                                                   : " of a T-seam is not inside a panel") +
+                           " (it has " + std::to_string(found->second.size()) + " triangles)");
         }
       }
     }
@@ -220,9 +222,12 @@ std::vector<Seam> read_seams(const std::string& path, const TriangleMesh& mesh) 
       } else if (key == "certainty") {
         if (!value.is_number()) throw InputError(where + ": 'certainty' must be a number");
         seam.certainty = value.get<double>();
+      } else if (key == "t_seam") {
+        if (!value.is_boolean()) throw InputError(where + ": 't_seam' must be true or false");
+        seam.t_seam = value.get<bool>();
       } else {
         throw InputError(where + ": unknown key '" + key +
-                         "' (expected name, a, b, reverse, certainty)");
+                         "' (expected name, a, b, reverse, certainty, t_seam)");
       }
     }
     if (!entry.contains("a") || !entry.contains("b")) {
@@ -242,6 +247,7 @@ void write_seams(const std::string& path, const std::vector<Seam>& seams) {
                     {"b", seam.b},
                     {"reverse", seam.reverse},
                     {"certainty", seam.certainty}});
+    if (seam.t_seam) list.back()["t_seam"] = true;
   }
   write_json(path, nlohmann::json{{"seams", list}});
 }
@@ -298,6 +304,11 @@ std::vector<std::pair<int, int>> matched_vertex_pairs(const TriangleMesh& mesh,
   check_seams(mesh, seams, "");
   std::vector<std::pair<int, int>> pairs;
   for (std::size_t index = 0; index < seams.size(); ++index) {
+    if (seams[index].t_seam) {
+      throw InputError(seam_label(seams, index) +
+                       ": a T-seam cannot be merged (its edges would join three triangles); "
+                       "sew it with springs only");
+    }
     if (!seam_is_matched(mesh, seams[index])) {
       throw InputError(
           seam_label(seams, index) + ": its lines are not discretised alike (vertex counts " +

@@ -4,10 +4,12 @@
 // the garment front end's seam creation, thesis ch. 3, produces).
 //
 // A seam joins two seam lines, each an ordered polyline of mesh vertices along
-// panel boundaries. The lines are paired start to start (start to end when
-// `reverse`) and matched by their normalised arc length, measured in material
-// (u, v) coordinates so that the panels' rest lengths decide, not their
-// initial placement:
+// panel boundaries; in a T-seam line b runs inside a panel instead (an outer
+// layer's edge sewn onto an interior line, thesis §3.3.4: a patch pocket).
+// The lines are paired start to start (start to end when `reverse`) and
+// matched by their normalised arc length, measured in material (u, v)
+// coordinates so that the panels' rest lengths decide, not their initial
+// placement:
 //  * lines with as many vertices at the same normalised positions (within
 //    1e-6) are sewn vertex to vertex;
 //  * otherwise every vertex of each line emits a vertex-to-edge spring to the
@@ -39,6 +41,7 @@ struct Seam {
   std::vector<int> b;
   bool reverse = false;   // pair a's start with b's end
   double certainty = 1.0; // in (0, 1]: multiplies the seam's stiffness
+  bool t_seam = false;    // line b runs on edges inside a panel, not on its boundary
 };
 
 // A zero-rest-length spring: vertex-to-vertex (vertices[0] to vertices[1]) or
@@ -69,7 +72,8 @@ void write_seams(const std::string& path, const std::vector<Seam>& seams);
 // Throws InputError ("CONTEXT: seam I ('NAME'): ...") when a line has fewer
 // than two vertices, names a vertex outside the mesh or twice, or two
 // consecutive vertices are not the ends of a boundary edge (an edge of
-// exactly one triangle); or certainty is not in (0, 1].
+// exactly one triangle; of two for line b of a T-seam); or certainty is not
+// in (0, 1].
 void check_seams(const TriangleMesh& mesh, const std::vector<Seam>& seams,
                  const std::string& context);
 
@@ -85,7 +89,8 @@ std::vector<SeamSpring> seam_springs(const TriangleMesh& mesh, const std::vector
                                      const SeamStiffness& stiffness);
 
 // The vertex pairs of matched seams, (a[i], b[i or reversed]); throws
-// InputError naming the first seam that is not matched. Pairs of a vertex
+// InputError naming the first seam that is not matched or is a T-seam (its
+// merged edges would join three triangles). Pairs of a vertex
 // with itself (a dart's tip) are left out.
 std::vector<std::pair<int, int>> matched_vertex_pairs(const TriangleMesh& mesh,
                                                       const std::vector<Seam>& seams);

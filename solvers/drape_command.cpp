@@ -75,8 +75,8 @@ bool is_mesh_option(const std::string& name) {
          name == "seams-file";
 }
 
-// The garment without the panels that no sewn seam attaches (a patch pocket
-// whose T-seams are not sewn, docs/tagcon.md): nothing would hold them, and
+// The garment without the panels that no seam attaches (a pattern's panel
+// TAGCON found no seam for): nothing would hold them, and
 // a free panel makes the static equilibrium singular. A garment without
 // seams keeps its panels. Vertices are renumbered, the seams with them.
 struct SewableGarment {
@@ -182,8 +182,8 @@ const CommandSpec& drape_command() {
       "docs/drape.md has the details and measured runs.\n\n"
       "Output in DIR: what `sartor construct` writes (garment.obj = the placed\n"
       "panels, seams.json, construct.json, pattern_seams.svg, placement.svg);\n"
-      "drape_seams.json (the seams sewn: a panel that no sewn seam attaches, like a\n"
-      "patch pocket on unsewn T-seams, is left out of the drape); what\n"
+      "drape_seams.json (the seams sewn: a panel that no seam attaches is left out\n"
+      "of the drape); what\n"
       "`sartor run` writes (result.h5 + result.xmf, series.h5 + series.xmf,\n"
       "dynamics.csv, final.obj = the draped garment, petsc_options.txt); body.obj\n"
       "(the mannequin); summary.json (the run's summary and \"drape\": timings,\n"
@@ -372,7 +372,6 @@ int run_drape(const Invocation& invocation) {
   summary["construction"] = {{"panels", constructed.pattern.panels.size()},
                              {"seams", constructed.construction.seams.size()},
                              {"sewn_seams", constructed.garment.seams.size()},
-                             {"t_seams_not_sewn", constructed.garment.t_seams.size()},
                              {"panels_left_out", sewable.left_out},
                              {"seams_across_body", crossing_json},
                              {"unseamed_lines", constructed.construction.unseamed.size()},

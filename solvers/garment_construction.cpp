@@ -171,13 +171,8 @@ nlohmann::json construction_summary(const Invocation& invocation, const std::str
                             {"curvature", seam.score.curvature},
                             {"seamable", seam.score.seamable}}}};
   };
-  for (std::size_t k = 0; k < construction.seams.size(); ++k) {
-    nlohmann::json entry = seam_json(construction.seams[k]);
-    entry["in_seam_file"] =
-        !construction.lines[std::size_t(construction.seams[k].line_a)].interior &&
-        !construction.lines[std::size_t(construction.seams[k].line_b)].interior;
-    seams.push_back(entry);
-  }
+  for (const auto& seam : construction.seams)
+    seams.push_back(seam_json(seam));
   summary["seams"] = seams;
   nlohmann::json deleted = nlohmann::json::array();
   for (const auto& seam : construction.deleted)
@@ -205,13 +200,6 @@ nlohmann::json construction_summary(const Invocation& invocation, const std::str
     lines.push_back(entry);
   }
   summary["lines"] = lines;
-  summary["t_seams"] = nlohmann::json::array();
-  for (const auto& seam : garment.t_seams)
-    summary["t_seams"].push_back({{"name", seam.name},
-                                  {"a", seam.a},
-                                  {"b", seam.b},
-                                  {"reverse", seam.reverse},
-                                  {"certainty", seam.certainty}});
   summary["mesh"] = {{"vertices", garment.mesh.vertex_count()},
                      {"triangles", garment.mesh.triangle_count()},
                      {"edge_length_m", mesh_options.edge_length},

@@ -70,23 +70,19 @@ GarmentMesh build_garment_mesh(const Construction& construction, const PanelMesh
     }
   }
   validate(garment.mesh, pattern.source + ": constructed garment");
-  for (std::size_t k = 0; k < construction.seams.size(); ++k) {
-    const FoundSeam& found = construction.seams[k];
+  for (const FoundSeam& found : construction.seams) {
     const LineGeometry& a = construction.lines[std::size_t(found.line_a)];
     const LineGeometry& b = construction.lines[std::size_t(found.line_b)];
+    const LineGeometry& outer = a.interior ? b : a;
+    const LineGeometry& onto = a.interior ? a : b;
     Seam seam;
     seam.name = a.id + "+" + b.id;
-    seam.a = garment.line_vertices.at(a.id);
-    seam.b = garment.line_vertices.at(b.id);
-    seam.reverse = found.reverse;
+    seam.a = garment.line_vertices.at(outer.id);
+    seam.b = garment.line_vertices.at(onto.id);
+    seam.reverse = found.reverse; // the same pairing whichever line comes first
     seam.certainty = found.certainty;
-    if (a.interior || b.interior) {
-      garment.t_seams.push_back(seam);
-      garment.t_seam_of.push_back(int(k));
-    } else {
-      garment.seams.push_back(seam);
-      garment.seam_of.push_back(int(k));
-    }
+    seam.t_seam = onto.interior;
+    garment.seams.push_back(seam);
   }
   check_seams(garment.mesh, garment.seams, pattern.source + ": constructed seams");
   return garment;

@@ -22,10 +22,8 @@ struct GarmentMesh {
   std::vector<int> first_vertex;                         // per panel, into mesh
   std::vector<int> triangle_count;                       // per panel
   std::map<std::string, std::vector<int>> line_vertices; // line id -> mesh vertices, start to end
-  std::vector<Seam> seams;                               // normal and Y-seams (boundary lines)
-  std::vector<Seam> t_seams; // T-seams: an interior line is not a boundary, see docs/tagcon.md
-  std::vector<int> seam_of;  // per entry of seams: index into Construction::seams
-  std::vector<int> t_seam_of;
+  // As Construction::seams, in its order; a T-seam's interior line is line b.
+  std::vector<Seam> seams;
 };
 
 GarmentMesh build_garment_mesh(const Construction& construction, const PanelMeshOptions& options);

@@ -151,6 +151,43 @@ TEST(SeamFile, RoundTripsAndReportsBadInputWithFileAndSeam) {
                          R"({"seams": [{"a": [2, 5], "b": [9, 12], "certainty": 0}]})",
                          "certainty must lie in (0, 1]");
   expect_seam_file_error("no_list.json", R"({"seam": []})", "expected an object {\"seams\"");
+  expect_seam_file_error(
+      "t_seam_on_boundary.json", R"({"seams": [{"a": [2, 5], "b": [9, 12], "t_seam": true}]})",
+      "line b: edge 9-12 of a T-seam is not inside a panel (it has 1 triangles)");
+  expect_seam_file_error("t_seam_flag.json",
+                         R"({"seams": [{"a": [2, 5], "b": [3, 4], "t_seam": 1}]})",
+                         "'t_seam' must be true or false");
+}
+
+// A T-seam sews a boundary line onto a line inside a panel (a patch pocket
+// onto its placement line): line b runs on interior edges, the springs pull
+// line a's vertices onto it, and it round-trips through the seam file. It
+// cannot be merged: the merged edges would join three triangles.
+TEST(SeamFile, TSeamRunsInsideAPanel) {
+  // Tube 2x2 + 2x2: back panel vertices 0..8 (4 the centre), front 9..17.
+  const mesh::PanelMesh tube = mesh::tube_panels(width, height, 2, 2, 2, 2, 0.1);
+  const std::string path =
+      write_file("t_seam.json",
+                 R"({"seams": [{"name": "pocket", "a": [9, 12], "b": [3, 4], "t_seam": true}]})");
+  const std::vector<Seam> seams = read_seams(path, tube.mesh);
+  ASSERT_EQ(seams.size(), 1u);
+  EXPECT_TRUE(seams[0].t_seam);
+  write_seams(path, seams);
+  EXPECT_TRUE(read_seams(path, tube.mesh).at(0).t_seam);
+  SeamStiffness stiffness;
+  stiffness.modulus = 30000.0;
+  const auto springs = seam_springs(tube.mesh, seams, stiffness);
+  ASSERT_EQ(springs.size(), 2u); // vertex to vertex: two segments of equal length
+  EXPECT_EQ(springs[0].vertices[1], 3);
+  EXPECT_EQ(springs[1].vertices[1], 4);
+  try {
+    matched_vertex_pairs(tube.mesh, seams);
+    ADD_FAILURE() << "a T-seam was merged";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("seam 0 ('pocket'): a T-seam cannot be merged"),
+              std::string::npos)
+        << error.what();
+  }
 }
 
 TEST(SeamMerge, MatchedSeamsMergeIntoOneConnectedTube) {
