@@ -12,11 +12,13 @@ python=/usr/bin/python3
 rm -rf "$dir"
 grep -q '"fabric": "cotton_twill"' "$pattern"
 "$sartor" drape "$pattern" --fabric silk --edge-length 0.08 --time-end 0.02 --sewing-time 0.01 \
-  -settle false --no-plot --output "$dir"
+  -settle false --no-plot --output "$dir" | tee "$dir.log"
+grep -q "dynamics completed; equilibrium not checked without --settle" "$dir.log"
 "$python" - "$dir" <<'PY'
 import json, os, sys
 s = json.load(open(os.path.join(sys.argv[1], "summary.json")))
 assert s["fabrics"] == ["silk"], s["fabrics"]
 assert s["dynamics"]["completed"], s["dynamics"]
+assert not s["drape"]["equilibrium_checked"], s["drape"]
 print("drape_fabric: every panel silk")
 PY

@@ -26,7 +26,7 @@ import json, math, os, sys
 d, seams = sys.argv[1], int(sys.argv[2])
 s = json.load(open(os.path.join(d, "summary.json")))
 drape = s["drape"]
-assert s["converged"] and drape["converged"], s["dynamics"]["reason"]
+assert s["converged"] and drape["converged"] and drape["equilibrium_checked"], s["dynamics"]["reason"]
 assert s["dynamics"]["settle"]["converged"], s["dynamics"]["settle"]
 assert s["seams"]["seams"] == seams, s["seams"]
 assert s["seams"]["sewing_tension_N_per_m"] == 10 and s["seams"]["sewing_end_time_s"] == 1, s["seams"]
