@@ -25,9 +25,9 @@ int divisions(const Options& options, const std::string& name, const std::string
 
 // --sewing-tension and --sewing-time: the sewing stage of a dynamic run.
 void set_up_sewing(const Options& options, ClothProblem& problem, SeamReport* report) {
-  if (!options.is_set("sewing-tension") || options.nonnegative_real("sewing-tension") == 0.0) {
-    return;
-  }
+  if (!options.is_set("sewing-tension")) return;
+  const double tension = options.nonnegative_real("sewing-tension");
+  if (tension == 0.0) return;
   if (options.text("analysis") != "dynamic") {
     throw InputError("option --sewing-tension: sewing is a stage of time stepping; give --analysis "
                      "dynamic (or leave --sewing-tension out)");
@@ -39,7 +39,7 @@ void set_up_sewing(const Options& options, ClothProblem& problem, SeamReport* re
     throw InputError("option --sewing-time: the sewing stage must end before --time-end (" +
                      format_number(time_end) + " s), got " + format_number(end) + " s");
   }
-  problem.sewing_tension = options.nonnegative_real("sewing-tension");
+  problem.sewing_tension = tension;
   problem.sewing_end_time = end;
   report->sewing_tension = problem.sewing_tension;
   report->sewing_end_time = end;
