@@ -11,9 +11,10 @@
 // penalty's force is continuous and its Jacobian exact (it jumps only where a
 // fillet begins).
 //
-// The query returns the function's value as the distance (it is the distance
-// on the pieces the body is made of, and less than it in the fillets between
-// them), its gradient as the normal (unit on the pieces, shorter in the
+// The query returns the function's value as the distance (near the surface,
+// the distance to the piece of the body there: exactly for the capsules, to
+// first order for the ellipsoids; less in the fillets between pieces), its
+// gradient as the normal (unit on the surface of a piece, shorter in the
 // fillets) and its Hessian; the closest point is one Newton step from p onto
 // the zero level set. Where the cloth rests (within millimetres of the
 // surface) these agree with the exact distance to first order; the penalty
