@@ -22,8 +22,9 @@ public:
   std::string describe() const override { return "mannequin (smooth implicit surface)"; }
 
   // The ellipsoids' first-order distances steepen away from their surfaces:
-  // the flat hand's reaches 6.7 metres away (sampled in a 6 m box; far out
-  // the gradient is homogeneous of degree 0, so it grows no further).
+  // the flat hand's slope reaches 6.7 a few metres from the body (sampled in
+  // a 6 m box; far out the gradient is homogeneous of degree 0, so it grows
+  // no further).
   double slope_bound() const override { return 8.0; }
 };
 
