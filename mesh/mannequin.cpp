@@ -14,8 +14,10 @@ namespace sartor {
 
 namespace {
 
-// --- primitives: signed distances with their gradients and Hessians (exact
-// for the capsule, first-order for the ellipsoid), negative inside -----------
+// --- primitives: signed distances with their gradients and, when `curved`,
+// their Hessians (exact for the capsule, first-order for the ellipsoid),
+// negative inside. Polygonising the body needs no Hessians, and computing
+// them made its generation three times as long. ------------------------------
 
 using FieldValue = MannequinFieldValue;
 
@@ -44,6 +46,7 @@ struct TaperedCapsule {
       : a(start), b(end), ra(start_radius), rb(end_radius), length((b - a).norm()),
         unit((b - a) / length), s((ra - rb) / length), c(std::sqrt(1.0 - s * s)) {}
 
+  template <bool curved>
   FieldValue distance(const Eigen::Vector3d& p) const {
     const Eigen::Vector3d pa = p - a;
     const double y = pa.dot(unit);
@@ -55,14 +58,16 @@ struct TaperedCapsule {
       const double norm = d.norm();
       if (norm == 0.0) return FieldValue{-r, Eigen::Vector3d::UnitZ(), Eigen::Matrix3d::Zero()};
       const Eigen::Vector3d n = d / norm;
+      if constexpr (!curved) return FieldValue{norm - r, n, Eigen::Matrix3d::Zero()};
       return FieldValue{norm - r, n, across_projector(n) / norm};
     };
     if (along_side < 0.0) return sphere(a, ra);
     if (along_side > c * length) return sphere(b, rb);
     const Eigen::Vector3d across = x > 0.0 ? Eigen::Vector3d(radial / x) : unit.unitOrthogonal();
     const Eigen::Matrix3d curvature =
-        x > 0.0 ? Eigen::Matrix3d(c * (across_projector(unit) - across * across.transpose()) / x)
-                : Eigen::Matrix3d::Zero();
+        curved && x > 0.0
+            ? Eigen::Matrix3d(c * (across_projector(unit) - across * across.transpose()) / x)
+            : Eigen::Matrix3d::Zero();
     return {s * y + c * x - ra, s * unit + c * across, curvature};
   }
 };
@@ -75,6 +80,7 @@ struct Ellipsoid {
   Eigen::Vector3d radii;
   Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
 
+  template <bool curved>
   FieldValue distance(const Eigen::Vector3d& p) const {
     const Eigen::Vector3d q = frame * (p - centre);
     const Eigen::Vector3d r2 = radii.cwiseProduct(radii);
@@ -85,15 +91,16 @@ struct Ellipsoid {
     if (k1 == 0.0) return {-radii.minCoeff(), Eigen::Vector3d::UnitZ(), Eigen::Matrix3d::Zero()};
     const Eigen::Vector3d dk0 = q_r2 / k0;
     const Eigen::Vector3d dk1 = q_r4 / k1;
+    // value g(k0) / k1 with g = k0 (k0 - 1)
+    const double g = k0 * (k0 - 1.0);
+    const double dg = 2.0 * k0 - 1.0;
+    const Eigen::Vector3d local = (dg * k1 * dk0 - g * dk1) / (k1 * k1);
+    if constexpr (!curved) return {g / k1, frame.transpose() * local, Eigen::Matrix3d::Zero()};
     const Eigen::Matrix3d ddk0 =
         (Eigen::Matrix3d(r2.cwiseInverse().asDiagonal()) - dk0 * dk0.transpose()) / k0;
     const Eigen::Matrix3d ddk1 =
         (Eigen::Matrix3d(r2.cwiseProduct(r2).cwiseInverse().asDiagonal()) - dk1 * dk1.transpose()) /
         k1;
-    // value g(k0) / k1 with g = k0 (k0 - 1)
-    const double g = k0 * (k0 - 1.0);
-    const double dg = 2.0 * k0 - 1.0;
-    const Eigen::Vector3d local = (dg * k1 * dk0 - g * dk1) / (k1 * k1);
     const Eigen::Matrix3d cross = dk0 * dk1.transpose();
     const Eigen::Matrix3d local_hessian = (2.0 * dk0 * dk0.transpose() + dg * ddk0) / k1 -
                                           dg * (cross + cross.transpose()) / (k1 * k1) +
@@ -107,14 +114,18 @@ struct Ellipsoid {
 // the crease between two surfaces with a fillet of size about k otherwise.
 // The blend's weights change across the fillet, which bends it by
 // -(grad a - grad b)(grad a - grad b)^T / (2k) on top of the weighted curvatures.
+template <bool curved>
 FieldValue smooth_min(const FieldValue& a, const FieldValue& b, double k) {
   const double h = std::max(k - std::abs(a.value - b.value), 0.0) / k;
   const double weight_a = a.value < b.value ? 1.0 - 0.5 * h : 0.5 * h;
-  const Eigen::Vector3d difference = a.gradient - b.gradient;
-  Eigen::Matrix3d hessian = weight_a * a.hessian + (1.0 - weight_a) * b.hessian;
-  if (h > 0.0) hessian -= difference * difference.transpose() / (2.0 * k);
-  return {std::min(a.value, b.value) - 0.25 * k * h * h,
-          weight_a * a.gradient + (1.0 - weight_a) * b.gradient, hessian};
+  FieldValue blend{std::min(a.value, b.value) - 0.25 * k * h * h,
+                   weight_a * a.gradient + (1.0 - weight_a) * b.gradient, Eigen::Matrix3d::Zero()};
+  if constexpr (curved) {
+    const Eigen::Vector3d difference = a.gradient - b.gradient;
+    blend.hessian = weight_a * a.hessian + (1.0 - weight_a) * b.hessian;
+    if (h > 0.0) blend.hessian -= difference * difference.transpose() / (2.0 * k);
+  }
+  return blend;
 }
 
 FieldValue max(const FieldValue& a, const FieldValue& b) {
@@ -220,40 +231,46 @@ const Design& design() {
   return d;
 }
 
+template <bool curved>
 FieldValue arm_field(const Limbs& l, const Eigen::Vector3d& p) {
-  const FieldValue arm = smooth_min(l.upper_arm.distance(p), l.forearm.distance(p), 0.02);
-  return smooth_min(arm, l.hand.distance(p), 0.02);
+  const FieldValue arm =
+      smooth_min<curved>(l.upper_arm.distance<curved>(p), l.forearm.distance<curved>(p), 0.02);
+  return smooth_min<curved>(arm, l.hand.distance<curved>(p), 0.02);
 }
 
 // Flat soles: the foot is cut by the floor z = 0.
+template <bool curved>
 FieldValue leg_field(const Limbs& l, const Eigen::Vector3d& p) {
-  const FieldValue leg = smooth_min(l.thigh.distance(p), l.shin.distance(p), 0.03);
-  const FieldValue calf = smooth_min(leg, l.calf.distance(p), 0.03);
+  const FieldValue leg =
+      smooth_min<curved>(l.thigh.distance<curved>(p), l.shin.distance<curved>(p), 0.03);
+  const FieldValue calf = smooth_min<curved>(leg, l.calf.distance<curved>(p), 0.03);
   const FieldValue floor{-p.z(), -Eigen::Vector3d::UnitZ(), Eigen::Matrix3d::Zero()};
-  return smooth_min(calf, max(l.foot.distance(p), floor), 0.03);
+  return smooth_min<curved>(calf, max(l.foot.distance<curved>(p), floor), 0.03);
 }
 
+template <bool curved>
 FieldValue body_field(const Eigen::Vector3d& p) {
   const Design& d = design();
-  FieldValue trunk = smooth_min(d.chest.distance(p), d.waist.distance(p), 0.1);
-  trunk = smooth_min(trunk, d.hips.distance(p), 0.1);
-  trunk = smooth_min(trunk, d.shoulders.distance(p), 0.06);
-  trunk = smooth_min(trunk, d.left.buttock.distance(p), 0.04);
-  trunk = smooth_min(trunk, d.right.buttock.distance(p), 0.04);
-  FieldValue head = smooth_min(d.head.distance(p), d.jaw.distance(p), 0.04);
-  head = smooth_min(head, d.nose.distance(p), 0.015);
-  FieldValue body = smooth_min(trunk, d.neck.distance(p), 0.04);
-  body = smooth_min(body, head, 0.03);
-  body = smooth_min(body, arm_field(d.left, p), 0.03);
-  body = smooth_min(body, arm_field(d.right, p), 0.03);
-  body = smooth_min(body, leg_field(d.left, p), 0.04);
-  return smooth_min(body, leg_field(d.right, p), 0.04);
+  FieldValue trunk =
+      smooth_min<curved>(d.chest.distance<curved>(p), d.waist.distance<curved>(p), 0.1);
+  trunk = smooth_min<curved>(trunk, d.hips.distance<curved>(p), 0.1);
+  trunk = smooth_min<curved>(trunk, d.shoulders.distance<curved>(p), 0.06);
+  trunk = smooth_min<curved>(trunk, d.left.buttock.distance<curved>(p), 0.04);
+  trunk = smooth_min<curved>(trunk, d.right.buttock.distance<curved>(p), 0.04);
+  FieldValue head = smooth_min<curved>(d.head.distance<curved>(p), d.jaw.distance<curved>(p), 0.04);
+  head = smooth_min<curved>(head, d.nose.distance<curved>(p), 0.015);
+  FieldValue body = smooth_min<curved>(trunk, d.neck.distance<curved>(p), 0.04);
+  body = smooth_min<curved>(body, head, 0.03);
+  body = smooth_min<curved>(body, arm_field<curved>(d.left, p), 0.03);
+  body = smooth_min<curved>(body, arm_field<curved>(d.right, p), 0.03);
+  body = smooth_min<curved>(body, leg_field<curved>(d.left, p), 0.04);
+  return smooth_min<curved>(body, leg_field<curved>(d.right, p), 0.04);
 }
 
 // Newton steps along the gradient onto the zero level set.
 Eigen::Vector3d project_to_surface(Eigen::Vector3d p) {
   for (int iteration = 0; iteration < 3; ++iteration) {
-    const FieldValue f = body_field(p);
+    const FieldValue f = body_field<false>(p);
     const double g2 = f.gradient.squaredNorm();
     if (std::abs(f.value) < 1e-10 || g2 < 1e-12) break;
     p -= (f.value / g2) * f.gradient;
@@ -290,7 +307,7 @@ BodyMesh marching_tetrahedra() {
   for (long k = 0; k < n[2]; ++k)
     for (long j = 0; j < n[1]; ++j)
       for (long i = 0; i < n[0]; ++i) {
-        const double f = body_field(position(i, j, k)).value;
+        const double f = body_field<false>(position(i, j, k)).value;
         value[static_cast<std::size_t>(node(i, j, k))] = f == 0.0 ? 1e-12 : f;
       }
 
@@ -390,7 +407,7 @@ void relax(BodyMesh& mesh, int sweeps) {
       for (int w : neighbours[v])
         centre += mesh.vertices[static_cast<std::size_t>(w)];
       centre /= static_cast<double>(neighbours[v].size());
-      const Eigen::Vector3d normal = body_field(p).gradient.normalized();
+      const Eigen::Vector3d normal = body_field<false>(p).gradient.normalized();
       Eigen::Vector3d move = 0.5 * (centre - p);
       move -= move.dot(normal) * normal;
       next[v] = project_to_surface(p + move);
@@ -450,11 +467,11 @@ Mannequin generate_mannequin() {
 }
 
 double mannequin_field(const Eigen::Vector3d& p) {
-  return body_field(p).value;
+  return body_field<false>(p).value;
 }
 
 MannequinFieldValue mannequin_field_derivatives(const Eigen::Vector3d& p) {
-  return body_field(p);
+  return body_field<true>(p);
 }
 
 const Bone& Mannequin::bone(const std::string& name) const {
