@@ -276,6 +276,7 @@ private:
   PetscErrorCode attach_element_scatter(const fem::BlockLayout& layout, Mat J) const;
   PetscErrorCode pin_places(std::vector<Eigen::Vector3d>* places) const;
   // Seams (cloth_seams.cpp).
+  void update_sewing_progress();
   PetscErrorCode prepare_seams(std::vector<Eigen::Vector3d>* places);
   PetscErrorCode seam_energy(Vec x, double* energy);
   PetscErrorCode add_seam_forces(Vec x, Vec f);
@@ -339,9 +340,10 @@ private:
   std::vector<std::vector<FrictionAnchor>> solved_anchors_;
   std::vector<long> sliding_;
   // Per body and mesh vertex, the last place it was queried at and its
-  // signed distance there. The distance moves no faster than the point, so
-  // a vertex that has moved less than (distance - offset) since, on the same
-  // clock, is still out of contact: energy, residual and Jacobian skip its
+  // signed distance there. The distance moves no faster than the body's
+  // slope bound times the point, so a vertex that has moved less than
+  // (distance - offset) / slope bound since, on the same clock, is still out
+  // of contact: energy, residual and Jacobian skip its
   // query (most of a garment, most of the time; the mannequin's query is
   // the costliest part of an evaluation).
   struct QueriedPlace {
