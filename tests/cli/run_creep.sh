@@ -69,7 +69,10 @@ else:
 with h5py.File(f"{work}/serial/series.h5") as h5:
     last = sorted(h5["steps"])[-1]
     permanent = h5[f"steps/{last}/cell_fields/permanent_warp"][()]
-    if not (permanent.min() > 0 and np.ptp(permanent) < 1e-12 * permanent.max()):
+    # Uniform up to round-off, which differs between CPUs' BLAS kernels (a
+    # spread of 1e-12 relative was seen); a real gradient along the strip
+    # would be orders of magnitude larger than 1e-9.
+    if not (permanent.min() > 0 and np.ptp(permanent) < 1e-9 * permanent.max()):
         failures.append(f"final permanent warp strain not uniform positive: {permanent.min()}..{permanent.max()}")
 
 summary = json.load(open(f"{work}/resumed/summary.json"))
