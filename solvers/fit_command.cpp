@@ -27,8 +27,10 @@ const CommandSpec& fit_command() {
       "Determines the immediate-elastic modulus K and the creep parameters E, alpha,\n"
       "lambda_load, lambda_unload from a constant-force creep-and-recovery test:\n"
       "first by the thesis' step-by-step procedure (§5.2.2), then by a joint\n"
-      "nonlinear least-squares fit of all five (PETSc TAO, prefix -fit_), with\n"
-      "standard errors and confidence intervals. Warns when the test did not reach\n"
+      "nonlinear least-squares fit of all five (Levenberg-Marquardt in log\n"
+      "parameters with column scaling; the optimum is certified by a final\n"
+      "Gauss-Newton step, recorded in fit.json), with standard errors and\n"
+      "confidence intervals. Warns when the test did not reach\n"
       "saturation or full recovery (thesis App. A).\n\n"
       "DATA.csv has columns time_s and strain, and optionally tension_N_per_m or\n"
       "force_N (then the load and unload times are read from it); see\n"
@@ -170,13 +172,18 @@ int run_fit(const Invocation& invocation) {
                           {"loading_saturated", fit.loading_saturated},
                           {"recovery_relaxed", fit.recovery_relaxed},
                           {"warnings", fit.warnings}};
-  report["solver"] = {{"tao_type", fit.solver},
-                      {"converged", fit.converged},
-                      {"reason", fit.converged_reason},
-                      {"iterations", fit.iterations},
-                      {"read_time_s", std::chrono::duration<double>(read - started).count()},
-                      {"estimate_time_s", std::chrono::duration<double>(estimated - read).count()},
-                      {"refine_time_s", std::chrono::duration<double>(fitted - estimated).count()}};
+  report["solver"] = {
+      {"method", fit.solver},
+      {"converged", fit.converged},
+      {"reason", fit.converged_reason},
+      {"iterations", fit.iterations},
+      {"optimum_certified", fit.optimum_certified},
+      {"certification", fit.certification},
+      {"final_gauss_newton_step_standard_errors", fit.certificate_step_standard_errors},
+      {"final_step_descent_over_residual_variance", fit.certificate_descent_over_variance},
+      {"read_time_s", std::chrono::duration<double>(read - started).count()},
+      {"estimate_time_s", std::chrono::duration<double>(estimated - read).count()},
+      {"refine_time_s", std::chrono::duration<double>(fitted - estimated).count()}};
 
   const std::string directory = options.text("output");
   if (is_root()) {
@@ -189,8 +196,8 @@ int run_fit(const Invocation& invocation) {
     }
   }
   if (!fit.converged) {
-    throw InputError("the least-squares refinement did not converge (TAO: " + fit.converged_reason +
-                     "); " + directory +
+    throw InputError("the least-squares refinement did not reach a certified optimum (" +
+                     fit.converged_reason + "; " + fit.certification + "); " + directory +
                      "/fit.json holds the thesis estimate and the last iterate");
   }
 
@@ -205,9 +212,11 @@ int run_fit(const Invocation& invocation) {
                   e.ci_high);
     SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s", line));
   }
-  SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "  RMSE %.3g, R^2 %.6f, %ld TAO iterations (%s)\n",
-                              fit.rmse, fit.r_squared, fit.iterations,
-                              fit.converged_reason.c_str()));
+  SartorPetscCall(PetscPrintf(
+      PETSC_COMM_WORLD, "  RMSE %.3g, R^2 %.6f, %ld Levenberg-Marquardt iterations (%s)\n",
+      fit.rmse, fit.r_squared, fit.iterations, fit.converged_reason.c_str()));
+  SartorPetscCall(
+      PetscPrintf(PETSC_COMM_WORLD, "  optimum certified: %s\n", fit.certification.c_str()));
   for (const auto& warning : fit.warnings) {
     SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "  warning: %s\n", warning.c_str()));
   }
