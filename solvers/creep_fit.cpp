@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <limits>
 #include <numeric>
+#include <random>
 
 namespace sartor {
 
@@ -361,8 +362,9 @@ struct SampleShare {
   const CreepTestData* data = nullptr;
   std::size_t begin = 0;
   std::size_t end = 0;
-  std::vector<double> model;    // model strains
-  std::vector<double> jacobian; // column-major, leading dimension end - begin
+  std::vector<double> model;      // model strains
+  std::vector<double> jacobian;   // column-major, leading dimension end - begin
+  CreepTestVector evaluated_at{}; // where model and jacobian were computed
 };
 
 // Sums over all ranks' samples at one point of the fit variables.
@@ -382,6 +384,7 @@ PetscErrorCode sum_at(MPI_Comm comm, SampleShare* share, const CreepTestVector& 
   evaluate_creep_test(share->data->test, from_fit_variables(q),
                       share->data->time.data() + share->begin, count, share->model.data(),
                       share->jacobian.data(), count);
+  share->evaluated_at = q;
   const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, long(parameter_count)>> jacobian(
       share->jacobian.data(), long(count), long(parameter_count));
   const Eigen::Map<const Eigen::VectorXd> model(share->model.data(), long(count));
@@ -447,6 +450,9 @@ constexpr double converged_step_standard_errors = 1e-4;
 constexpr double certified_step_standard_errors = 1e-3;
 constexpr double negligible_descent_of_variance = 1e-6;
 constexpr long maximum_iterations = 200;
+// The lag-1 autocorrelation of independent noise scatters by 1/sqrt(n):
+// beyond 3 of that, the residuals are taken as correlated.
+constexpr double autocorrelation_z_threshold = 3.0;
 
 struct Solution {
   CreepTestVector q{};
@@ -562,6 +568,39 @@ PetscErrorCode certify_optimum(MPI_Comm comm, SampleShare* share, const CreepTes
   PetscFunctionReturn(0);
 }
 
+// Lag-1 autocorrelation of the residuals in time order. Each rank's block
+// needs the first residual of the next rank's block.
+PetscErrorCode residual_autocorrelation(MPI_Comm comm, const SampleShare& share, double rss,
+                                        ResidualAutocorrelation* result) {
+  PetscMPIInt rank = 0, size = 1;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  const std::size_t count = share.end - share.begin;
+  const double* measured = share.data->strain.data() + share.begin;
+  const auto residual = [&](std::size_t i) { return share.model[i] - measured[i]; };
+  double first = count > 0 ? residual(0) : 0.0, next_first = 0.0;
+  const PetscMPIInt previous = rank > 0 ? rank - 1 : MPI_PROC_NULL;
+  const PetscMPIInt next = rank + 1 < size ? rank + 1 : MPI_PROC_NULL;
+  PetscCallMPI(MPI_Sendrecv(&first, 1, MPI_DOUBLE, previous, 0, &next_first, 1, MPI_DOUBLE, next, 0,
+                            comm, MPI_STATUS_IGNORE));
+  double local = 0.0;
+  for (std::size_t i = 0; i + 1 < count; ++i)
+    local += residual(i) * residual(i + 1);
+  if (count > 0 && next != MPI_PROC_NULL) local += residual(count - 1) * next_first;
+  double lagged = 0.0;
+  PetscCallMPI(MPIU_Allreduce(&local, &lagged, 1, MPI_DOUBLE, MPI_SUM, comm));
+  const double n = double(share.data->time.size());
+  result->lag1 = rss > 0.0 ? lagged / rss : 0.0;
+  result->z_score = result->lag1 * std::sqrt(n);
+  result->durbin_watson = 2.0 * (1.0 - result->lag1);
+  result->present = result->z_score > autocorrelation_z_threshold;
+  result->variance_inflation =
+      result->present ? (1.0 + result->lag1) / std::max(1.0 - result->lag1, 1e-3) : 1.0;
+  result->effective_samples = n / result->variance_inflation;
+  PetscFunctionReturn(0);
+}
+
 void fill_statistics(const CreepTestData& data, const FitSums& sums, CreepFit* fit) {
   constexpr long p = long(creep_test_parameter_count);
   const long n = long(data.time.size());
@@ -575,10 +614,25 @@ void fill_statistics(const CreepTestData& data, const FitSums& sums, CreepFit* f
 
   // Covariance of the fit variables, then the delta method: for a parameter
   // fitted through its logarithm, se(value) = value * se(log value).
+  // Autocorrelated residuals (AR(1) with lag-1 correlation rho) carry the
+  // information of n (1 - rho) / (1 + rho) independent samples: the
+  // covariance grows by the inverse of that ratio.
+  const ResidualAutocorrelation& correlated = fit->autocorrelation;
   const Eigen::Matrix<double, p, p> covariance =
-      variance * sums.normal.completeOrthogonalDecomposition().pseudoInverse();
-  const double t =
-      student_t_quantile(0.5 + 0.5 * fit->confidence_level, double(fit->degrees_of_freedom));
+      correlated.variance_inflation * variance *
+      sums.normal.completeOrthogonalDecomposition().pseudoInverse();
+  const double t = student_t_quantile(0.5 + 0.5 * fit->confidence_level,
+                                      std::max(correlated.effective_samples - double(p), 1.0));
+  if (correlated.present) {
+    fit->warnings.push_back(
+        "the residuals are autocorrelated (lag-1 correlation " +
+        format_number(std::round(1000 * correlated.lag1) / 1000) + ", " +
+        format_number(std::round(correlated.z_score)) +
+        " times its spread for independent noise): the intervals are widened by " +
+        format_number(std::round(100 * std::sqrt(correlated.variance_inflation)) / 100) +
+        " (effective sample size " + format_number(std::round(correlated.effective_samples)) +
+        " of " + std::to_string(n) + ")");
+  }
   const CreepTestParameters& v = fit->parameters;
   const std::array<double, creep_test_parameter_count> values = {
       v.elastic_modulus, v.creep_modulus, v.alpha, v.lambda_load, v.lambda_unload};
@@ -633,6 +687,15 @@ void fill_statistics(const CreepTestData& data, const FitSums& sums, CreepFit* f
   }
 }
 
+// Exact data: the misfit cannot fall below the round-off of the data.
+double misfit_floor(const CreepTestData& data) {
+  double largest_strain = 0.0;
+  for (double y : data.strain)
+    largest_strain = std::max(largest_strain, std::abs(y));
+  const double round_off = 1e-14 * largest_strain;
+  return double(data.strain.size()) * round_off * round_off;
+}
+
 } // namespace
 
 PetscErrorCode fit_creep_test(MPI_Comm comm, const CreepTestData& data,
@@ -650,23 +713,130 @@ PetscErrorCode fit_creep_test(MPI_Comm comm, const CreepTestData& data,
   share.begin = samples * std::size_t(rank) / std::size_t(size);
   share.end = samples * std::size_t(rank + 1) / std::size_t(size);
 
-  // Exact data: the misfit cannot fall below the round-off of the data.
-  double largest_strain = 0.0;
-  for (double y : data.strain)
-    largest_strain = std::max(largest_strain, std::abs(y));
-  const double round_off = 1e-14 * largest_strain;
-  const double misfit_floor = double(samples) * round_off * round_off;
+  const double floor = misfit_floor(data);
 
   const CreepTestVector q0 = to_fit_variables(start);
   Solution solution;
-  PetscCall(levenberg_marquardt(comm, &share, q0, misfit_floor, &solution));
-  PetscCall(certify_optimum(comm, &share, q0, misfit_floor, &solution, fit));
+  PetscCall(levenberg_marquardt(comm, &share, q0, floor, &solution));
+  PetscCall(certify_optimum(comm, &share, q0, floor, &solution, fit));
   fit->converged = solution.converged && fit->optimum_certified;
   fit->converged_reason = solution.reason;
   fit->iterations = solution.iterations;
   fit->solver = "levenberg-marquardt";
   fit->parameters = from_fit_variables(solution.q);
+  if (share.evaluated_at != solution.q) PetscCall(sum_at(comm, &share, solution.q, &solution.sums));
+  // On exact data the residuals are round-off, with no noise to correlate.
+  fit->autocorrelation.effective_samples = double(samples);
+  if (solution.sums.squared_residual > floor) {
+    PetscCall(residual_autocorrelation(comm, share, solution.sums.squared_residual,
+                                       &fit->autocorrelation));
+  }
   PetscCallCXX(fill_statistics(data, solution.sums, fit));
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+// Residuals of the fit, centred and scaled to the residual variance.
+std::vector<double> bootstrap_residuals(const CreepTestData& data, const CreepFit& fit,
+                                        std::vector<double>* model) {
+  const std::size_t n = data.time.size();
+  model->resize(n);
+  evaluate_creep_test(data.test, fit.parameters, data.time.data(), n, model->data());
+  std::vector<double> residual(n);
+  for (std::size_t i = 0; i < n; ++i)
+    residual[i] = data.strain[i] - (*model)[i];
+  const double mean = mean_of(residual, 0, n);
+  const double scale = std::sqrt(double(n) / double(n - creep_test_parameter_count));
+  for (double& r : residual)
+    r = (r - mean) * scale;
+  return residual;
+}
+
+// Linear interpolation between order statistics.
+double percentile(std::vector<double> values, double fraction) {
+  std::sort(values.begin(), values.end());
+  const double position = fraction * double(values.size() - 1);
+  const auto below = std::size_t(position);
+  const std::size_t above = std::min(below + 1, values.size() - 1);
+  return values[below] + (position - double(below)) * (values[above] - values[below]);
+}
+
+void summarise_replicates(const std::array<std::vector<double>, creep_test_parameter_count>& q,
+                          const CreepFit& fit, BootstrapEstimate* bootstrap) {
+  const double tail = 0.5 * (1.0 - fit.confidence_level);
+  for (std::size_t j = 0; j < creep_test_parameter_count; ++j) {
+    const bool logarithmic = j != 2;
+    const auto value = [logarithmic](double x) { return logarithmic ? std::exp(x) : x; };
+    std::vector<double> values;
+    for (double x : q[j])
+      values.push_back(value(x));
+    const double mean = mean_of(values, 0, values.size());
+    double squares = 0.0;
+    for (double v : values)
+      squares += (v - mean) * (v - mean);
+    ParameterEstimate& e = bootstrap->estimates[j];
+    e.value = fit.estimates[j].value;
+    e.std_error = std::sqrt(squares / double(values.size() - 1));
+    e.ci_low = value(percentile(q[j], tail));
+    e.ci_high = value(percentile(q[j], 1.0 - tail));
+  }
+}
+
+} // namespace
+
+PetscErrorCode bootstrap_creep_fit(MPI_Comm comm, const CreepTestData& data, const CreepFit& fit,
+                                   long replicates, unsigned long seed,
+                                   BootstrapEstimate* bootstrap) {
+  PetscMPIInt rank = 0, size = 1;
+  PetscFunctionBeginUser;
+  PetscCheck(replicates >= 20, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "a bootstrap needs at least 20 replicates, got %ld", replicates);
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  std::vector<double> model;
+  const std::vector<double> residual = bootstrap_residuals(data, fit, &model);
+  const std::size_t n = residual.size();
+  // Correlated residuals: resample the AR(1) innovations instead and rebuild
+  // the correlated series from them.
+  const double lag1 = fit.autocorrelation.present ? fit.autocorrelation.lag1 : 0.0;
+  bootstrap->ar1_coefficient = lag1;
+  std::vector<double> innovation(residual);
+  for (std::size_t i = 1; i < n; ++i)
+    innovation[i] = residual[i] - lag1 * residual[i - 1];
+  const double innovation_mean = mean_of(innovation, 1, n);
+  for (double& u : innovation)
+    u -= innovation_mean;
+
+  CreepTestData replicate = data;
+  SampleShare share;
+  share.data = &replicate;
+  share.begin = n * std::size_t(rank) / std::size_t(size);
+  share.end = n * std::size_t(rank + 1) / std::size_t(size);
+  const CreepTestVector optimum = to_fit_variables(fit.parameters);
+  std::mt19937_64 generator(seed);
+  std::uniform_int_distribution<std::size_t> any_sample(1, n - 1);
+  std::array<std::vector<double>, creep_test_parameter_count> q;
+  bootstrap->failed = 0;
+  for (long r = 0; r < replicates; ++r) {
+    double error = residual[any_sample(generator)];
+    for (std::size_t i = 0; i < n; ++i) {
+      replicate.strain[i] = model[i] + error;
+      error = lag1 * error + innovation[any_sample(generator)];
+    }
+    Solution solution;
+    PetscCall(levenberg_marquardt(comm, &share, optimum, misfit_floor(replicate), &solution));
+    if (!solution.converged) {
+      ++bootstrap->failed;
+      continue;
+    }
+    for (std::size_t j = 0; j < creep_test_parameter_count; ++j)
+      q[j].push_back(solution.q[j]);
+  }
+  bootstrap->replicates = replicates - bootstrap->failed;
+  PetscCheck(bootstrap->replicates >= 20, comm, PETSC_ERR_NOT_CONVERGED,
+             "only %ld of %ld bootstrap refits converged", bootstrap->replicates, replicates);
+  PetscCallCXX(summarise_replicates(q, fit, bootstrap));
   PetscFunctionReturn(0);
 }
 

@@ -59,6 +59,17 @@ struct ParameterEstimate {
   double ci_high = 0.0;
 };
 
+// Lag-1 autocorrelation of the residuals in time order (measurement drift,
+// unresolved dynamics). Independent noise gives lag1 ~ N(0, 1/n).
+struct ResidualAutocorrelation {
+  double lag1 = 0.0;
+  double z_score = 0.0;            // lag1 sqrt(n)
+  double durbin_watson = 2.0;      // 2 (1 - lag1)
+  bool present = false;            // z_score > 3
+  double variance_inflation = 1.0; // (1 + lag1) / (1 - lag1) when present, else 1
+  double effective_samples = 0.0;  // n / variance_inflation
+};
+
 struct CreepFit {
   CreepTestParameters parameters;
   std::array<ParameterEstimate, creep_test_parameter_count> estimates; // K, E, alpha, l_l, l_u
@@ -70,6 +81,8 @@ struct CreepFit {
   double rmse = 0.0;
   double r_squared = 0.0;
   double residual_std = 0.0; // sqrt(RSS / dof)
+  // When present, the covariance (and so the intervals) include its inflation.
+  ResidualAutocorrelation autocorrelation;
   // Thesis App. A: how close the test came to saturation and full recovery.
   double loading_saturation = 0.0; // 1 - exp(-lambda_load * loading time)
   double recovery_remaining = 0.0; // exp(-lambda_unload * recovery time)
@@ -96,6 +109,24 @@ struct CreepFit {
 PetscErrorCode fit_creep_test(MPI_Comm comm, const CreepTestData& data,
                               const CreepTestParameters& start, double confidence_level,
                               CreepFit* fit);
+
+// A second uncertainty estimate that does not linearise the model: a residual
+// bootstrap. Each replicate refits the model's curve at the optimum plus the
+// fit's residuals resampled with replacement (centred, scaled by
+// sqrt(n / (n - 5))). When the residuals are autocorrelated, their AR(1)
+// innovations r_i - rho r_{i-1} are resampled instead and the correlated
+// series rebuilt from them (a sieve bootstrap), which keeps the correlation.
+// Intervals are the replicates' percentiles at the fit's level; std_error is
+// their standard deviation. Same seed, same result, on any number of ranks.
+struct BootstrapEstimate {
+  long replicates = 0;          // refits that converged
+  long failed = 0;              // refits that did not, left out
+  double ar1_coefficient = 0.0; // rho of the resampled series (0: independent)
+  std::array<ParameterEstimate, creep_test_parameter_count> estimates;
+};
+PetscErrorCode bootstrap_creep_fit(MPI_Comm comm, const CreepTestData& data, const CreepFit& fit,
+                                   long replicates, unsigned long seed,
+                                   BootstrapEstimate* bootstrap);
 
 // The names used in fit.json and fabric files, in fit-variable order.
 const std::array<const char*, creep_test_parameter_count>& creep_test_parameter_names();
