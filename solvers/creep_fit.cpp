@@ -559,10 +559,10 @@ PetscErrorCode certify_optimum(MPI_Comm comm, SampleShare* share, const CreepTes
   }
   char text[300];
   std::snprintf(text, sizeof text,
-                "a final Gauss-Newton step of %.2g standard errors %s the misfit by %.2g of the "
-                "residual variance (certified below %g standard errors and %g)",
-                gn.standard_errors, descent > 0.0 ? "lowers" : "does not lower",
-                std::abs(descent) / variance, certified_step_standard_errors,
+                "a final Gauss-Newton step of %.2g standard errors changes the misfit by %.2g of "
+                "the residual variance (certified when below %g standard errors and a descent "
+                "below %g)",
+                gn.standard_errors, -descent / variance, certified_step_standard_errors,
                 negligible_descent_of_variance);
   fit->certification = text;
   PetscFunctionReturn(0);

@@ -184,11 +184,11 @@ void print_estimates(const std::array<ParameterEstimate, creep_test_parameter_co
                      double confidence, bool with_values) {
   for (std::size_t j = 0; j < creep_test_parameter_count; ++j) {
     const ParameterEstimate& e = estimates[j];
-    char line[200];
+    char value[40] = "", line[200];
+    if (with_values) std::snprintf(value, sizeof value, "%.6g", e.value);
     std::snprintf(line, sizeof line, "  %-24s %-12s +- %-10.3g (%.4g%% CI %.6g .. %.6g)\n",
-                  creep_test_parameter_names()[j],
-                  with_values ? format_number(e.value).c_str() : "", e.std_error, 100 * confidence,
-                  e.ci_low, e.ci_high);
+                  creep_test_parameter_names()[j], value, e.std_error, 100 * confidence, e.ci_low,
+                  e.ci_high);
     SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s", line));
   }
 }
