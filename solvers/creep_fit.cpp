@@ -122,19 +122,122 @@ void detect_unload_from_strain(CreepTestData& data) {
   data.unload_time_origin = "largest strain drop, before line " + std::to_string(data.line[best]);
 }
 
+// Column names with units, as instrument exports write them: "time (s)",
+// "strain [%]", "force (kgf)"; also Sartor's own time_s, force_N,
+// tension_N_per_m. A quantity's units map to factors to SI (s, strain, m, N,
+// N/m).
+struct Quantity {
+  std::vector<std::string> names;
+  std::vector<std::pair<std::string, double>> units; // "" = the name alone
+  std::string meaning;
+};
+
+const Quantity time_quantity{{"time"},
+                             {{"", 1.0},
+                              {"s", 1.0},
+                              {"sec", 1.0},
+                              {"ms", 1e-3},
+                              {"min", 60.0},
+                              {"h", 3600.0},
+                              {"hr", 3600.0}},
+                             "time (s, ms, min, h)"};
+const Quantity strain_quantity{{"strain", "strain_total"},
+                               {{"", 1.0}, {"-", 1.0}, {"mm/mm", 1.0}, {"m/m", 1.0}, {"%", 0.01}},
+                               "elongation over the rest length (fraction or %)"};
+const Quantity extension_quantity{{"extension", "elongation", "displacement"},
+                                  {{"mm", 1e-3}, {"cm", 1e-2}, {"m", 1.0}},
+                                  "extension of the gauge length (mm, cm, m)"};
+const Quantity tension_quantity{
+    {"tension"}, {{"", 1.0}, {"n/m", 1.0}, {"n/mm", 1e3}, {"n/cm", 1e2}, {"kn/m", 1e3}}, "N/m"};
+const Quantity force_quantity{
+    {"force", "load"},
+    {{"", 1.0}, {"n", 1.0}, {"kn", 1e3}, {"kgf", 9.80665}, {"lbf", 4.4482216152605}},
+    "N"};
+
+struct NamedUnit {
+  std::string name, unit;
+};
+
+NamedUnit split_column_name(const std::string& column) {
+  for (const auto& [legacy, split] :
+       std::vector<std::pair<std::string, NamedUnit>>{{"time_s", {"time", "s"}},
+                                                      {"force_n", {"force", "n"}},
+                                                      {"tension_n_per_m", {"tension", "n/m"}}}) {
+    if (column == legacy) return split;
+  }
+  const char close = column.empty() ? ' ' : column.back();
+  const auto open = column.find_last_of(close == ')' ? '(' : '[');
+  if ((close == ')' || close == ']') && open != std::string::npos) {
+    const auto trimmed = [](std::string text) {
+      text.erase(0, text.find_first_not_of(' '));
+      text.erase(text.find_last_not_of(' ') + 1);
+      return text;
+    };
+    return {trimmed(column.substr(0, open)),
+            trimmed(column.substr(open + 1, column.size() - open - 2))};
+  }
+  return {column, ""};
+}
+
+// The column of `quantity` and its factor to SI; throws on a unit it does not know.
+std::optional<std::pair<std::size_t, double>> find_quantity(const CsvTable& table,
+                                                            const Quantity& quantity) {
+  for (std::size_t c = 0; c < table.names.size(); ++c) {
+    const NamedUnit column = split_column_name(table.names[c]);
+    if (std::find(quantity.names.begin(), quantity.names.end(), column.name) ==
+        quantity.names.end()) {
+      continue;
+    }
+    // A bare name where a unit is needed (an extension) is some other column.
+    if (column.unit.empty() && quantity.units.front().first != "") continue;
+    std::string known;
+    for (const auto& [unit, factor] : quantity.units) {
+      if (unit == column.unit) return std::make_pair(c, factor);
+      if (!unit.empty()) known += (known.empty() ? "" : ", ") + unit;
+    }
+    throw InputError(table.path, table.header_line,
+                     "column '" + table.names[c] + "': unknown unit '" + column.unit + "' for " +
+                         column.name + " (known: " + known + ")");
+  }
+  return std::nullopt;
+}
+
+// Time and strain in SI, from a strain column or an extension column over
+// --gauge-length.
+void read_time_and_strain(const CsvTable& table, const CreepTestDescription& given,
+                          CreepTestData& data) {
+  const auto time = find_quantity(table, time_quantity);
+  if (!time) table.require({"time_s", "time"}, "time in s");
+  require_nondecreasing(table, time->first);
+  data.time = table.columns[time->first];
+  for (double& t : data.time)
+    t *= time->second;
+  if (const auto strain = find_quantity(table, strain_quantity)) {
+    data.strain = table.columns[strain->first];
+    for (double& e : data.strain)
+      e *= strain->second;
+  } else if (const auto extension = find_quantity(table, extension_quantity)) {
+    if (!given.gauge_length) {
+      throw InputError(table.path, table.header_line,
+                       "column '" + table.names[extension->first] +
+                           "' is an extension: give --gauge-length (m) to turn it into strain");
+    }
+    data.strain = table.columns[extension->first];
+    for (double& e : data.strain)
+      e *= extension->second / *given.gauge_length;
+  } else {
+    table.require({"strain", "strain_total"}, "elongation over the rest length");
+  }
+  data.line = table.lines;
+}
+
 } // namespace
 
 CreepTestData read_creep_test_data(const std::string& path, const CreepTestDescription& given) {
   const CsvTable table = read_csv(path);
   CreepTestData data;
   data.path = path;
-  const std::size_t time = table.require({"time_s", "time"}, "time in s");
-  const std::size_t strain =
-      table.require({"strain", "strain_total"}, "elongation over the rest length");
-  require_nondecreasing(table, time);
-  data.time = table.columns[time];
-  data.strain = table.columns[strain];
-  data.line = table.lines;
+  read_time_and_strain(table, given, data);
   if (data.time.size() < 2 * minimum_phase_samples) {
     throw InputError(path + ": " + std::to_string(data.time.size()) +
                      " samples are too few to fit five parameters");
@@ -158,15 +261,15 @@ CreepTestData read_creep_test_data(const std::string& path, const CreepTestDescr
     throw InputError("--force needs --width (m) to give the tension per unit width");
   }
 
-  if (const auto column = table.find({"tension_n_per_m", "tension"})) {
-    settle_times_from_tension(data, table, *column, 1.0, "tension");
-  } else if (const auto force = table.find({"force_n", "force"})) {
+  if (const auto column = find_quantity(table, tension_quantity)) {
+    settle_times_from_tension(data, table, column->first, column->second, "tension");
+  } else if (const auto force = find_quantity(table, force_quantity)) {
     if (!given.width && !given.tension) {
       throw InputError(path + ": the force column needs --width (m), the specimen width");
     }
     // With --tension the column only tells when the load was on.
-    const double to_tension = given.width ? 1.0 / *given.width : 1.0;
-    settle_times_from_tension(data, table, *force, to_tension, "force / width");
+    const double to_tension = force->second / (given.width ? *given.width : 1.0);
+    settle_times_from_tension(data, table, force->first, to_tension, "force / width");
   } else {
     if (!data.test.tension) {
       throw InputError(path + ": no tension: give --tension (N/m), or --force (N) and --width "

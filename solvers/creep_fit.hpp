@@ -35,6 +35,7 @@ struct CreepTestDescription {
   std::optional<double> width;   // m
   std::optional<double> load_time;
   std::optional<double> unload_time;
+  std::optional<double> gauge_length; // m, turns an extension column into strain
 };
 
 // Reads the CSV (docs/formats.md) and settles the test description.

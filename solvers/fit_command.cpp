@@ -35,7 +35,9 @@ const CommandSpec& fit_command() {
       "intervals. Warns when the test did not reach\n"
       "saturation or full recovery (thesis App. A).\n\n"
       "DATA.csv has columns time_s and strain, and optionally tension_N_per_m or\n"
-      "force_N (then the load and unload times are read from it); see\n"
+      "force_N (then the load and unload times are read from it). Headers may\n"
+      "carry units, as instruments write them: \"Time (s)\", time [min], Strain (%),\n"
+      "Extension (mm) with --gauge-length, Force (kgf), Load (kN), Tension (N/mm); see\n"
       "docs/formats.md. Without them the load is taken to start at the first sample\n"
       "and the unloading is found as the largest strain drop.\n\n"
       "Output in DIR: fit.json, fit.csv (data, fit, residual), fabric.yaml (usable\n"
@@ -46,6 +48,8 @@ const CommandSpec& fit_command() {
       {
           {"force", "N", "", "test force, N (with --width), when DATA has no tension column"},
           {"width", "M", "", "specimen width, m"},
+          {"gauge-length", "M", "",
+           "gauge length, m, when DATA gives the extension (mm, cm, m) instead of strain"},
           {"tension", "N/M", "", "test tension per unit width, N/m"},
           {"load-time", "S", "", "time at which the load was applied, s"},
           {"unload-time", "S", "", "time at which the load was removed, s"},
@@ -243,6 +247,7 @@ int run_fit(const Invocation& invocation) {
   given.tension = optional_positive(options, "tension");
   given.force = optional_positive(options, "force");
   given.width = optional_positive(options, "width");
+  given.gauge_length = optional_positive(options, "gauge-length");
   given.load_time = optional_real(options, "load-time");
   given.unload_time = optional_real(options, "unload-time");
 
