@@ -827,7 +827,11 @@ PetscErrorCode fit_creep_test(MPI_Comm comm, const CreepTestData& data,
   fit->iterations = solution.iterations;
   fit->solver = "levenberg-marquardt";
   fit->parameters = from_fit_variables(solution.q);
-  if (share.evaluated_at != solution.q) PetscCall(sum_at(comm, &share, solution.q, &solution.sums));
+  // The autocorrelation needs the residuals at the solution (the sums there are kept).
+  if (share.evaluated_at != solution.q) {
+    evaluate_creep_test(data.test, fit->parameters, data.time.data() + share.begin,
+                        share.end - share.begin, share.model.data());
+  }
   // On exact data the residuals are round-off, with no noise to correlate.
   fit->autocorrelation.effective_samples = double(samples);
   if (solution.sums.squared_residual > floor) {
