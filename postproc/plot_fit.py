@@ -375,7 +375,7 @@ def make_figure(fit, data, csv_path, limit, title, no_estimate=False):
     warnings = [str(w) for w in ((fit.get("saturation") or {}).get("warnings") or [])]
     solver = fit.get("solver") or {}
     if solver.get("converged") is False:
-        warnings.insert(0, "the least-squares refinement did not converge (TAO: %s); the "
+        warnings.insert(0, "the least-squares refinement reached no certified optimum (%s); the "
                         "parameters are the last iterate" % solver.get("reason", "unknown reason"))
     warning_lines = []
     for warning in warnings:

@@ -4,13 +4,15 @@
 #include "common/error.hpp"
 #include "common/statistics.hpp"
 #include "common/vector_math.hpp"
-#include "fem/petsc_options.hpp"
 
 #include <Eigen/Dense>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <numeric>
+#include <random>
 
 namespace sartor {
 
@@ -120,19 +122,122 @@ void detect_unload_from_strain(CreepTestData& data) {
   data.unload_time_origin = "largest strain drop, before line " + std::to_string(data.line[best]);
 }
 
+// Column names with units, as instrument exports write them: "time (s)",
+// "strain [%]", "force (kgf)"; also Sartor's own time_s, force_N,
+// tension_N_per_m. A quantity's units map to factors to SI (s, strain, m, N,
+// N/m).
+struct Quantity {
+  std::vector<std::string> names;
+  std::vector<std::pair<std::string, double>> units; // "" = the name alone
+  std::string meaning;
+};
+
+const Quantity time_quantity{{"time"},
+                             {{"", 1.0},
+                              {"s", 1.0},
+                              {"sec", 1.0},
+                              {"ms", 1e-3},
+                              {"min", 60.0},
+                              {"h", 3600.0},
+                              {"hr", 3600.0}},
+                             "time (s, ms, min, h)"};
+const Quantity strain_quantity{{"strain", "strain_total"},
+                               {{"", 1.0}, {"-", 1.0}, {"mm/mm", 1.0}, {"m/m", 1.0}, {"%", 0.01}},
+                               "elongation over the rest length (fraction or %)"};
+const Quantity extension_quantity{{"extension", "elongation", "displacement"},
+                                  {{"mm", 1e-3}, {"cm", 1e-2}, {"m", 1.0}},
+                                  "extension of the gauge length (mm, cm, m)"};
+const Quantity tension_quantity{
+    {"tension"}, {{"", 1.0}, {"n/m", 1.0}, {"n/mm", 1e3}, {"n/cm", 1e2}, {"kn/m", 1e3}}, "N/m"};
+const Quantity force_quantity{
+    {"force", "load"},
+    {{"", 1.0}, {"n", 1.0}, {"kn", 1e3}, {"kgf", 9.80665}, {"lbf", 4.4482216152605}},
+    "N"};
+
+struct NamedUnit {
+  std::string name, unit;
+};
+
+NamedUnit split_column_name(const std::string& column) {
+  for (const auto& [legacy, split] :
+       std::vector<std::pair<std::string, NamedUnit>>{{"time_s", {"time", "s"}},
+                                                      {"force_n", {"force", "n"}},
+                                                      {"tension_n_per_m", {"tension", "n/m"}}}) {
+    if (column == legacy) return split;
+  }
+  const char close = column.empty() ? ' ' : column.back();
+  const auto open = column.find_last_of(close == ')' ? '(' : '[');
+  if ((close == ')' || close == ']') && open != std::string::npos) {
+    const auto trimmed = [](std::string text) {
+      text.erase(0, text.find_first_not_of(' '));
+      text.erase(text.find_last_not_of(' ') + 1);
+      return text;
+    };
+    return {trimmed(column.substr(0, open)),
+            trimmed(column.substr(open + 1, column.size() - open - 2))};
+  }
+  return {column, ""};
+}
+
+// The column of `quantity` and its factor to SI; throws on a unit it does not know.
+std::optional<std::pair<std::size_t, double>> find_quantity(const CsvTable& table,
+                                                            const Quantity& quantity) {
+  for (std::size_t c = 0; c < table.names.size(); ++c) {
+    const NamedUnit column = split_column_name(table.names[c]);
+    if (std::find(quantity.names.begin(), quantity.names.end(), column.name) ==
+        quantity.names.end()) {
+      continue;
+    }
+    // A bare name where a unit is needed (an extension) is some other column.
+    if (column.unit.empty() && quantity.units.front().first != "") continue;
+    std::string known;
+    for (const auto& [unit, factor] : quantity.units) {
+      if (unit == column.unit) return std::make_pair(c, factor);
+      if (!unit.empty()) known += (known.empty() ? "" : ", ") + unit;
+    }
+    throw InputError(table.path, table.header_line,
+                     "column '" + table.names[c] + "': unknown unit '" + column.unit + "' for " +
+                         column.name + " (known: " + known + ")");
+  }
+  return std::nullopt;
+}
+
+// Time and strain in SI, from a strain column or an extension column over
+// --gauge-length.
+void read_time_and_strain(const CsvTable& table, const CreepTestDescription& given,
+                          CreepTestData& data) {
+  const auto time = find_quantity(table, time_quantity);
+  if (!time) table.require({"time_s", "time"}, "time in s");
+  require_nondecreasing(table, time->first);
+  data.time = table.columns[time->first];
+  for (double& t : data.time)
+    t *= time->second;
+  if (const auto strain = find_quantity(table, strain_quantity)) {
+    data.strain = table.columns[strain->first];
+    for (double& e : data.strain)
+      e *= strain->second;
+  } else if (const auto extension = find_quantity(table, extension_quantity)) {
+    if (!given.gauge_length) {
+      throw InputError(table.path, table.header_line,
+                       "column '" + table.names[extension->first] +
+                           "' is an extension: give --gauge-length (m) to turn it into strain");
+    }
+    data.strain = table.columns[extension->first];
+    for (double& e : data.strain)
+      e *= extension->second / *given.gauge_length;
+  } else {
+    table.require({"strain", "strain_total"}, "elongation over the rest length");
+  }
+  data.line = table.lines;
+}
+
 } // namespace
 
 CreepTestData read_creep_test_data(const std::string& path, const CreepTestDescription& given) {
   const CsvTable table = read_csv(path);
   CreepTestData data;
   data.path = path;
-  const std::size_t time = table.require({"time_s", "time"}, "time in s");
-  const std::size_t strain =
-      table.require({"strain", "strain_total"}, "elongation over the rest length");
-  require_nondecreasing(table, time);
-  data.time = table.columns[time];
-  data.strain = table.columns[strain];
-  data.line = table.lines;
+  read_time_and_strain(table, given, data);
   if (data.time.size() < 2 * minimum_phase_samples) {
     throw InputError(path + ": " + std::to_string(data.time.size()) +
                      " samples are too few to fit five parameters");
@@ -156,15 +261,15 @@ CreepTestData read_creep_test_data(const std::string& path, const CreepTestDescr
     throw InputError("--force needs --width (m) to give the tension per unit width");
   }
 
-  if (const auto column = table.find({"tension_n_per_m", "tension"})) {
-    settle_times_from_tension(data, table, *column, 1.0, "tension");
-  } else if (const auto force = table.find({"force_n", "force"})) {
+  if (const auto column = find_quantity(table, tension_quantity)) {
+    settle_times_from_tension(data, table, column->first, column->second, "tension");
+  } else if (const auto force = find_quantity(table, force_quantity)) {
     if (!given.width && !given.tension) {
       throw InputError(path + ": the force column needs --width (m), the specimen width");
     }
     // With --tension the column only tells when the load was on.
-    const double to_tension = given.width ? 1.0 / *given.width : 1.0;
-    settle_times_from_tension(data, table, *force, to_tension, "force / width");
+    const double to_tension = force->second / (given.width ? *given.width : 1.0);
+    settle_times_from_tension(data, table, force->first, to_tension, "force / width");
   } else {
     if (!data.test.tension) {
       throw InputError(path + ": no tension: give --tension (N/m), or --force (N) and --width "
@@ -265,12 +370,19 @@ ThesisEstimate thesis_estimate(const CreepTestData& data) {
   ThesisEstimate estimate;
 
   // Immediate elastic part: the jump at load application, read as the
-  // intercept at the load time of a line through the first loaded samples.
+  // intercept at the load time of a line through the first loaded samples:
+  // those in the first 1e-4 of the loading, and at least three. (Three
+  // samples alone are too close together on log-spaced data: the line's
+  // slope is then noise.)
   {
     const std::size_t b = phases.load_begin;
+    const double window = 1e-4 * (data.test.unload_time - data.test.load_time);
+    std::size_t e = b + 3;
+    while (e < phases.load_end && t[e] - data.test.load_time <= window)
+      ++e;
     double st = 0, sy = 0, stt = 0, sty = 0;
-    const double n = 3.0;
-    for (std::size_t i = b; i < b + 3; ++i) {
+    const double n = double(e - b);
+    for (std::size_t i = b; i < e; ++i) {
       const double dt = t[i] - data.test.load_time;
       st += dt;
       sy += y[i];
@@ -288,10 +400,20 @@ ThesisEstimate thesis_estimate(const CreepTestData& data) {
                          describe_time(data.test.load_time) + "); check --load-time");
   }
 
-  const std::size_t loading = phases.load_end - phases.load_begin;
-  const std::size_t recovery = phases.recovery_end - phases.load_end;
-  const std::size_t end_window = std::clamp<std::size_t>(loading / 50, 1, 50);
-  const std::size_t recovery_window = std::clamp<std::size_t>(recovery / 50, 1, 50);
+  // The plateaus: the last samples of each phase, at most 50 and within its
+  // last 2% (log-spaced data have few samples there).
+  const auto samples_in_last = [&t](std::size_t begin, std::size_t end, double from) {
+    const std::size_t count = std::clamp<std::size_t>((end - begin) / 50, 1, 50);
+    std::size_t first = end - count;
+    while (first < end - 1 && t[first] < from)
+      ++first;
+    return end - first;
+  };
+  const double load_duration = data.test.unload_time - data.test.load_time;
+  const std::size_t end_window = samples_in_last(phases.load_begin, phases.load_end,
+                                                 data.test.unload_time - 0.02 * load_duration);
+  const std::size_t recovery_window = samples_in_last(
+      phases.load_end, phases.recovery_end, t.back() - 0.02 * (t.back() - data.test.unload_time));
   const double strain_at_unload = mean_of(y, phases.load_end - end_window, phases.load_end);
   estimate.nonelastic_at_unload = (1.0 + strain_at_unload) / (1.0 + estimate.immediate_strain) - 1;
   estimate.permanent_at_end =
@@ -334,119 +456,251 @@ ThesisEstimate thesis_estimate(const CreepTestData& data) {
 
 namespace {
 
-struct FitContext {
+constexpr std::size_t parameter_count = creep_test_parameter_count;
+using NormalMatrix = Eigen::Matrix<double, long(parameter_count), long(parameter_count)>;
+using ParameterVector = Eigen::Matrix<double, long(parameter_count), 1>;
+
+// This rank's block of the samples and the model evaluated there.
+struct SampleShare {
   const CreepTestData* data = nullptr;
-  PetscInt begin = 0; // this rank's samples
-  PetscInt end = 0;
-  VecScatter to_all = nullptr;
-  Vec everywhere = nullptr; // the fit variables, replicated
-  // TAO asks for the residual and the Jacobian at the same points; both come
-  // from one pass over the samples, kept for the last point asked.
-  CreepTestVector cached_at{};
-  bool cache_valid = false;
-  std::vector<double> model;    // this rank's model strains
-  std::vector<double> jacobian; // column-major, leading dimension end - begin
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  std::vector<double> model;      // model strains
+  std::vector<double> jacobian;   // column-major, leading dimension end - begin
+  CreepTestVector evaluated_at{}; // where model and jacobian were computed
 };
 
-PetscErrorCode fit_variables_of(FitContext* context, Vec x, CreepTestVector* q) {
-  const PetscScalar* values = nullptr;
-  PetscFunctionBeginUser;
-  PetscCall(
-      VecScatterBegin(context->to_all, x, context->everywhere, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(context->to_all, x, context->everywhere, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGetArrayRead(context->everywhere, &values));
-  std::copy(values, values + creep_test_parameter_count, q->begin());
-  PetscCall(VecRestoreArrayRead(context->everywhere, &values));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode evaluate_model(FitContext* context, Vec x) {
-  CreepTestVector q;
-  PetscFunctionBeginUser;
-  PetscCall(fit_variables_of(context, x, &q));
-  if (context->cache_valid && q == context->cached_at) PetscFunctionReturn(0);
-  const auto count = std::size_t(context->end - context->begin);
-  context->model.resize(count);
-  context->jacobian.resize(count * creep_test_parameter_count);
-  evaluate_creep_test(context->data->test, from_fit_variables(q),
-                      context->data->time.data() + context->begin, count, context->model.data(),
-                      context->jacobian.data(), count);
-  context->cached_at = q;
-  context->cache_valid = true;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode evaluate_residual(Tao, Vec x, Vec residual, void* pointer) {
-  auto* context = static_cast<FitContext*>(pointer);
-  PetscScalar* r = nullptr;
-  PetscFunctionBeginUser;
-  PetscCall(evaluate_model(context, x));
-  PetscCall(VecGetArray(residual, &r));
-  const double* measured = context->data->strain.data() + context->begin;
-  for (std::size_t i = 0; i < context->model.size(); ++i)
-    r[i] = context->model[i] - measured[i];
-  PetscCall(VecRestoreArray(residual, &r));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode evaluate_jacobian(Tao, Vec x, Mat jacobian, Mat, void* pointer) {
-  auto* context = static_cast<FitContext*>(pointer);
-  PetscScalar* entries = nullptr;
-  PetscInt leading = 0;
-  PetscFunctionBeginUser;
-  PetscCall(evaluate_model(context, x));
-  PetscCall(MatDenseGetLDA(jacobian, &leading));
-  PetscCall(MatDenseGetArrayWrite(jacobian, &entries));
-  const std::size_t count = context->model.size();
-  for (std::size_t j = 0; j < creep_test_parameter_count; ++j) {
-    std::copy_n(context->jacobian.data() + j * count, count, entries + j * std::size_t(leading));
-  }
-  PetscCall(MatDenseRestoreArrayWrite(jacobian, &entries));
-  PetscCall(MatAssemblyBegin(jacobian, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(jacobian, MAT_FINAL_ASSEMBLY));
-  PetscFunctionReturn(0);
-}
-
-// Sums over all samples of the quantities behind the statistics.
+// Sums over all ranks' samples at one point of the fit variables.
 struct FitSums {
-  Eigen::Matrix<double, creep_test_parameter_count, creep_test_parameter_count> normal;
+  NormalMatrix normal = NormalMatrix::Zero();         // J^T J
+  ParameterVector gradient = ParameterVector::Zero(); // J^T r (half the gradient of the RSS)
   double squared_residual = 0.0;
   double strain = 0.0;
   double squared_strain = 0.0;
 };
 
-PetscErrorCode sum_statistics(MPI_Comm comm, FitContext* context, Vec x, FitSums* sums) {
+PetscErrorCode sum_at(MPI_Comm comm, SampleShare* share, const CreepTestVector& q, FitSums* sums) {
   PetscFunctionBeginUser;
-  PetscCall(evaluate_model(context, x));
-  const std::size_t count = context->model.size();
-  const double* measured = context->data->strain.data() + context->begin;
-  const std::vector<double>& model = context->model;
-  const std::vector<double>& jacobian = context->jacobian;
-  constexpr std::size_t p = creep_test_parameter_count;
-  double local[p * p + 3] = {};
-  for (std::size_t a = 0; a < p; ++a) {
-    for (std::size_t b = 0; b < p; ++b) {
-      double sum = 0.0;
-      for (std::size_t i = 0; i < count; ++i)
-        sum += jacobian[a * count + i] * jacobian[b * count + i];
-      local[a * p + b] = sum;
+  const std::size_t count = share->end - share->begin;
+  share->model.resize(count);
+  share->jacobian.resize(count * parameter_count);
+  evaluate_creep_test(share->data->test, from_fit_variables(q),
+                      share->data->time.data() + share->begin, count, share->model.data(),
+                      share->jacobian.data(), count);
+  share->evaluated_at = q;
+  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, long(parameter_count)>> jacobian(
+      share->jacobian.data(), long(count), long(parameter_count));
+  const Eigen::Map<const Eigen::VectorXd> model(share->model.data(), long(count));
+  const Eigen::Map<const Eigen::VectorXd> measured(share->data->strain.data() + share->begin,
+                                                   long(count));
+  const Eigen::VectorXd residual = model - measured;
+  constexpr std::size_t p = parameter_count;
+  std::array<double, p * p + p + 3> local{};
+  Eigen::Map<NormalMatrix>(local.data()) = jacobian.transpose() * jacobian;
+  Eigen::Map<ParameterVector>(local.data() + p * p) = jacobian.transpose() * residual;
+  local[p * p + p] = residual.squaredNorm();
+  local[p * p + p + 1] = measured.sum();
+  local[p * p + p + 2] = measured.squaredNorm();
+  std::array<double, p * p + p + 3> global{};
+  PetscCallMPI(
+      MPIU_Allreduce(local.data(), global.data(), int(global.size()), MPI_DOUBLE, MPI_SUM, comm));
+  sums->normal = Eigen::Map<const NormalMatrix>(global.data());
+  sums->gradient = Eigen::Map<const ParameterVector>(global.data() + p * p);
+  sums->squared_residual = global[p * p + p];
+  sums->strain = global[p * p + p + 1];
+  sums->squared_strain = global[p * p + p + 2];
+  PetscFunctionReturn(0);
+}
+
+// The fit variables stay in their domain: alpha in [0, 1], the logarithms
+// within a factor e^20 of the start (which keeps exp() finite).
+CreepTestVector kept_in_bounds(CreepTestVector q, const CreepTestVector& start) {
+  for (std::size_t j = 0; j < parameter_count; ++j) {
+    q[j] = j == 2
+               ? std::clamp(q[j], 0.0, 1.0)
+               : std::clamp(q[j], start[j] - log_parameter_range, start[j] + log_parameter_range);
+  }
+  return q;
+}
+
+// The Gauss-Newton step from the point of `sums` and its length in standard
+// errors: sqrt(step^T J^T J step / s^2), with s^2 = RSS / dof. This is the
+// distance to the optimum of the linearised problem in the units the
+// confidence intervals are drawn in.
+struct GaussNewtonStep {
+  ParameterVector step;
+  double standard_errors = 0.0;
+};
+
+GaussNewtonStep gauss_newton_step(const FitSums& sums, double degrees_of_freedom) {
+  GaussNewtonStep gn;
+  gn.step = -sums.normal.completeOrthogonalDecomposition().solve(sums.gradient);
+  const double variance = sums.squared_residual / degrees_of_freedom;
+  const double length = std::max(0.0, -sums.gradient.dot(gn.step));
+  gn.standard_errors = variance > 0.0 ? std::sqrt(length / variance) : 0.0;
+  return gn;
+}
+
+CreepTestVector moved(const CreepTestVector& q, const ParameterVector& step,
+                      const CreepTestVector& start) {
+  CreepTestVector trial = q;
+  for (std::size_t j = 0; j < parameter_count; ++j)
+    trial[j] += step(long(j));
+  return kept_in_bounds(trial, start);
+}
+
+constexpr double converged_step_standard_errors = 1e-4;
+constexpr double certified_step_standard_errors = 1e-3;
+constexpr double negligible_descent_of_variance = 1e-6;
+constexpr long maximum_iterations = 200;
+// The lag-1 autocorrelation of independent noise scatters by 1/sqrt(n):
+// beyond 3 of that, the residuals are taken as correlated.
+constexpr double autocorrelation_z_threshold = 3.0;
+
+struct Solution {
+  CreepTestVector q{};
+  FitSums sums;
+  long iterations = 0;
+  bool converged = false;
+  std::string reason;
+};
+
+// Levenberg-Marquardt with Moré's column scaling (the damping acts on J D^-1,
+// D = the running maximum of the columns' norms) and Nielsen's damping update.
+// It stops when the misfit reaches the data's round-off, when the remaining
+// Gauss-Newton step is below 1e-4 standard errors, or when an accepted step
+// changes neither the misfit (relative 1e-14) nor any variable (1e-10).
+PetscErrorCode levenberg_marquardt(MPI_Comm comm, SampleShare* share, const CreepTestVector& start,
+                                   double misfit_floor, Solution* solution) {
+  PetscFunctionBeginUser;
+  const double dof = double(share->data->time.size()) - double(parameter_count);
+  solution->q = start;
+  PetscCall(sum_at(comm, share, solution->q, &solution->sums));
+  ParameterVector scale = ParameterVector::Constant(std::numeric_limits<double>::min());
+  double damping = 1e-3, growth = 2.0;
+  for (long iteration = 0; iteration < maximum_iterations; ++iteration) {
+    const FitSums& current = solution->sums;
+    solution->iterations = iteration;
+    if (current.squared_residual <= misfit_floor) {
+      solution->converged = true;
+      solution->reason = "misfit at the round-off of the data";
+      PetscFunctionReturn(0);
+    }
+    if (gauss_newton_step(current, dof).standard_errors < converged_step_standard_errors) {
+      solution->converged = true;
+      solution->reason = "Gauss-Newton step below 1e-4 standard errors";
+      PetscFunctionReturn(0);
+    }
+    scale = scale.cwiseMax(current.normal.diagonal().cwiseSqrt());
+    const NormalMatrix scaled =
+        scale.cwiseInverse().asDiagonal() * current.normal * scale.cwiseInverse().asDiagonal();
+    const ParameterVector scaled_step =
+        -(scaled + damping * NormalMatrix::Identity())
+             .ldlt()
+             .solve(scale.cwiseInverse().cwiseProduct(current.gradient));
+    const CreepTestVector trial =
+        moved(solution->q, scale.cwiseInverse().cwiseProduct(scaled_step), start);
+    ParameterVector step;
+    for (std::size_t j = 0; j < parameter_count; ++j)
+      step(long(j)) = trial[j] - solution->q[j];
+    const double predicted = -(2.0 * current.gradient.dot(step) + step.dot(current.normal * step));
+    FitSums at_trial;
+    PetscCall(sum_at(comm, share, trial, &at_trial));
+    const double reduction = current.squared_residual - at_trial.squared_residual;
+    if (!(reduction > 0.0)) { // also rejects a NaN misfit
+      damping *= growth;
+      growth *= 2.0;
+      if (damping > 1e16) {
+        solution->reason = "no damped step reduces the misfit";
+        PetscFunctionReturn(0);
+      }
+      continue;
+    }
+    const double ratio = predicted > 0.0 ? reduction / predicted : 0.0;
+    damping *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * ratio - 1.0, 3));
+    growth = 2.0;
+    const bool stalled =
+        reduction < 1e-14 * current.squared_residual && step.lpNorm<Eigen::Infinity>() < 1e-10;
+    solution->q = trial;
+    solution->sums = at_trial;
+    if (stalled) {
+      solution->converged = true;
+      solution->reason = "step and relative reduction below 1e-10 and 1e-14";
+      PetscFunctionReturn(0);
     }
   }
-  for (std::size_t i = 0; i < count; ++i) {
-    const double r = model[i] - measured[i];
-    local[p * p] += r * r;
-    local[p * p + 1] += measured[i];
-    local[p * p + 2] += measured[i] * measured[i];
+  solution->iterations = maximum_iterations;
+  solution->reason = "iteration limit (200)";
+  PetscFunctionReturn(0);
+}
+
+// After the iterations: the full Gauss-Newton step from the solution must be
+// short (in standard errors) and, taken, must not lower the misfit by more
+// than a millionth of the noise variance. A step that does lower it is kept.
+PetscErrorCode certify_optimum(MPI_Comm comm, SampleShare* share, const CreepTestVector& start,
+                               double misfit_floor, Solution* solution, CreepFit* fit) {
+  PetscFunctionBeginUser;
+  if (solution->sums.squared_residual <= misfit_floor) {
+    fit->optimum_certified = true;
+    fit->certification = "the misfit is at the round-off of the data (exact data)";
+    PetscFunctionReturn(0);
   }
-  double global[p * p + 3];
-  PetscCallMPI(MPIU_Allreduce(local, global, int(p * p + 3), MPI_DOUBLE, MPI_SUM, comm));
-  for (std::size_t a = 0; a < p; ++a) {
-    for (std::size_t b = 0; b < p; ++b)
-      sums->normal(long(a), long(b)) = global[a * p + b];
+  const double dof = double(share->data->time.size()) - double(parameter_count);
+  const double variance = solution->sums.squared_residual / dof;
+  const GaussNewtonStep gn = gauss_newton_step(solution->sums, dof);
+  FitSums at_step;
+  const CreepTestVector stepped = moved(solution->q, gn.step, start);
+  PetscCall(sum_at(comm, share, stepped, &at_step));
+  const double descent = solution->sums.squared_residual - at_step.squared_residual;
+  fit->certificate_step_standard_errors = gn.standard_errors;
+  fit->certificate_descent_over_variance = descent / variance;
+  fit->optimum_certified = gn.standard_errors < certified_step_standard_errors &&
+                           descent < negligible_descent_of_variance * variance;
+  if (descent > 0.0) {
+    solution->q = stepped;
+    solution->sums = at_step;
   }
-  sums->squared_residual = global[p * p];
-  sums->strain = global[p * p + 1];
-  sums->squared_strain = global[p * p + 2];
+  char text[300];
+  std::snprintf(text, sizeof text,
+                "a final Gauss-Newton step of %.2g standard errors changes the misfit by %.2g of "
+                "the residual variance (certified when below %g standard errors and a descent "
+                "below %g)",
+                gn.standard_errors, -descent / variance, certified_step_standard_errors,
+                negligible_descent_of_variance);
+  fit->certification = text;
+  PetscFunctionReturn(0);
+}
+
+// Lag-1 autocorrelation of the residuals in time order. Each rank's block
+// needs the first residual of the next rank's block.
+PetscErrorCode residual_autocorrelation(MPI_Comm comm, const SampleShare& share, double rss,
+                                        ResidualAutocorrelation* result) {
+  PetscMPIInt rank = 0, size = 1;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  const std::size_t count = share.end - share.begin;
+  const double* measured = share.data->strain.data() + share.begin;
+  const auto residual = [&](std::size_t i) { return share.model[i] - measured[i]; };
+  double first = count > 0 ? residual(0) : 0.0, next_first = 0.0;
+  const PetscMPIInt previous = rank > 0 ? rank - 1 : MPI_PROC_NULL;
+  const PetscMPIInt next = rank + 1 < size ? rank + 1 : MPI_PROC_NULL;
+  PetscCallMPI(MPI_Sendrecv(&first, 1, MPI_DOUBLE, previous, 0, &next_first, 1, MPI_DOUBLE, next, 0,
+                            comm, MPI_STATUS_IGNORE));
+  double local = 0.0;
+  for (std::size_t i = 0; i + 1 < count; ++i)
+    local += residual(i) * residual(i + 1);
+  if (count > 0 && next != MPI_PROC_NULL) local += residual(count - 1) * next_first;
+  double lagged = 0.0;
+  PetscCallMPI(MPIU_Allreduce(&local, &lagged, 1, MPI_DOUBLE, MPI_SUM, comm));
+  const double n = double(share.data->time.size());
+  result->lag1 = rss > 0.0 ? lagged / rss : 0.0;
+  result->z_score = result->lag1 * std::sqrt(n);
+  result->durbin_watson = 2.0 * (1.0 - result->lag1);
+  result->present = result->z_score > autocorrelation_z_threshold;
+  result->variance_inflation =
+      result->present ? (1.0 + result->lag1) / std::max(1.0 - result->lag1, 1e-3) : 1.0;
+  result->effective_samples = n / result->variance_inflation;
   PetscFunctionReturn(0);
 }
 
@@ -463,10 +717,25 @@ void fill_statistics(const CreepTestData& data, const FitSums& sums, CreepFit* f
 
   // Covariance of the fit variables, then the delta method: for a parameter
   // fitted through its logarithm, se(value) = value * se(log value).
+  // Autocorrelated residuals (AR(1) with lag-1 correlation rho) carry the
+  // information of n (1 - rho) / (1 + rho) independent samples: the
+  // covariance grows by the inverse of that ratio.
+  const ResidualAutocorrelation& correlated = fit->autocorrelation;
   const Eigen::Matrix<double, p, p> covariance =
-      variance * sums.normal.completeOrthogonalDecomposition().pseudoInverse();
-  const double t =
-      student_t_quantile(0.5 + 0.5 * fit->confidence_level, double(fit->degrees_of_freedom));
+      correlated.variance_inflation * variance *
+      sums.normal.completeOrthogonalDecomposition().pseudoInverse();
+  const double t = student_t_quantile(0.5 + 0.5 * fit->confidence_level,
+                                      std::max(correlated.effective_samples - double(p), 1.0));
+  if (correlated.present) {
+    fit->warnings.push_back(
+        "the residuals are autocorrelated (lag-1 correlation " +
+        format_number(std::round(1000 * correlated.lag1) / 1000) + ", " +
+        format_number(std::round(correlated.z_score)) +
+        " times its spread for independent noise): the intervals are widened by " +
+        format_number(std::round(100 * std::sqrt(correlated.variance_inflation)) / 100) +
+        " (effective sample size " + format_number(std::round(correlated.effective_samples)) +
+        " of " + std::to_string(n) + ")");
+  }
   const CreepTestParameters& v = fit->parameters;
   const std::array<double, creep_test_parameter_count> values = {
       v.elastic_modulus, v.creep_modulus, v.alpha, v.lambda_load, v.lambda_unload};
@@ -521,107 +790,160 @@ void fill_statistics(const CreepTestData& data, const FitSums& sums, CreepFit* f
   }
 }
 
+// Exact data: the misfit cannot fall below the round-off of the data.
+double misfit_floor(const CreepTestData& data) {
+  double largest_strain = 0.0;
+  for (double y : data.strain)
+    largest_strain = std::max(largest_strain, std::abs(y));
+  const double round_off = 1e-14 * largest_strain;
+  return double(data.strain.size()) * round_off * round_off;
+}
+
 } // namespace
 
 PetscErrorCode fit_creep_test(MPI_Comm comm, const CreepTestData& data,
                               const CreepTestParameters& start, double confidence_level,
                               CreepFit* fit) {
-  constexpr PetscInt p = PetscInt(creep_test_parameter_count);
-  PetscMPIInt rank = 0;
-  Tao tao = nullptr;
-  Vec x = nullptr, lower = nullptr, upper = nullptr, residual = nullptr;
-  Mat jacobian = nullptr;
-  FitContext context;
+  PetscMPIInt rank = 0, size = 1;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  context.data = &data;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
   fit->confidence_level = confidence_level;
+  // Each rank takes a contiguous block of the samples.
+  SampleShare share;
+  share.data = &data;
+  const std::size_t samples = data.time.size();
+  share.begin = samples * std::size_t(rank) / std::size_t(size);
+  share.end = samples * std::size_t(rank + 1) / std::size_t(size);
 
-  const PetscInt samples = PetscInt(data.time.size());
-  PetscCall(VecCreateMPI(comm, PETSC_DECIDE, samples, &residual));
-  PetscCall(VecGetOwnershipRange(residual, &context.begin, &context.end));
-  PetscCall(VecCreateMPI(comm, rank == 0 ? p : 0, p, &x));
-  PetscCall(VecDuplicate(x, &lower));
-  PetscCall(VecDuplicate(x, &upper));
-  PetscCall(MatCreateDense(comm, context.end - context.begin, rank == 0 ? p : 0, samples, p,
-                           nullptr, &jacobian));
-  PetscCall(VecScatterCreateToAll(x, &context.to_all, &context.everywhere));
+  const double floor = misfit_floor(data);
 
-  if (rank == 0) {
-    const CreepTestVector q0 = to_fit_variables(start);
-    for (PetscInt j = 0; j < p; ++j) {
-      PetscCall(VecSetValue(x, j, q0[std::size_t(j)], INSERT_VALUES));
-      // alpha lies in [0, 1]; the logarithms stay within a factor e^20 of the
-      // start, which keeps trial steps from overflowing exp().
-      const double q = q0[std::size_t(j)];
-      PetscCall(VecSetValue(lower, j, j == 2 ? 0.0 : q - log_parameter_range, INSERT_VALUES));
-      PetscCall(VecSetValue(upper, j, j == 2 ? 1.0 : q + log_parameter_range, INSERT_VALUES));
+  const CreepTestVector q0 = to_fit_variables(start);
+  Solution solution;
+  PetscCall(levenberg_marquardt(comm, &share, q0, floor, &solution));
+  PetscCall(certify_optimum(comm, &share, q0, floor, &solution, fit));
+  fit->converged = solution.converged && fit->optimum_certified;
+  fit->converged_reason = solution.reason;
+  fit->iterations = solution.iterations;
+  fit->solver = "levenberg-marquardt";
+  fit->parameters = from_fit_variables(solution.q);
+  // The autocorrelation needs the residuals at the solution (the sums there are kept).
+  if (share.evaluated_at != solution.q) {
+    evaluate_creep_test(data.test, fit->parameters, data.time.data() + share.begin,
+                        share.end - share.begin, share.model.data());
+  }
+  // On exact data the residuals are round-off, with no noise to correlate.
+  fit->autocorrelation.effective_samples = double(samples);
+  if (solution.sums.squared_residual > floor) {
+    PetscCall(residual_autocorrelation(comm, share, solution.sums.squared_residual,
+                                       &fit->autocorrelation));
+  }
+  PetscCallCXX(fill_statistics(data, solution.sums, fit));
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+// Residuals of the fit, centred and scaled to the residual variance.
+std::vector<double> bootstrap_residuals(const CreepTestData& data, const CreepFit& fit,
+                                        std::vector<double>* model) {
+  const std::size_t n = data.time.size();
+  model->resize(n);
+  evaluate_creep_test(data.test, fit.parameters, data.time.data(), n, model->data());
+  std::vector<double> residual(n);
+  for (std::size_t i = 0; i < n; ++i)
+    residual[i] = data.strain[i] - (*model)[i];
+  const double mean = mean_of(residual, 0, n);
+  const double scale = std::sqrt(double(n) / double(n - creep_test_parameter_count));
+  for (double& r : residual)
+    r = (r - mean) * scale;
+  return residual;
+}
+
+// Linear interpolation between order statistics.
+double percentile(std::vector<double> values, double fraction) {
+  std::sort(values.begin(), values.end());
+  const double position = fraction * double(values.size() - 1);
+  const auto below = std::size_t(position);
+  const std::size_t above = std::min(below + 1, values.size() - 1);
+  return values[below] + (position - double(below)) * (values[above] - values[below]);
+}
+
+void summarise_replicates(const std::array<std::vector<double>, creep_test_parameter_count>& q,
+                          const CreepFit& fit, BootstrapEstimate* bootstrap) {
+  const double tail = 0.5 * (1.0 - fit.confidence_level);
+  for (std::size_t j = 0; j < creep_test_parameter_count; ++j) {
+    const bool logarithmic = j != 2;
+    const auto value = [logarithmic](double x) { return logarithmic ? std::exp(x) : x; };
+    std::vector<double> values;
+    for (double x : q[j])
+      values.push_back(value(x));
+    const double mean = mean_of(values, 0, values.size());
+    double squares = 0.0;
+    for (double v : values)
+      squares += (v - mean) * (v - mean);
+    ParameterEstimate& e = bootstrap->estimates[j];
+    e.value = fit.estimates[j].value;
+    e.std_error = std::sqrt(squares / double(values.size() - 1));
+    e.ci_low = value(percentile(q[j], tail));
+    e.ci_high = value(percentile(q[j], 1.0 - tail));
+  }
+}
+
+} // namespace
+
+PetscErrorCode bootstrap_creep_fit(MPI_Comm comm, const CreepTestData& data, const CreepFit& fit,
+                                   long replicates, unsigned long seed,
+                                   BootstrapEstimate* bootstrap) {
+  PetscMPIInt rank = 0, size = 1;
+  PetscFunctionBeginUser;
+  PetscCheck(replicates >= 20, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "a bootstrap needs at least 20 replicates, got %ld", replicates);
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  std::vector<double> model;
+  const std::vector<double> residual = bootstrap_residuals(data, fit, &model);
+  const std::size_t n = residual.size();
+  // Correlated residuals: resample the AR(1) innovations instead and rebuild
+  // the correlated series from them.
+  const double lag1 = fit.autocorrelation.present ? fit.autocorrelation.lag1 : 0.0;
+  bootstrap->ar1_coefficient = lag1;
+  std::vector<double> innovation(residual);
+  for (std::size_t i = 1; i < n; ++i)
+    innovation[i] = residual[i] - lag1 * residual[i - 1];
+  const double innovation_mean = mean_of(innovation, 1, n);
+  for (double& u : innovation)
+    u -= innovation_mean;
+
+  CreepTestData replicate = data;
+  SampleShare share;
+  share.data = &replicate;
+  share.begin = n * std::size_t(rank) / std::size_t(size);
+  share.end = n * std::size_t(rank + 1) / std::size_t(size);
+  const CreepTestVector optimum = to_fit_variables(fit.parameters);
+  std::mt19937_64 generator(seed);
+  std::uniform_int_distribution<std::size_t> any_sample(1, n - 1);
+  std::array<std::vector<double>, creep_test_parameter_count> q;
+  bootstrap->failed = 0;
+  for (long r = 0; r < replicates; ++r) {
+    double error = residual[any_sample(generator)];
+    for (std::size_t i = 0; i < n; ++i) {
+      replicate.strain[i] = model[i] + error;
+      error = lag1 * error + innovation[any_sample(generator)];
     }
+    Solution solution;
+    PetscCall(levenberg_marquardt(comm, &share, optimum, misfit_floor(replicate), &solution));
+    if (!solution.converged) {
+      ++bootstrap->failed;
+      continue;
+    }
+    for (std::size_t j = 0; j < creep_test_parameter_count; ++j)
+      q[j].push_back(solution.q[j]);
   }
-  for (Vec v : {x, lower, upper}) {
-    PetscCall(VecAssemblyBegin(v));
-    PetscCall(VecAssemblyEnd(v));
-  }
-
-  PetscCall(TaoCreate(comm, &tao));
-  PetscCall(TaoSetOptionsPrefix(tao, "fit_"));
-  PetscCall(TaoSetType(tao, TAOBRGN));
-  PetscCall(TaoSetSolution(tao, x));
-  PetscCall(TaoSetVariableBounds(tao, lower, upper));
-  PetscCall(TaoSetResidualRoutine(tao, residual, evaluate_residual, &context));
-  PetscCall(TaoSetJacobianResidualRoutine(tao, jacobian, jacobian, evaluate_jacobian, &context));
-  // Relative to the misfit (noisy data) or to the first gradient (exact data);
-  // the absolute gradient floors at round-off, which depends on the data.
-  PetscCall(TaoSetTolerances(tao, 0.0, 1e-9, 1e-10));
-  PetscCall(TaoSetMaximumIterations(tao, 200));
-  // Exact data: stop once the misfit is round-off of the data themselves.
-  double largest_strain = 0.0;
-  for (double y : data.strain)
-    largest_strain = std::max(largest_strain, std::abs(y));
-  const double round_off = 1e-14 * largest_strain;
-  const double misfit_floor = 0.5 * double(samples) * round_off * round_off;
-  PetscCall(TaoSetFunctionLowerBound(tao, misfit_floor));
-  // Levenberg-Marquardt damping: the default proximal term stalls the
-  // line search near the optimum. With five unknowns, forming J^T J beats a
-  // matrix-free Hessian by far.
-  PetscCall(set_default_option("-fit_tao_brgn_regularization_type", "lm"));
-  PetscCall(set_default_option("-fit_tao_brgn_mat_explicit", "true"));
-  PetscCall(TaoSetFromOptions(tao));
-  PetscBool is_brgn = PETSC_FALSE;
-  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(tao), TAOBRGN, &is_brgn));
-  if (is_brgn) {
-    Tao subsolver = nullptr;
-    PetscCall(TaoBRGNGetSubsolver(tao, &subsolver));
-    PetscCall(TaoSetFunctionLowerBound(subsolver, misfit_floor));
-  }
-  PetscCall(TaoSolve(tao));
-
-  TaoConvergedReason reason;
-  PetscInt iterations = 0;
-  TaoType type = nullptr;
-  PetscCall(TaoGetConvergedReason(tao, &reason));
-  PetscCall(TaoGetIterationNumber(tao, &iterations));
-  PetscCall(TaoGetType(tao, &type));
-  fit->converged = reason > 0;
-  fit->converged_reason = TaoConvergedReasons[reason];
-  fit->iterations = iterations;
-  fit->solver = type;
-
-  CreepTestVector solution;
-  PetscCall(fit_variables_of(&context, x, &solution));
-  fit->parameters = from_fit_variables(solution);
-  FitSums sums;
-  PetscCall(sum_statistics(comm, &context, x, &sums));
-  PetscCallCXX(fill_statistics(data, sums, fit));
-
-  PetscCall(TaoDestroy(&tao));
-  PetscCall(VecScatterDestroy(&context.to_all));
-  PetscCall(VecDestroy(&context.everywhere));
-  PetscCall(MatDestroy(&jacobian));
-  PetscCall(VecDestroy(&residual));
-  PetscCall(VecDestroy(&lower));
-  PetscCall(VecDestroy(&upper));
-  PetscCall(VecDestroy(&x));
+  bootstrap->replicates = replicates - bootstrap->failed;
+  PetscCheck(bootstrap->replicates >= 20, comm, PETSC_ERR_NOT_CONVERGED,
+             "only %ld of %ld bootstrap refits converged", bootstrap->replicates, replicates);
+  PetscCallCXX(summarise_replicates(q, fit, bootstrap));
   PetscFunctionReturn(0);
 }
 

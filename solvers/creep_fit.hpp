@@ -1,12 +1,12 @@
 #pragma once
 // Fitting the creep law to a measured constant-force creep-and-recovery curve:
 // the thesis' procedure (§5.2.2) for a first estimate, then a joint nonlinear
-// least-squares refinement of all parameters with PETSc TAO, with standard
+// least-squares refinement of all parameters (Levenberg-Marquardt), with standard
 // errors and confidence intervals from the Jacobian. docs/theory.md has the math.
 
 #include "material/creep_recovery_model.hpp"
 
-#include <petsctao.h>
+#include <petscsys.h>
 
 #include <array>
 #include <optional>
@@ -35,6 +35,7 @@ struct CreepTestDescription {
   std::optional<double> width;   // m
   std::optional<double> load_time;
   std::optional<double> unload_time;
+  std::optional<double> gauge_length; // m, turns an extension column into strain
 };
 
 // Reads the CSV (docs/formats.md) and settles the test description.
@@ -59,6 +60,17 @@ struct ParameterEstimate {
   double ci_high = 0.0;
 };
 
+// Lag-1 autocorrelation of the residuals in time order (measurement drift,
+// unresolved dynamics). Independent noise gives lag1 ~ N(0, 1/n).
+struct ResidualAutocorrelation {
+  double lag1 = 0.0;
+  double z_score = 0.0;            // lag1 sqrt(n)
+  double durbin_watson = 2.0;      // 2 (1 - lag1)
+  bool present = false;            // z_score > 3
+  double variance_inflation = 1.0; // (1 + lag1) / (1 - lag1) when present, else 1
+  double effective_samples = 0.0;  // n / variance_inflation
+};
+
 struct CreepFit {
   CreepTestParameters parameters;
   std::array<ParameterEstimate, creep_test_parameter_count> estimates; // K, E, alpha, l_l, l_u
@@ -70,25 +82,52 @@ struct CreepFit {
   double rmse = 0.0;
   double r_squared = 0.0;
   double residual_std = 0.0; // sqrt(RSS / dof)
+  // When present, the covariance (and so the intervals) include its inflation.
+  ResidualAutocorrelation autocorrelation;
   // Thesis App. A: how close the test came to saturation and full recovery.
   double loading_saturation = 0.0; // 1 - exp(-lambda_load * loading time)
   double recovery_remaining = 0.0; // exp(-lambda_unload * recovery time)
   bool loading_saturated = false;
   bool recovery_relaxed = false;
   std::vector<std::string> warnings;
-  // TAO
+  // The optimiser (dense Levenberg-Marquardt) and how it stopped.
   std::string solver;
   std::string converged_reason;
   bool converged = false;
   long iterations = 0;
+  // How the optimum was checked after the iterations stopped (docs/theory.md §5.2).
+  bool optimum_certified = false;
+  std::string certification;
+  double certificate_step_standard_errors = 0.0;  // length of the final Gauss-Newton step
+  double certificate_descent_over_variance = 0.0; // misfit it removed / residual variance
 };
 
 // Joint refinement from `start` on `comm` (the samples are spread over the
-// ranks). Solver options come from the options database with prefix "fit_"
-// (e.g. -fit_tao_monitor, -fit_tao_type).
+// ranks; each iteration sums J^T J, J^T r and the misfit over them). The
+// optimum is certified by a final Gauss-Newton step (docs/theory.md §5.2);
+// `converged` is true only when the iterations stopped on a convergence test
+// and that certificate holds.
 PetscErrorCode fit_creep_test(MPI_Comm comm, const CreepTestData& data,
                               const CreepTestParameters& start, double confidence_level,
                               CreepFit* fit);
+
+// A second uncertainty estimate that does not linearise the model: a residual
+// bootstrap. Each replicate refits the model's curve at the optimum plus the
+// fit's residuals resampled with replacement (centred, scaled by
+// sqrt(n / (n - 5))). When the residuals are autocorrelated, their AR(1)
+// innovations r_i - rho r_{i-1} are resampled instead and the correlated
+// series rebuilt from them (a sieve bootstrap), which keeps the correlation.
+// Intervals are the replicates' percentiles at the fit's level; std_error is
+// their standard deviation. Same seed, same result, on any number of ranks.
+struct BootstrapEstimate {
+  long replicates = 0;          // refits that converged
+  long failed = 0;              // refits that did not, left out
+  double ar1_coefficient = 0.0; // rho of the resampled series (0: independent)
+  std::array<ParameterEstimate, creep_test_parameter_count> estimates;
+};
+PetscErrorCode bootstrap_creep_fit(MPI_Comm comm, const CreepTestData& data, const CreepFit& fit,
+                                   long replicates, unsigned long seed,
+                                   BootstrapEstimate* bootstrap);
 
 // The names used in fit.json and fabric files, in fit-variable order.
 const std::array<const char*, creep_test_parameter_count>& creep_test_parameter_names();

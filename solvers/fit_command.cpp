@@ -27,11 +27,17 @@ const CommandSpec& fit_command() {
       "Determines the immediate-elastic modulus K and the creep parameters E, alpha,\n"
       "lambda_load, lambda_unload from a constant-force creep-and-recovery test:\n"
       "first by the thesis' step-by-step procedure (§5.2.2), then by a joint\n"
-      "nonlinear least-squares fit of all five (PETSc TAO, prefix -fit_), with\n"
-      "standard errors and confidence intervals. Warns when the test did not reach\n"
+      "nonlinear least-squares fit of all five (Levenberg-Marquardt in log\n"
+      "parameters with column scaling; the optimum is certified by a final\n"
+      "Gauss-Newton step, recorded in fit.json), with standard errors and\n"
+      "confidence intervals, and a second set from a residual bootstrap. Residual\n"
+      "autocorrelation (drift) is measured and, when present, widens the\n"
+      "intervals. Warns when the test did not reach\n"
       "saturation or full recovery (thesis App. A).\n\n"
       "DATA.csv has columns time_s and strain, and optionally tension_N_per_m or\n"
-      "force_N (then the load and unload times are read from it); see\n"
+      "force_N (then the load and unload times are read from it). Headers may\n"
+      "carry units, as instruments write them: \"Time (s)\", time [min], Strain (%),\n"
+      "Extension (mm) with --gauge-length, Force (kgf), Load (kN), Tension (N/mm); see\n"
       "docs/formats.md. Without them the load is taken to start at the first sample\n"
       "and the unloading is found as the largest strain drop.\n\n"
       "Output in DIR: fit.json, fit.csv (data, fit, residual), fabric.yaml (usable\n"
@@ -42,10 +48,15 @@ const CommandSpec& fit_command() {
       {
           {"force", "N", "", "test force, N (with --width), when DATA has no tension column"},
           {"width", "M", "", "specimen width, m"},
+          {"gauge-length", "M", "",
+           "gauge length, m, when DATA gives the extension (mm, cm, m) instead of strain"},
           {"tension", "N/M", "", "test tension per unit width, N/m"},
           {"load-time", "S", "", "time at which the load was applied, s"},
           {"unload-time", "S", "", "time at which the load was removed, s"},
           {"confidence", "LEVEL", "0.95", "confidence level of the intervals, in (0, 1)"},
+          {"bootstrap", "N", "200",
+           "residual-bootstrap refits for the second, non-linearised intervals (0: none)"},
+          {"seed", "N", "1", "random seed of the bootstrap"},
           {"name", "NAME", "", "fabric name in fabric.yaml [file name of DATA]"},
           {"direction", "DIR", "warp", "fabric direction the test measured: warp or weft"},
           {"output", "DIR", "out/fit", "output folder (created; files in it are replaced)"},
@@ -104,38 +115,24 @@ std::string fabric_yaml(const std::string& name, const std::string& direction,
   return std::string(out.c_str()) + "\n";
 }
 
-} // namespace
-
-int run_fit(const Invocation& invocation) {
-  const Options& options = invocation.options;
-  const std::string path = invocation.command_line.positionals.at(0);
-  const double confidence = options.real("confidence");
-  if (!(confidence > 0.0 && confidence < 1.0)) {
-    throw InputError("option --confidence: must lie in (0, 1), got " + options.text("confidence"));
+nlohmann::json
+estimates_json(const std::array<ParameterEstimate, creep_test_parameter_count>& estimates) {
+  nlohmann::json parameters = nlohmann::json::object();
+  for (std::size_t j = 0; j < creep_test_parameter_count; ++j) {
+    const ParameterEstimate& e = estimates[j];
+    parameters[creep_test_parameter_names()[j]] = {{"value", e.value},
+                                                   {"std_error", e.std_error},
+                                                   {"ci_low", e.ci_low},
+                                                   {"ci_high", e.ci_high}};
   }
-  const std::string direction = options.text("direction");
-  parse_direction(direction, "option --direction");
-  const std::string name =
-      options.is_set("name") ? options.text("name") : std::filesystem::path(path).stem().string();
+  return parameters;
+}
 
-  CreepTestDescription given;
-  given.tension = optional_positive(options, "tension");
-  given.force = optional_positive(options, "force");
-  given.width = optional_positive(options, "width");
-  given.load_time = optional_real(options, "load-time");
-  given.unload_time = optional_real(options, "unload-time");
-
-  const auto started = std::chrono::steady_clock::now();
-  const CreepTestData data = read_creep_test_data(path, given);
-  const auto read = std::chrono::steady_clock::now();
-  const ThesisEstimate initial = thesis_estimate(data);
-  const auto estimated = std::chrono::steady_clock::now();
-  CreepFit fit;
-  SartorPetscCall(fit_creep_test(PETSC_COMM_WORLD, data, initial.parameters, confidence, &fit));
-  const auto fitted = std::chrono::steady_clock::now();
-
+nlohmann::json fit_report(const Invocation& invocation, const CreepTestData& data,
+                          const ThesisEstimate& initial, const CreepFit& fit,
+                          const BootstrapEstimate& bootstrap) {
   nlohmann::json report = run_metadata(invocation, "fit");
-  report["input"] = {{"file", path},
+  report["input"] = {{"file", data.path},
                      {"samples", data.time.size()},
                      {"tension_N_per_m", data.test.tension},
                      {"tension_from", data.tension_origin},
@@ -149,16 +146,8 @@ int run_fit(const Invocation& invocation) {
   report["thesis_estimate"]["nonelastic_strain_at_unload"] = initial.nonelastic_at_unload;
   report["thesis_estimate"]["permanent_strain_at_end"] = initial.permanent_at_end;
   report["thesis_estimate"]["notes"] = initial.notes;
-  report["confidence_level"] = confidence;
-  nlohmann::json parameters = nlohmann::json::object();
-  for (std::size_t j = 0; j < creep_test_parameter_count; ++j) {
-    const ParameterEstimate& e = fit.estimates[j];
-    parameters[creep_test_parameter_names()[j]] = {{"value", e.value},
-                                                   {"std_error", e.std_error},
-                                                   {"ci_low", e.ci_low},
-                                                   {"ci_high", e.ci_high}};
-  }
-  report["parameters"] = parameters;
+  report["confidence_level"] = fit.confidence_level;
+  report["parameters"] = estimates_json(fit.estimates);
   report["correlation"] = {{"order", creep_test_parameter_names()}, {"matrix", fit.correlation}};
   report["goodness"] = {{"rmse", fit.rmse},
                         {"r_squared", fit.r_squared},
@@ -170,13 +159,120 @@ int run_fit(const Invocation& invocation) {
                           {"loading_saturated", fit.loading_saturated},
                           {"recovery_relaxed", fit.recovery_relaxed},
                           {"warnings", fit.warnings}};
-  report["solver"] = {{"tao_type", fit.solver},
-                      {"converged", fit.converged},
-                      {"reason", fit.converged_reason},
-                      {"iterations", fit.iterations},
-                      {"read_time_s", std::chrono::duration<double>(read - started).count()},
-                      {"estimate_time_s", std::chrono::duration<double>(estimated - read).count()},
-                      {"refine_time_s", std::chrono::duration<double>(fitted - estimated).count()}};
+  report["solver"] = {
+      {"method", fit.solver},
+      {"converged", fit.converged},
+      {"reason", fit.converged_reason},
+      {"iterations", fit.iterations},
+      {"optimum_certified", fit.optimum_certified},
+      {"certification", fit.certification},
+      {"final_gauss_newton_step_standard_errors", fit.certificate_step_standard_errors},
+      {"final_step_descent_over_residual_variance", fit.certificate_descent_over_variance}};
+  const ResidualAutocorrelation& a = fit.autocorrelation;
+  report["autocorrelation"] = {{"lag1", a.lag1},
+                               {"z_score", a.z_score},
+                               {"durbin_watson", a.durbin_watson},
+                               {"present", a.present},
+                               {"variance_inflation", a.variance_inflation},
+                               {"effective_samples", a.effective_samples}};
+  if (bootstrap.replicates > 0) {
+    report["bootstrap"] = {{"replicates", bootstrap.replicates},
+                           {"failed", bootstrap.failed},
+                           {"ar1_coefficient", bootstrap.ar1_coefficient},
+                           {"parameters", estimates_json(bootstrap.estimates)}};
+  }
+  return report;
+}
+
+void print_estimates(const std::array<ParameterEstimate, creep_test_parameter_count>& estimates,
+                     double confidence, bool with_values) {
+  for (std::size_t j = 0; j < creep_test_parameter_count; ++j) {
+    const ParameterEstimate& e = estimates[j];
+    char value[40] = "", line[200];
+    if (with_values) std::snprintf(value, sizeof value, "%.6g", e.value);
+    std::snprintf(line, sizeof line, "  %-24s %-12s +- %-10.3g (%.4g%% CI %.6g .. %.6g)\n",
+                  creep_test_parameter_names()[j], value, e.std_error, 100 * confidence, e.ci_low,
+                  e.ci_high);
+    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s", line));
+  }
+}
+
+void print_fit(const CreepTestData& data, const CreepFit& fit, const BootstrapEstimate& bootstrap) {
+  SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "sartor fit: %s, %zu samples, tension %.6g N/m\n",
+                              data.path.c_str(), data.time.size(),
+                              static_cast<double>(data.test.tension)));
+  print_estimates(fit.estimates, fit.confidence_level, true);
+  SartorPetscCall(PetscPrintf(
+      PETSC_COMM_WORLD, "  RMSE %.3g, R^2 %.6f, %ld Levenberg-Marquardt iterations (%s)\n",
+      fit.rmse, fit.r_squared, fit.iterations, fit.converged_reason.c_str()));
+  SartorPetscCall(
+      PetscPrintf(PETSC_COMM_WORLD, "  optimum certified: %s\n", fit.certification.c_str()));
+  if (bootstrap.replicates > 0) {
+    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "  residual bootstrap, %ld refits%s:\n",
+                                bootstrap.replicates,
+                                bootstrap.ar1_coefficient != 0.0 ? " (AR(1) innovations)" : ""));
+    print_estimates(bootstrap.estimates, fit.confidence_level, false);
+  }
+  SartorPetscCall(
+      PetscPrintf(PETSC_COMM_WORLD,
+                  "  residual lag-1 autocorrelation %.3g (%.1f x its spread for "
+                  "independent noise): %s\n",
+                  fit.autocorrelation.lag1, fit.autocorrelation.z_score,
+                  fit.autocorrelation.present ? "present, intervals widened" : "none detected"));
+  for (const auto& warning : fit.warnings) {
+    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "  warning: %s\n", warning.c_str()));
+  }
+}
+
+} // namespace
+
+int run_fit(const Invocation& invocation) {
+  const Options& options = invocation.options;
+  const std::string path = invocation.command_line.positionals.at(0);
+  const double confidence = options.real("confidence");
+  if (!(confidence > 0.0 && confidence < 1.0)) {
+    throw InputError("option --confidence: must lie in (0, 1), got " + options.text("confidence"));
+  }
+  const long replicates = options.integer("bootstrap");
+  if (replicates != 0 && replicates < 20) {
+    throw InputError("option --bootstrap: give 0 (none) or at least 20 refits, got " +
+                     options.text("bootstrap"));
+  }
+  const std::string direction = options.text("direction");
+  parse_direction(direction, "option --direction");
+  const std::string name =
+      options.is_set("name") ? options.text("name") : std::filesystem::path(path).stem().string();
+
+  CreepTestDescription given;
+  given.tension = optional_positive(options, "tension");
+  given.force = optional_positive(options, "force");
+  given.width = optional_positive(options, "width");
+  given.gauge_length = optional_positive(options, "gauge-length");
+  given.load_time = optional_real(options, "load-time");
+  given.unload_time = optional_real(options, "unload-time");
+
+  const auto started = std::chrono::steady_clock::now();
+  const CreepTestData data = read_creep_test_data(path, given);
+  const auto read = std::chrono::steady_clock::now();
+  const ThesisEstimate initial = thesis_estimate(data);
+  const auto estimated = std::chrono::steady_clock::now();
+  CreepFit fit;
+  SartorPetscCall(fit_creep_test(PETSC_COMM_WORLD, data, initial.parameters, confidence, &fit));
+  const auto fitted = std::chrono::steady_clock::now();
+
+  BootstrapEstimate bootstrap;
+  if (replicates > 0 && fit.converged) {
+    SartorPetscCall(bootstrap_creep_fit(PETSC_COMM_WORLD, data, fit, replicates,
+                                        (unsigned long)options.integer("seed"), &bootstrap));
+  }
+  const auto bootstrapped = std::chrono::steady_clock::now();
+
+  nlohmann::json report = fit_report(invocation, data, initial, fit, bootstrap);
+  report["solver"]["read_time_s"] = std::chrono::duration<double>(read - started).count();
+  report["solver"]["estimate_time_s"] = std::chrono::duration<double>(estimated - read).count();
+  report["solver"]["refine_time_s"] = std::chrono::duration<double>(fitted - estimated).count();
+  report["solver"]["bootstrap_time_s"] =
+      std::chrono::duration<double>(bootstrapped - fitted).count();
 
   const std::string directory = options.text("output");
   if (is_root()) {
@@ -189,28 +285,12 @@ int run_fit(const Invocation& invocation) {
     }
   }
   if (!fit.converged) {
-    throw InputError("the least-squares refinement did not converge (TAO: " + fit.converged_reason +
-                     "); " + directory +
+    throw InputError("the least-squares refinement did not reach a certified optimum (" +
+                     fit.converged_reason + "; " + fit.certification + "); " + directory +
                      "/fit.json holds the thesis estimate and the last iterate");
   }
 
-  SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "sartor fit: %s, %zu samples, tension %.6g N/m\n",
-                              path.c_str(), data.time.size(),
-                              static_cast<double>(data.test.tension)));
-  for (std::size_t j = 0; j < creep_test_parameter_count; ++j) {
-    const ParameterEstimate& e = fit.estimates[j];
-    char line[200];
-    std::snprintf(line, sizeof line, "  %-24s %-12.6g +- %-10.3g (%.4g%% CI %.6g .. %.6g)\n",
-                  creep_test_parameter_names()[j], e.value, e.std_error, 100 * confidence, e.ci_low,
-                  e.ci_high);
-    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s", line));
-  }
-  SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "  RMSE %.3g, R^2 %.6f, %ld TAO iterations (%s)\n",
-                              fit.rmse, fit.r_squared, fit.iterations,
-                              fit.converged_reason.c_str()));
-  for (const auto& warning : fit.warnings) {
-    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "  warning: %s\n", warning.c_str()));
-  }
+  print_fit(data, fit, bootstrap);
   if (!options.flag("no-plot")) make_plot("plot_fit.py", directory);
   SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "sartor fit: wrote %s\n", directory.c_str()));
   return 0;

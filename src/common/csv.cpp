@@ -82,6 +82,10 @@ CsvTable read_csv(const std::string& path) {
       }
       std::set<std::string> seen;
       for (auto& name : fields) {
+        // Instrument exports quote their headers: "Time (s)".
+        if (name.size() >= 2 && name.front() == '"' && name.back() == '"') {
+          name = trim(name.substr(1, name.size() - 2));
+        }
         std::transform(name.begin(), name.end(), name.begin(),
                        [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
         if (name.empty()) throw InputError(path, number, "empty column name in the header");

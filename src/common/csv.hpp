@@ -11,7 +11,7 @@ namespace sartor {
 
 struct CsvTable {
   std::string path;
-  std::vector<std::string> names;           // lower-case, trimmed
+  std::vector<std::string> names;           // lower-case, trimmed, outer quotes removed
   std::vector<std::vector<double>> columns; // columns[c][row]
   std::vector<long> lines;                  // file line of each row (1-based)
   long header_line = 0;                     // file line of the header (1-based)

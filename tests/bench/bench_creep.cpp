@@ -68,7 +68,7 @@ void BM_FitThesisEstimate(benchmark::State& state) {
 BENCHMARK(BM_FitThesisEstimate)->Arg(thesis_samples)->Unit(benchmark::kMillisecond);
 
 // What `sartor fit` does after reading the file: the thesis estimate, then the
-// joint TAO refinement with uncertainties.
+// joint Levenberg-Marquardt refinement, its certificate and the uncertainties.
 void BM_Fit(benchmark::State& state) {
   const CreepTestData data = synthetic_measurement(std::size_t(state.range(0)));
   long iterations = 0;
@@ -82,7 +82,7 @@ void BM_Fit(benchmark::State& state) {
     }
     iterations = fit.iterations;
   }
-  state.counters["tao_iterations"] = double(iterations);
+  state.counters["lm_iterations"] = double(iterations);
   state.SetItemsProcessed(state.iterations() * state.range(0));
 }
 BENCHMARK(BM_Fit)->Arg(7200)->Arg(thesis_samples)->Unit(benchmark::kMillisecond);

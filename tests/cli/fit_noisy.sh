@@ -29,7 +29,7 @@ truth = {k: float(v) for k, v in (kv.split("=") for kv in line.split(":", 1)[1].
 fit = json.load(open(report))
 failures = []
 if status != 0 or not fit["solver"]["converged"]:
-    failures.append(f"exit status {status}, TAO {fit['solver']['reason']}")
+    failures.append(f"exit status {status}, stopped on {fit['solver']['reason']}")
 for key, want in truth.items():
     p = fit["parameters"][key]
     if abs(p["value"] - want) > 5 * p["std_error"]:

@@ -2,6 +2,7 @@
 // parameter recovery within the fit's own confidence intervals, honest
 // interval coverage, and clear errors for data that cannot be fitted.
 
+#include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
 #include "material/creep_recovery_model.hpp"
@@ -203,20 +204,57 @@ TEST(CreepFitData, RejectsDataThatCannotDetermineTheParameters) {
   loading_only << "time_s,strain\n";
   for (int i = 0; i < 20; ++i)
     loading_only << i << "," << 0.03 + 0.001 * (1 - std::exp(-0.1 * i)) << "\n";
-  expect_data_error(loading_only.str(), {2450.0, {}, {}, {}, {}}, "cannot find the unloading");
-  expect_data_error(loading_only.str(), {2450.0, {}, {}, {}, 17.0}, "3 during recovery");
-  expect_data_error("time_s,strain\n0,0.1\n1,0.1\n", {2450.0, {}, {}, {}, {}}, "too few");
+  expect_data_error(loading_only.str(), {2450.0, {}, {}, {}, {}, {}}, "cannot find the unloading");
+  expect_data_error(loading_only.str(), {2450.0, {}, {}, {}, 17.0, {}}, "3 during recovery");
+  expect_data_error("time_s,strain\n0,0.1\n1,0.1\n", {2450.0, {}, {}, {}, {}, {}}, "too few");
   std::ostringstream no_tension;
   no_tension << "time_s,strain\n";
   for (int i = 0; i < 20; ++i)
     no_tension << i << ",0.01\n";
   expect_data_error(no_tension.str(), {}, "no tension");
-  expect_data_error(no_tension.str(), {std::nullopt, 100.0, std::nullopt, {}, {}}, "--width");
+  expect_data_error(no_tension.str(), {std::nullopt, 100.0, std::nullopt, {}, {}, {}}, "--width");
   std::ostringstream varying;
   varying << "time_s,tension_N_per_m,strain\n";
   for (int i = 0; i < 20; ++i)
     varying << i << "," << (i < 10 ? 1000 + 100 * i : 0) << ",0.01\n";
   expect_data_error(varying.str(), {}, "constant-force test");
+}
+
+TEST(CreepFitData, ReadsColumnHeadersWithUnits) {
+  // The same test written in SI and as an instrument exports it: time in
+  // minutes, extension in mm of a 200 mm gauge length, force in kgf on an
+  // 8 cm strip, quoted headers.
+  const CreepTestData si = make_data(thesis_test, cotton_twill_warp, 720, 7200.0, 0.0, 3);
+  std::ostringstream plain, exported;
+  plain << "time_s,tension_N_per_m,strain\n";
+  exported << "\"Time (min)\",\"Force (kgf)\",Extension [mm]\n";
+  const double gauge = 0.2, width = 0.08, kgf = 9.80665;
+  for (std::size_t i = 0; i < si.time.size(); ++i) {
+    const double tension = si.time[i] < 3600.0 ? thesis_test.tension : 0.0;
+    plain << format_number(si.time[i]) << ',' << format_number(tension) << ','
+          << format_number(si.strain[i]) << '\n';
+    exported << format_number(si.time[i] / 60.0) << ',' << format_number(tension * width / kgf)
+             << ',' << format_number(si.strain[i] * gauge * 1000.0) << '\n';
+  }
+  const CreepTestData a = read_creep_test_data(write_temporary("si.csv", plain.str()), {});
+  CreepTestDescription given;
+  given.width = width;
+  given.gauge_length = gauge;
+  const CreepTestData b = read_creep_test_data(write_temporary("units.csv", exported.str()), given);
+  ASSERT_EQ(a.time.size(), b.time.size());
+  EXPECT_NEAR(b.test.tension, a.test.tension, 1e-9 * a.test.tension);
+  EXPECT_NEAR(b.test.unload_time, a.test.unload_time, 1e-9 * a.test.unload_time);
+  for (std::size_t i = 0; i < a.time.size(); ++i) {
+    EXPECT_NEAR(b.time[i], a.time[i], 1e-9 * (1.0 + a.time[i]));
+    EXPECT_NEAR(b.strain[i], a.strain[i], 1e-12);
+  }
+  // Percent strain, and a unit nobody knows.
+  const std::string percent = "time (s),strain (%),tension (N/m)\n0,1,5\n";
+  EXPECT_EQ(read_csv(write_temporary("p.csv", percent)).names[1], "strain (%)");
+  expect_data_error("Time (fortnights),strain\n0,0.1\n", {},
+                    "unknown unit 'fortnights' for time (known: s, sec, ms, min, h, hr)");
+  expect_data_error("time_s,Extension (mm)\n0,0.1\n", {2450.0, {}, {}, {}, {}, {}},
+                    "give --gauge-length");
 }
 
 } // namespace

@@ -30,6 +30,17 @@ TEST(CreepFitMpi, TwoRanksGiveTheOneRankResult) {
                   1e-6 * serial.estimates[j].std_error);
     }
     EXPECT_NEAR(parallel.rmse, serial.rmse, 1e-10 * serial.rmse);
+    EXPECT_NEAR(parallel.autocorrelation.lag1, serial.autocorrelation.lag1, 1e-8);
+    // The bootstrap draws the same replicates on any number of ranks.
+    BootstrapEstimate parallel_bootstrap, serial_bootstrap;
+    ASSERT_EQ(bootstrap_creep_fit(PETSC_COMM_WORLD, data, parallel, 40, 5, &parallel_bootstrap), 0);
+    ASSERT_EQ(bootstrap_creep_fit(PETSC_COMM_SELF, data, serial, 40, 5, &serial_bootstrap), 0);
+    for (std::size_t j = 0; j < creep_test_parameter_count; ++j) {
+      EXPECT_NEAR(parallel_bootstrap.estimates[j].ci_low, serial_bootstrap.estimates[j].ci_low,
+                  1e-3 * serial.estimates[j].std_error);
+      EXPECT_NEAR(parallel_bootstrap.estimates[j].ci_high, serial_bootstrap.estimates[j].ci_high,
+                  1e-3 * serial.estimates[j].std_error);
+    }
   }
 }
 
