@@ -188,7 +188,8 @@ const CommandSpec& drape_command() {
       "dynamics.csv, final.obj = the draped garment, petsc_options.txt); body.obj\n"
       "(the mannequin); summary.json (the run's summary and \"drape\": timings,\n"
       "seam gap, penetration, body reaction against the garment's weight); and\n"
-      "drape.png (front and side views, postproc/plot_drape.py; not with --no-plot).\n\n"
+      "drape.png (front, side and back views coloured by strain, with a colour bar,\n"
+      "postproc/plot_drape.py; not with --no-plot).\n\n"
       "examples:\n"
       "  sartor drape cases/patterns/skirt.json --output out/drape/skirt\n"
       "  sartor drape cases/patterns/tshirt.json --fabric silk --edge-length 0.05",

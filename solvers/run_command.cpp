@@ -142,7 +142,9 @@ const CommandSpec& run_command() {
       "Output in DIR: result.h5 + result.xmf (open the .xmf in ParaView: positions,\n"
       "displacement, per-triangle strain and tension in warp and weft), final.obj,\n"
       "summary.json (energies, iterations, residuals, reactions, timings),\n"
-      "petsc_options.txt (every option in effect).\n\n"
+      "petsc_options.txt (every option in effect), result.png (the cloth from the\n"
+      "front, side and top, coloured by strain: postproc/plot_result.py; not with\n"
+      "--no-plot).\n\n"
       "With --analysis dynamic it steps through time instead (backward Euler with\n"
       "lumped masses, from rest at the case's placement, pins following\n"
       "--pin-motion in time), prints progress every 5 % of the simulated time and\n"
@@ -171,6 +173,7 @@ const CommandSpec& run_command() {
         options.push_back(
             {"checkpoint", "FILE", "", "creep: the checkpoint file [OUTPUT/checkpoint.h5]"});
         options.push_back({"restart", "FILE", "", "creep: resume from this checkpoint"});
+        options.push_back({"no-plot", "", "", "write data only, no result.png"});
         return options;
       }(),
       1,
@@ -952,6 +955,7 @@ int run_run(const Invocation& invocation) {
   add_case_summary(result, summary);
   write_case_results(directory, result, summary, labels);
   write_petsc_options(directory);
+  if (!options.flag("no-plot")) make_plot("plot_result.py", directory);
 
   if (result.creep) {
     const CreepReport& report = result.creep->report;
