@@ -14,6 +14,7 @@ import glob
 import json
 import os
 import sys
+import tempfile
 
 import h5py
 import meshio
@@ -112,6 +113,15 @@ def check_obj(path, uv, triangles, groups):
         check(np.abs(corner_uv - uv).max() < 1e-12, f"{path}: vt differs from result.h5 material uv")
     found = len(set(np.concatenate(mesh.cell_data["obj:group_ids"])))
     check(found == groups, f"{path}: {found} groups, expected {groups}")
+    # Round trip: what meshio writes of it reads back the same.
+    with tempfile.TemporaryDirectory() as folder:
+        again = os.path.join(folder, "again.obj")
+        meshio.write(again, mesh)
+        back = meshio.read(again)
+    check(np.array_equal(back.points, mesh.points), f"{path}: points change in a meshio round trip")
+    check(np.array_equal(np.concatenate([c.data for c in back.cells]),
+                         np.concatenate([c.data for c in mesh.cells])),
+          f"{path}: triangles change in a meshio round trip")
 
 
 def check_directory(kind, directory):
