@@ -55,11 +55,12 @@ def read_result(path):
 
 def field_values(cells, field):
     """(label, per-triangle values) of a FIELDS name or a cell field's name."""
+    # A failed solve's last state may hold non-finite values: drawn as 0.
     if field in FIELDS:
         label, function = FIELDS[field]
-        return label, function(cells)
+        return label, np.nan_to_num(function(cells), nan=0.0, posinf=0.0, neginf=0.0)
     if field in cells:
-        return field, cells[field]
+        return field, np.nan_to_num(cells[field], nan=0.0, posinf=0.0, neginf=0.0)
     raise PlotError("unknown field %r: one of %s" % (field, ", ".join(list(FIELDS) + sorted(cells))))
 
 
@@ -107,6 +108,9 @@ def draw_view(axes, cloth, colours, view, title, body=None, cloth_lift=0.0):
     axes.add_collection(PolyCollection(polygons[order], facecolors=rgb[order], edgecolors=rgb[order],
                                        linewidths=0.3))
     everything = np.concatenate([cloth[0]] + ([body[0]] if body is not None else []))
+    everything = everything[np.all(np.isfinite(everything), axis=1)]
+    if len(everything) == 0:
+        raise PlotError("no finite positions to draw")
     horizontal, vertical = everything @ np.asarray(view[0], float), everything @ np.asarray(view[1], float)
     margin = 0.05 * max(np.ptp(horizontal), np.ptp(vertical), 1e-3)
     axes.set_xlim(horizontal.min() - margin, horizontal.max() + margin)
