@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 #include <map>
+#include <stdexcept>
 #include <utility>
 
 namespace sartor {
@@ -232,14 +233,40 @@ TriangleMesh read_obj(const std::string& path, const ObjReadOptions& options) {
   return ObjParser(path, options.uv_scale).read();
 }
 
-void write_obj(const std::string& path, const TriangleMesh& mesh) {
-  validate(mesh, path);
-  std::string out = "# Sartor cloth mesh: " + std::to_string(mesh.vertex_count()) + " vertices, " +
-                    std::to_string(mesh.triangle_count()) +
-                    " triangles; vt = material (u, v) in metres\n";
-  for (const auto& p : mesh.positions) {
-    out += "v " + format_number(p.x()) + " " + format_number(p.y()) + " " + format_number(p.z()) +
-           "\n";
+namespace {
+
+// The uv of every vertex when all its triangle corners agree on one (to the
+// bit); empty when some vertex has several (a seam in uv, a cut tube).
+std::vector<Eigen::Vector2d> uv_per_vertex(const TriangleMesh& mesh) {
+  std::vector<Eigen::Vector2d> uv(mesh.vertex_count());
+  std::vector<bool> seen(mesh.vertex_count(), false);
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      const auto v = std::size_t(mesh.triangles[t][c]);
+      const Eigen::Vector2d& corner = mesh.material_uv[t][c];
+      if (seen[v] && (uv[v].x() != corner.x() || uv[v].y() != corner.y())) return {};
+      uv[v] = corner;
+      seen[v] = true;
+    }
+  }
+  return uv;
+}
+
+// vt lines and each corner's vt number: one vt per vertex, in vertex order,
+// where every vertex has one uv (so that readers pairing v and vt by line,
+// as meshio does, get them right); else each distinct uv once.
+std::string texture_lines(const TriangleMesh& mesh,
+                          std::vector<std::array<std::size_t, 3>>& corner_texture) {
+  std::string out;
+  corner_texture.assign(mesh.triangle_count(), {});
+  const std::vector<Eigen::Vector2d> per_vertex = uv_per_vertex(mesh);
+  if (!per_vertex.empty()) {
+    for (const Eigen::Vector2d& uv : per_vertex)
+      out += "vt " + format_number(uv.x()) + " " + format_number(uv.y()) + "\n";
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+      for (std::size_t c = 0; c < 3; ++c)
+        corner_texture[t][c] = std::size_t(mesh.triangles[t][c]) + 1;
+    return out;
   }
   // Distinct uv by bit pattern, so that every value reads back identically.
   const auto bits = [](double value) {
@@ -248,7 +275,6 @@ void write_obj(const std::string& path, const TriangleMesh& mesh) {
     return b;
   };
   std::map<std::pair<std::uint64_t, std::uint64_t>, std::size_t> texture_index;
-  std::vector<std::array<std::size_t, 3>> corner_texture(mesh.triangle_count());
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
     for (std::size_t c = 0; c < 3; ++c) {
       const Eigen::Vector2d& uv = mesh.material_uv[t][c];
@@ -258,7 +284,33 @@ void write_obj(const std::string& path, const TriangleMesh& mesh) {
       corner_texture[t][c] = it->second;
     }
   }
+  return out;
+}
+
+} // namespace
+
+void write_obj(const std::string& path, const TriangleMesh& mesh,
+               const std::vector<std::string>& groups, const std::string& comment) {
+  validate(mesh, path);
+  if (!groups.empty() && groups.size() != mesh.triangle_count()) {
+    throw std::logic_error("write_obj: " + path + ": groups do not match the triangles");
+  }
+  std::string out =
+      "# " +
+      (comment.empty() ? "Sartor cloth mesh: " + std::to_string(mesh.vertex_count()) +
+                             " vertices, " + std::to_string(mesh.triangle_count()) + " triangles"
+                       : comment) +
+      "; vt = material (u, v) in metres\n";
+  for (const auto& p : mesh.positions) {
+    out += "v " + format_number(p.x()) + " " + format_number(p.y()) + " " + format_number(p.z()) +
+           "\n";
+  }
+  std::vector<std::array<std::size_t, 3>> corner_texture;
+  out += texture_lines(mesh, corner_texture);
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    if (!groups.empty() && (t == 0 || groups[t] != groups[t - 1])) {
+      out += "g " + groups[t] + "\nusemtl " + groups[t] + "\n";
+    }
     out += "f";
     for (std::size_t c = 0; c < 3; ++c) {
       out += " " + std::to_string(mesh.triangles[t][c] + 1) + "/" +

@@ -26,9 +26,14 @@ struct ObjReadOptions {
 
 TriangleMesh read_obj(const std::string& path, const ObjReadOptions& options = {});
 
-// v per vertex, each distinct uv once as vt, f a/b per triangle, numbers in
-// the shortest form that reads back to the same double; written atomically
-// (complete or not at all). Material ids are not written.
-void write_obj(const std::string& path, const TriangleMesh& mesh);
+// v per vertex; vt one per vertex in vertex order where every vertex has a
+// single uv (then v and vt pair by line, as meshio reads them), else each
+// distinct uv once; f a/b per triangle; numbers in the shortest form that
+// reads back to the same double; written atomically (complete or not at
+// all). `groups` (one name per triangle, or empty) starts a `g NAME` and
+// `usemtl NAME` wherever the name changes; `comment` replaces the counts in
+// the first line. Material ids are not written otherwise.
+void write_obj(const std::string& path, const TriangleMesh& mesh,
+               const std::vector<std::string>& groups = {}, const std::string& comment = "");
 
 } // namespace sartor

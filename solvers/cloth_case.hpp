@@ -6,6 +6,7 @@
 // what the outputs report.
 
 #include "element/membrane.hpp"
+#include "fem/cloth_output.hpp"
 #include "fem/cloth_problem.hpp"
 #include "fem/dynamics.hpp"
 #include "fem/statics.hpp"
@@ -103,14 +104,15 @@ CaseResult solve_case(const Options& options, int extra_refinements = 0,
 // "timing_s".
 void add_case_summary(const CaseResult& result, nlohmann::json& summary);
 
-// Rank 0: result.h5, result.xmf, final.obj and summary.json in `directory`.
+// Rank 0: result.h5, result.xmf, final.obj and summary.json in `directory`;
+// `labels` name the fabric and panel ids there (fem/cloth_output.hpp).
 void write_case_results(const std::string& directory, const CaseResult& result,
-                        const nlohmann::json& summary);
+                        const nlohmann::json& summary, const ClothOutputLabels& labels = {});
 
 // An observer for solve_case that writes the output states of dynamic and
 // creep runs (positions, strains; creep strains) to DIRECTORY/series.h5 +
-// series.xmf, as `sartor run` does.
-CaseStepObserver series_writer(const std::string& directory);
+// series.xmf, as `sartor run` does; `labels` as for write_case_results.
+CaseStepObserver series_writer(const std::string& directory, const ClothOutputLabels& labels = {});
 
 // Collective: every option in effect, to DIRECTORY/petsc_options.txt.
 void write_petsc_options(const std::string& directory);

@@ -188,7 +188,8 @@ const CommandSpec& drape_command() {
       "dynamics.csv, final.obj = the draped garment, petsc_options.txt); body.obj\n"
       "(the mannequin); summary.json (the run's summary and \"drape\": timings,\n"
       "seam gap, penetration, body reaction against the garment's weight); and\n"
-      "drape.png (front and side views, postproc/plot_drape.py; not with --no-plot).\n\n"
+      "drape.png (front, side and back views coloured by strain, with a colour bar,\n"
+      "postproc/plot_drape.py; not with --no-plot).\n\n"
       "examples:\n"
       "  sartor drape cases/patterns/skirt.json --output out/drape/skirt\n"
       "  sartor drape cases/patterns/tshirt.json --fabric silk --edge-length 0.05",
@@ -287,6 +288,9 @@ int run_drape(const Invocation& invocation) {
   SartorPetscCall(MPI_Barrier(PETSC_COMM_WORLD));
   CaseCloth cloth;
   cloth.mesh = sewable.mesh;
+  ClothOutputLabels labels{{}, {}, sewable.mesh.material_ids};
+  for (const auto& panel : constructed.pattern.panels)
+    labels.panels.push_back(panel.id);
   if (options.is_set("fabric")) {
     cloth.fabrics = {options.text("fabric")};
     cloth.mesh.material_ids.clear();
@@ -336,7 +340,8 @@ int run_drape(const Invocation& invocation) {
   SartorPetscCall(set_default_option("-snes_rtol", "1e-4"));
   if (weight.norm() > 0.0)
     SartorPetscCall(set_default_option("-snes_atol", format_number(1e-6 * weight.norm()).c_str()));
-  const CaseResult result = solve_case(options, 0, series_writer(directory), {}, &cloth);
+  labels.fabrics = cloth.fabrics;
+  const CaseResult result = solve_case(options, 0, series_writer(directory, labels), {}, &cloth);
 
   // 4. What the drape achieved.
   Eigen::Vector3d reaction = Eigen::Vector3d::Zero();
@@ -397,7 +402,7 @@ int run_drape(const Invocation& invocation) {
         {"drape", result.solve_seconds},
         {"drape_setup", result.setup_seconds},
         {"total", total_seconds}}}};
-  write_case_results(directory, result, summary);
+  write_case_results(directory, result, summary, labels);
   write_petsc_options(directory);
 
   SartorPetscCall(PetscPrintf(

@@ -142,7 +142,9 @@ const CommandSpec& run_command() {
       "Output in DIR: result.h5 + result.xmf (open the .xmf in ParaView: positions,\n"
       "displacement, per-triangle strain and tension in warp and weft), final.obj,\n"
       "summary.json (energies, iterations, residuals, reactions, timings),\n"
-      "petsc_options.txt (every option in effect).\n\n"
+      "petsc_options.txt (every option in effect), result.png (the cloth from the\n"
+      "front, side and top, coloured by strain: postproc/plot_result.py; not with\n"
+      "--no-plot).\n\n"
       "With --analysis dynamic it steps through time instead (backward Euler with\n"
       "lumped masses, from rest at the case's placement, pins following\n"
       "--pin-motion in time), prints progress every 5 % of the simulated time and\n"
@@ -171,6 +173,7 @@ const CommandSpec& run_command() {
         options.push_back(
             {"checkpoint", "FILE", "", "creep: the checkpoint file [OUTPUT/checkpoint.h5]"});
         options.push_back({"restart", "FILE", "", "creep: resume from this checkpoint"});
+        options.push_back({"no-plot", "", "", "write data only, no result.png"});
         return options;
       }(),
       1,
@@ -886,9 +889,9 @@ void add_case_summary(const CaseResult& result, nlohmann::json& summary) {
 }
 
 void write_case_results(const std::string& directory, const CaseResult& result,
-                        const nlohmann::json& summary) {
+                        const nlohmann::json& summary, const ClothOutputLabels& labels) {
   if (!is_root()) return;
-  write_cloth_results(directory, result.mesh, result.positions, result.strains);
+  write_cloth_results(directory, result.mesh, result.positions, result.strains, labels);
   if (result.dynamics) write_file_atomically(directory + "/dynamics.csv", dynamics_csv(result));
   if (result.creep) write_file_atomically(directory + "/creep.csv", result.creep->history_csv);
   write_json(directory + "/summary.json", summary);
@@ -902,9 +905,9 @@ void write_petsc_options(const std::string& directory) {
   SartorPetscCall(PetscViewerDestroy(&viewer));
 }
 
-CaseStepObserver series_writer(const std::string& directory) {
+CaseStepObserver series_writer(const std::string& directory, const ClothOutputLabels& labels) {
   auto series = std::make_shared<std::unique_ptr<ClothTimeSeries>>();
-  return [directory, series](ClothProblem& problem, Vec x, const CaseState& state) {
+  return [directory, series, labels](ClothProblem& problem, Vec x, const CaseState& state) {
     if (!state.output) return;
     std::vector<Eigen::Vector3d> positions;
     std::vector<element::MembraneStrain> strains;
@@ -926,7 +929,7 @@ CaseStepObserver series_writer(const std::string& directory) {
         fields[3].values.push_back(c.weft.permanent);
       }
     }
-    if (!*series) *series = std::make_unique<ClothTimeSeries>(directory, problem.mesh());
+    if (!*series) *series = std::make_unique<ClothTimeSeries>(directory, problem.mesh(), labels);
     (*series)->write(state.time, positions, strains, fields);
   };
 }
@@ -935,7 +938,8 @@ int run_run(const Invocation& invocation) {
   const Options& options = invocation.options;
   const std::string directory = options.text("output");
   // Dynamic runs write their states at output times into series.h5/.xmf.
-  const CaseStepObserver write_state = series_writer(directory);
+  const ClothOutputLabels labels{{options.text("fabric")}, {}, {}};
+  const CaseStepObserver write_state = series_writer(directory, labels);
   CaseCheckpointing checkpointing;
   checkpointing.interval = options.nonnegative_real("checkpoint-interval");
   checkpointing.file =
@@ -949,8 +953,9 @@ int run_run(const Invocation& invocation) {
   nlohmann::json summary = run_metadata(invocation, "run");
   summary["case"] = invocation.command_line.positionals.at(0);
   add_case_summary(result, summary);
-  write_case_results(directory, result, summary);
+  write_case_results(directory, result, summary, labels);
   write_petsc_options(directory);
+  if (!options.flag("no-plot")) make_plot("plot_result.py", directory);
 
   if (result.creep) {
     const CreepReport& report = result.creep->report;

@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/output.hpp"
+#include "mesh/obj.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -10,19 +11,6 @@
 #include <sstream>
 
 namespace sartor::garment {
-
-namespace {
-
-std::string shortest(double value) {
-  char buffer[32];
-  for (int digits = 6; digits <= 17; ++digits) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-    if (std::strtod(buffer, nullptr) == value) break;
-  }
-  return buffer;
-}
-
-} // namespace
 
 GarmentMesh build_garment_mesh(const Construction& construction, const PanelMeshOptions& options) {
   const Pattern& pattern = *construction.pattern;
@@ -90,26 +78,12 @@ GarmentMesh build_garment_mesh(const Construction& construction, const PanelMesh
 
 void write_garment_obj(const std::string& path, const GarmentMesh& garment,
                        const Pattern& pattern) {
-  std::ostringstream out;
-  out << "# " << (pattern.name.empty() ? pattern.source : pattern.name)
-      << ": constructed by sartor construct (TAGCON); vt = material (u, v) in m\n";
-  for (const auto& p : garment.mesh.positions)
-    out << "v " << shortest(p.x()) << ' ' << shortest(p.y()) << ' ' << shortest(p.z()) << '\n';
-  for (const auto& corners : garment.mesh.material_uv)
-    for (const auto& uv : corners)
-      out << "vt " << shortest(uv.x()) << ' ' << shortest(uv.y()) << '\n';
-  std::size_t triangle = 0;
-  for (std::size_t p = 0; p < pattern.panels.size(); ++p) {
-    out << "g " << pattern.panels[p].id << "\nusemtl " << pattern.panels[p].id << '\n';
-    for (int t = 0; t < garment.triangle_count[p]; ++t, ++triangle) {
-      const auto& tri = garment.mesh.triangles[triangle];
-      out << 'f';
-      for (int c = 0; c < 3; ++c)
-        out << ' ' << tri[std::size_t(c)] + 1 << '/' << 3 * triangle + std::size_t(c) + 1;
-      out << '\n';
-    }
-  }
-  write_file_atomically(path, out.str());
+  std::vector<std::string> groups;
+  for (std::size_t p = 0; p < pattern.panels.size(); ++p)
+    groups.insert(groups.end(), std::size_t(garment.triangle_count[p]), pattern.panels[p].id);
+  write_obj(path, garment.mesh, groups,
+            (pattern.name.empty() ? pattern.source : pattern.name) +
+                ": constructed by sartor construct (TAGCON)");
 }
 
 } // namespace sartor::garment

@@ -182,7 +182,7 @@ std::string pattern_svg(const Pattern& pattern, const SvgOptions& options) {
           << "</title></line>\n";
     }
   }
-  svg << "</svg>\n";
+  svg << svg_legend(left + 20, height - 20, !options.seams.empty()) << "</svg>\n";
   return svg.str();
 }
 
@@ -192,6 +192,29 @@ std::string certainty_colour(double certainty) {
   std::snprintf(buffer, sizeof buffer, "#%02x%02x%02x", int(std::lround(230 * (1 - c))), 40,
                 int(std::lround(230 * c)));
   return buffer;
+}
+
+std::string svg_legend(double x, double y, bool seams) {
+  std::ostringstream svg;
+  // Not a group: a group per panel is the drawing's structure.
+  const char* font = "\" font-family=\"sans-serif\" font-size=\"12";
+  svg << "<line x1=\"" << number(x) << "\" y1=\"" << number(y) << "\" x2=\"" << number(x + 100)
+      << "\" y2=\"" << number(y) << "\" stroke=\"#000\" stroke-width=\"2\"/>\n"
+      << "<text x=\"" << number(x + 50) << "\" y=\"" << number(y - 5) << font
+      << "\" text-anchor=\"middle\">10 cm</text>\n";
+  if (seams) {
+    const double top = y - 50;
+    svg << "<text x=\"" << number(x) << "\" y=\"" << number(top - 8) << font
+        << "\">seam certainty</text>\n";
+    for (int k = 0; k <= 4; ++k) {
+      const double at = x + 30 * k;
+      svg << "<rect x=\"" << number(at) << "\" y=\"" << number(top) << "\" width=\"28\" "
+          << "height=\"12\" fill=\"" << certainty_colour(0.25 * k) << "\"/>\n"
+          << "<text x=\"" << number(at + 14) << "\" y=\"" << number(top + 26) << font
+          << "\" text-anchor=\"middle\">" << number(0.25 * k) << "</text>\n";
+    }
+  }
+  return svg.str();
 }
 
 void write_pattern_svg(const std::string& path, const Pattern& pattern, const SvgOptions& options) {

@@ -29,6 +29,10 @@ struct SvgOptions {
 // "#rrggbb" from blue (certainty 1) through purple to red (certainty 0).
 std::string certainty_colour(double certainty);
 
+// SVG elements (user units = mm, not grouped) with their lower left corner at (x, y): a
+// 10 cm scale bar and, when `seams`, the seam colours for certainty 0 to 1.
+std::string svg_legend(double x, double y, bool seams);
+
 std::string pattern_svg(const Pattern& pattern, const SvgOptions& options = {});
 // Written atomically (complete or not at all).
 void write_pattern_svg(const std::string& path, const Pattern& pattern,

@@ -162,7 +162,7 @@ std::string placement_svg(const Construction& construction,
         << "</text>\n</g>\n";
     offset_x += view == &front ? front_width : side_width;
   }
-  svg << "</svg>\n";
+  svg << svg_legend(20, height - 20, !construction.seams.empty()) << "</svg>\n";
   return svg.str();
 }
 

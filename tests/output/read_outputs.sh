@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Every output file of a small dynamic run, a creep run and a short drape,
+# read with meshio and h5py (check_outputs.py): units, ids, material uv,
+# clean times, the moving geometry of the time series, OBJ groups; and
+# the pictures the commands draw by default.
+#   read_outputs.sh SARTOR CASES_DIR WORKDIR
+set -euo pipefail
+[ $# -eq 3 ] || { echo "usage: $0 SARTOR CASES_DIR WORKDIR" >&2; exit 2; }
+sartor=$1 cases=$2 work=$3
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+rm -rf "$work" && mkdir -p "$work"
+"$sartor" run "$cases/fe/hanging_sheet_dynamic.yaml" --mesh-nx 6 --mesh-ny 6 --time-end 0.3 \
+  --output-interval 0.1 --output "$work/run" > "$work/run.log"
+"$sartor" run "$cases/creep/strip.yaml" --time-end 600 --output-interval 300 \
+  --output "$work/creep" > "$work/creep.log"
+"$sartor" drape "$cases/patterns/skirt.json" --edge-length 0.08 --time-end 0.02 \
+  --sewing-time 0.01 -settle false --output "$work/drape" > "$work/drape.log"
+# Pictures by default.
+for f in run/result.png creep/result.png drape/drape.png; do
+  [ -s "$work/$f" ] || { echo "read_outputs: $work/$f missing" >&2; exit 1; }
+done
+# Not skipped without meshio or h5py: /usr/bin/python3 must have both
+# (Debian python3-meshio, python3-h5py; ./dev deps installs them).
+/usr/bin/python3 "$here/check_outputs.py" run:"$work/run" creep:"$work/creep" \
+  drape:cotton_twill:skirt_front,skirt_back:"$work/drape"
