@@ -25,7 +25,7 @@ slow=(--mesh-nx 24 --mesh-ny 12 --creep-tolerance 1e-4 --output-interval 600)
 "$sartor" run "$case" "${slow[@]}" --checkpoint-interval 600 --output "$work/killed" \
   > "$work/killed.log" &
 pid=$!
-for _ in $(seq 1 600); do
+for _ in $(seq 1 6000); do # up to 2 min on a loaded machine
   [ -s "$work/killed/checkpoint.h5" ] && break
   kill -0 "$pid" 2> /dev/null || break
   sleep 0.02
