@@ -17,7 +17,7 @@ namespace {
 using Eigen::Matrix3d;
 using Eigen::Vector2d;
 using Eigen::Vector3d;
-using Matrix18 = Eigen::Matrix<double, 18, 18>;
+using Matrix36 = Eigen::Matrix<double, 36, 36>;
 using Jacobian9 = Eigen::Matrix<double, 3, 9>; // of a 3-vector with respect to x0, x1, x2
 
 // As the hinges': triangles flatter than this (twice the area relative to
@@ -100,6 +100,27 @@ Eigen::RowVector3d free_edge_row(const Vector2d& edge, const Matrix3d& second,
   return row / row.cwiseAbs().maxCoeff();
 }
 
+void check_triangle(const std::array<Vector2d, 3>& triangle, double twice_area) {
+  const double longest = std::max({(triangle[1] - triangle[0]).squaredNorm(),
+                                   (triangle[2] - triangle[0]).squaredNorm(),
+                                   (triangle[2] - triangle[1]).squaredNorm()});
+  if (!(std::abs(twice_area) > degenerate_ratio * longest) || !std::isfinite(twice_area)) {
+    throw InputError("bending patch: degenerate triangle in material coordinates " +
+                     point_list(triangle) + " m");
+  }
+}
+
+// Unit in-plane normal of edge k (opposite corner k), pointing out of the triangle.
+Vector2d outward_normal(const std::array<Vector2d, 3>& triangle, int k) {
+  const Vector2d edge = triangle[std::size_t((k + 2) % 3)] - triangle[std::size_t((k + 1) % 3)];
+  Vector2d normal = Vector2d(edge.y(), -edge.x()).normalized();
+  if (normal.dot(triangle[std::size_t(k)] - triangle[std::size_t((k + 1) % 3)]) > 0.0)
+    normal = -normal;
+  return normal;
+}
+
+constexpr int nodes = 12;
+
 } // namespace
 
 Matrix3d BendingRigidity::matrix() const {
@@ -120,24 +141,13 @@ Vector2d node_across(const Vector2d& a, const Vector2d& b, const Vector2d& c,
   return a + along * edge + off * normal;
 }
 
-PatchRest patch_rest(const std::array<Vector2d, 3>& triangle, const std::array<Vector2d, 3>& across,
-                     const std::array<bool, 3>& has_node, const BendingRigidity& rigidity,
-                     const Vector3d& rest_curvature) {
+std::array<Eigen::Matrix<double, 1, 6>, 3> midedge_slopes(const std::array<Vector2d, 3>& triangle,
+                                                          const std::array<Vector2d, 3>& across,
+                                                          const std::array<bool, 3>& has_node,
+                                                          const BendingRigidity& rigidity) {
   check_rigidity(rigidity);
-  if (!rest_curvature.allFinite()) throw InputError("bending patch: rest curvature not finite");
   const double twice_area = cross2(triangle[1] - triangle[0], triangle[2] - triangle[0]);
-  const double longest = std::max({(triangle[1] - triangle[0]).squaredNorm(),
-                                   (triangle[2] - triangle[0]).squaredNorm(),
-                                   (triangle[2] - triangle[1]).squaredNorm()});
-  if (!(std::abs(twice_area) > degenerate_ratio * longest) || !std::isfinite(twice_area)) {
-    throw InputError("bending patch: degenerate triangle in material coordinates " +
-                     point_list(triangle) + " m");
-  }
-  PatchRest rest;
-  rest.area = 0.5 * std::abs(twice_area);
-  rest.rigidity = rigidity.matrix();
-  rest.rest_curvature = rest_curvature;
-
+  check_triangle(triangle, twice_area);
   const Barycentric lambda = barycentric(triangle);
   Matrix3d second; // column e: (d_uu, d_vv, d_uv) of the edge function of edge e
   for (int e = 0; e < 3; ++e)
@@ -159,8 +169,8 @@ PatchRest patch_rest(const std::array<Vector2d, 3>& triangle, const std::array<V
       nodes(k, 3 + k) = 1.0;
       nodes.block<1, 3>(k, 0) = -at.transpose();
     } else {
-      system.row(k) =
-          free_edge_row(triangle[std::size_t(j)] - triangle[std::size_t(i)], second, rest.rigidity);
+      system.row(k) = free_edge_row(triangle[std::size_t(j)] - triangle[std::size_t(i)], second,
+                                    rigidity.matrix());
     }
   }
   const Eigen::JacobiSVD<Matrix3d> svd(system, Eigen::ComputeFullU | Eigen::ComputeFullV);
@@ -172,14 +182,62 @@ PatchRest patch_rest(const std::array<Vector2d, 3>& triangle, const std::array<V
     const double tau2 = std::pow(ill_conditioned * sigma(0), 2);
     const Vector3d filter = sigma.array() / (sigma.array().square() + tau2);
     coefficients = svd.matrixV() * filter.asDiagonal() * svd.matrixU().transpose() * nodes;
-    rest.regularised = true;
   }
-  rest.weights = second * coefficients;
+  // The quadratic's gradient at the midpoint of edge k (lambda_k = 0,
+  // the others 1/2) along the edge's outward normal.
+  std::array<Eigen::Matrix<double, 1, 6>, 3> slopes;
+  for (int k = 0; k < 3; ++k) {
+    const Vector2d outward = outward_normal(triangle, k);
+    Eigen::Matrix<double, 1, 6> slope = Eigen::Matrix<double, 1, 6>::Zero();
+    for (int c = 0; c < 3; ++c)
+      slope(c) = outward.dot(lambda.gradients.col(c));
+    for (int e = 0; e < 3; ++e) {
+      const int a = (e + 1) % 3, b = (e + 2) % 3;
+      const Vector3d mid = Vector3d::Constant(0.5) - 0.5 * Vector3d::Unit(k);
+      const Vector2d gradient = mid(a) * lambda.gradients.col(b) + mid(b) * lambda.gradients.col(a);
+      slope += outward.dot(gradient) * coefficients.row(e);
+    }
+    slopes[std::size_t(k)] = slope;
+  }
+  return slopes;
+}
+
+PatchRest patch_rest(const std::array<Vector2d, 3>& triangle,
+                     const std::array<Eigen::Matrix<double, 1, 12>, 3>& normal_slopes,
+                     const BendingRigidity& rigidity, const Vector3d& rest_curvature) {
+  check_rigidity(rigidity);
+  if (!rest_curvature.allFinite()) throw InputError("bending patch: rest curvature not finite");
+  const double twice_area = cross2(triangle[1] - triangle[0], triangle[2] - triangle[0]);
+  check_triangle(triangle, twice_area);
+  PatchRest rest;
+  rest.area = 0.5 * std::abs(twice_area);
+  rest.rigidity = rigidity.matrix();
+  rest.rest_curvature = rest_curvature;
+  // H_ab = (1/A) sum_k |e_k| sym(g_k,a nu_k,b), g_k = x_,u at edge k's
+  // midpoint: along the edge the chord's slope (exact for a quadratic), across
+  // it the shared normal slope.
+  rest.weights.setZero();
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const Vector2d edge = triangle[std::size_t(j)] - triangle[std::size_t(i)];
+    const double length = edge.norm();
+    const Vector2d tangent = edge / length;
+    const Vector2d outward = outward_normal(triangle, k);
+    // d x / d u_a = tangent_a (x_j - x_i) / |e| + outward_a slope . x
+    Eigen::Matrix<double, 2, 12> gradient = outward * normal_slopes[std::size_t(k)];
+    gradient.col(j) += tangent / length;
+    gradient.col(i) -= tangent / length;
+    const double scale = length / rest.area;
+    rest.weights.row(0) += scale * outward.x() * gradient.row(0);
+    rest.weights.row(1) += scale * outward.y() * gradient.row(1);
+    rest.weights.row(2) +=
+        0.5 * scale * (outward.y() * gradient.row(0) + outward.x() * gradient.row(1));
+  }
   return rest;
 }
 
-Result<18> patch_bending(const PatchRest& rest, const Vector18& x, Want want) {
-  Result<18> result;
+Result<36> patch_bending(const PatchRest& rest, const Vector36& x, Want want) {
+  Result<36> result;
   result.energy = 0.0;
   result.gradient.setZero();
   result.hessian.setZero();
@@ -197,7 +255,7 @@ Result<18> patch_bending(const PatchRest& rest, const Vector18& x, Want want) {
   const Eigen::Vector3d voigt(1.0, 1.0, 2.0);
   Eigen::Matrix<double, 3, 3> h; // column r: H_r
   h.setZero();
-  for (int i = 1; i < 6; ++i)
+  for (int i = 1; i < nodes; ++i)
     h += (x.segment<3>(3 * i) - x0) * rest.weights.col(i).transpose();
   const Vector3d strain = voigt.cwiseProduct(h.transpose() * n) - rest.rest_curvature;
   const Vector3d moment = rest.rigidity * strain;
@@ -212,10 +270,10 @@ Result<18> patch_bending(const PatchRest& rest, const Vector18& x, Want want) {
   const Matrix3d projector = Matrix3d::Identity() - n * n.transpose();
   const Jacobian9 dn = projector * dm / length;
 
-  // Strain rows' derivatives B (3 x 18): node i carries f_r w_ri n^T, the
+  // Strain rows' derivatives B (3 x 36): node i carries f_r w_ri n^T, the
   // triangle's corners also f_r H_r^T dn.
-  Eigen::Matrix<double, 3, 18> b;
-  for (int i = 0; i < 6; ++i)
+  Eigen::Matrix<double, 3, 36> b;
+  for (int i = 0; i < nodes; ++i)
     b.block<3, 3>(0, 3 * i) = voigt.cwiseProduct(rest.weights.col(i)) * n.transpose();
   b.block<3, 9>(0, 0) += voigt.asDiagonal() * h.transpose() * dn;
   result.gradient = rest.area * b.transpose() * moment;
@@ -224,12 +282,12 @@ Result<18> patch_bending(const PatchRest& rest, const Vector18& x, Want want) {
   // sum_r M_r d^2 e_r: linear in (w, H), so with the moment-weighted sums:
   // node i's w n differentiated through n, its transpose, and h . n's Hessian.
   const Vector3d weighted = voigt.cwiseProduct(moment);
-  const Eigen::Matrix<double, 1, 6> w_sum = weighted.transpose() * rest.weights;
+  const Eigen::Matrix<double, 1, nodes> w_sum = weighted.transpose() * rest.weights;
   const Vector3d h_sum = h * weighted;
-  Matrix18 second = Matrix18::Zero();
-  for (int i = 0; i < 6; ++i)
+  Matrix36 second = Matrix36::Zero();
+  for (int i = 0; i < nodes; ++i)
     second.block<3, 9>(3 * i, 0) += w_sum(i) * dn;
-  Matrix18 cross_terms = second + second.transpose();
+  Matrix36 cross_terms = second + second.transpose();
   // Hessian of g = h_sum . m/|m| over the corners.
   const double hn = h_sum.dot(n);
   const Matrix3d g_mm = (-(h_sum * n.transpose() + n * h_sum.transpose()) -
