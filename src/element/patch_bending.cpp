@@ -202,6 +202,18 @@ std::array<Eigen::Matrix<double, 1, 6>, 3> midedge_slopes(const std::array<Vecto
   return slopes;
 }
 
+std::array<Eigen::Matrix<double, 1, 6>, 3> plane_slopes(const std::array<Vector2d, 3>& triangle) {
+  check_triangle(triangle, cross2(triangle[1] - triangle[0], triangle[2] - triangle[0]));
+  const Barycentric lambda = barycentric(triangle);
+  std::array<Eigen::Matrix<double, 1, 6>, 3> slopes;
+  for (int k = 0; k < 3; ++k) {
+    slopes[std::size_t(k)].setZero();
+    for (int c = 0; c < 3; ++c)
+      slopes[std::size_t(k)](c) = outward_normal(triangle, k).dot(lambda.gradients.col(c));
+  }
+  return slopes;
+}
+
 PatchRest patch_rest(const std::array<Vector2d, 3>& triangle,
                      const std::array<Eigen::Matrix<double, 1, 12>, 3>& normal_slopes,
                      const BendingRigidity& rigidity, const Vector3d& rest_curvature) {

@@ -100,6 +100,12 @@ midedge_slopes(const std::array<Eigen::Vector2d, 3>& triangle,
                const std::array<Eigen::Vector2d, 3>& across, const std::array<bool, 3>& has_node,
                const BendingRigidity& rigidity);
 
+// The slopes of the triangle's own plane (the linear interpolation of its
+// corners; zero weight on the nodes across): what a clamped (fixed) triangle
+// imposes on the edges it shares with free ones.
+std::array<Eigen::Matrix<double, 1, 6>, 3>
+plane_slopes(const std::array<Eigen::Vector2d, 3>& triangle);
+
 // Steps 2-3: from each edge's (shared) outward normal slope, as weights over
 // the twelve nodes. Throws InputError for a degenerate triangle, negative
 // rigidities or a non-finite rest curvature.

@@ -141,16 +141,25 @@ void ClothProblem::set_up_patches(const std::vector<bool>& triangle_owned,
   }
   const std::vector<Across> across = neighbours(mesh_);
   std::vector<Patch> patches(mesh_.triangle_count());
-  for (std::size_t t = 0; t < mesh_.triangle_count(); ++t)
-    patches[t] = patch_of(mesh_, across, t, triangle_material(t).patch_rigidity());
+  // A triangle of fixed vertices (a clamp) has a prescribed curvature: it
+  // stores nothing the unknowns could change, and it imposes its own
+  // plane's slope on the edges it shares.
+  std::vector<bool> fixed(mesh_.triangle_count());
   for (std::size_t t = 0; t < mesh_.triangle_count(); ++t) {
-    if (!triangle_owned[t]) continue;
     const auto& corners = mesh_.triangles[t];
-    // A triangle of fixed vertices has a prescribed curvature: no energy
-    // that the unknowns could change, and no moment on the clamp's edge.
-    if (std::all_of(corners.begin(), corners.end(),
-                    [&](int v) { return is_pinned[std::size_t(v)]; }))
-      continue;
+    fixed[t] = std::all_of(corners.begin(), corners.end(),
+                           [&](int v) { return is_pinned[std::size_t(v)]; });
+    if (fixed[t]) {
+      patches[t].vertices = {corners[0], corners[1], corners[2],
+                             corners[0], corners[1], corners[2]};
+      patches[t].slopes = element::plane_slopes(mesh_.material_uv[t]);
+    } else {
+      patches[t] = patch_of(mesh_, across, t, triangle_material(t).patch_rigidity());
+    }
+  }
+  for (std::size_t t = 0; t < mesh_.triangle_count(); ++t) {
+    if (!triangle_owned[t] || fixed[t]) continue;
+    const auto& corners = mesh_.triangles[t];
     const ClothMaterial& material = triangle_material(t);
     if (!material.has_bending()) continue;
     // Stencil: the patch's six nodes, then each neighbour's further nodes;
@@ -165,8 +174,9 @@ void ClothProblem::set_up_patches(const std::vector<bool>& triangle_owned,
       const Across& neighbour = across[3 * t + k];
       if (neighbour.triangle < 0) continue;
       // The edge's slope is the mean of both patches' (the neighbour's
-      // outward normal is this triangle's inward one).
-      slopes[k] *= 0.5;
+      // outward normal is this triangle's inward one), or a clamp's own.
+      const double share = fixed[std::size_t(neighbour.triangle)] ? 1.0 : 0.5;
+      slopes[k] *= 1.0 - share;
       const Patch& other = patches[std::size_t(neighbour.triangle)];
       const auto& other_corners = mesh_.triangles[std::size_t(neighbour.triangle)];
       const auto edge =
@@ -176,7 +186,7 @@ void ClothProblem::set_up_patches(const std::vector<bool>& triangle_owned,
       for (std::size_t n = 0; n < 6; ++n) {
         const std::size_t s = slot_of(stencil, next, other.vertices[n]);
         if (next > 8 + 2 * k) throw std::logic_error("a bending patch with too many nodes");
-        slopes[k](long(s)) -= 0.5 * other.slopes[edge](long(n));
+        slopes[k](long(s)) -= share * other.slopes[edge](long(n));
       }
     }
     LocalPatch local;
