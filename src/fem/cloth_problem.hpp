@@ -45,8 +45,8 @@ struct ClothMaterial {
       : membrane(std::move(membrane_material)) {}
   element::MembraneModel membrane_model = element::MembraneModel::baraff_witkin;
   element::MembraneMaterial membrane;
-  // The library keeps the hinge model by default (its tests are calibrated on
-  // it); the command line defaults to the patch model.
+  // The hinge model stays the default until the patch model's Newton solves
+  // are as robust in sewing from far starts (docs/finite-elements.md).
   element::BendingModel bending_model = element::BendingModel::discrete_shell;
   double bending_stiffness = 0.0; // N m
   // Orthotropic rigidities of the patch model (warp along u, weft along v);
