@@ -61,8 +61,11 @@ const std::vector<OptionSpec>& case_option_specs() {
       {"poisson", "NU", "0", "warp-weft Poisson coupling (stvk model)"},
       {"membrane-model", "M", "baraff_witkin", "baraff_witkin or stvk"},
       {"membrane-psd", "", "", "project membrane Hessians to PSD (compression stabilisation)"},
-      {"bending-model", "M", "discrete_shell", "discrete_shell or quadratic"},
-      {"bending-stiffness", "N*M", "1e-6", "bending stiffness, N m (0: no bending)"},
+      {"bending-model", "M", "discrete_shell",
+       "discrete_shell or quadratic (hinges), patch (converges to plate theory)"},
+      {"bending-stiffness", "N*M", "1e-6", "bending stiffness (warp, patch), N m (0: no bending)"},
+      {"bending-weft", "N*M", "", "patch model: weft rigidity, N m [--bending-stiffness]"},
+      {"bending-twist", "N*M", "", "patch model: twist rigidity, N m [half the warp's]"},
       {"bending-psd", "", "", "project bending Hessians to PSD"},
       {"density", "KG/M2", "0.2", "areal density, kg/m^2"},
       {"gravity", "X,Y,Z", "0,0,-9.80665", "gravitational acceleration, m/s^2"},
@@ -301,11 +304,22 @@ ClothMaterial build_material(const Options& options, const std::string& fabric_s
     material.bending_model = element::BendingModel::discrete_shell;
   } else if (bending == "quadratic") {
     material.bending_model = element::BendingModel::quadratic;
+  } else if (bending == "patch") {
+    material.bending_model = element::BendingModel::patch;
   } else {
     throw InputError("option --bending-model: unknown model '" + bending +
-                     "' (discrete_shell, quadratic)");
+                     "' (patch, discrete_shell, quadratic)");
   }
   material.bending_stiffness = options.nonnegative_real("bending-stiffness");
+  if (options.is_set("bending-weft") || options.is_set("bending-twist")) {
+    if (material.bending_model != element::BendingModel::patch) {
+      throw InputError("options --bending-weft and --bending-twist need --bending-model patch");
+    }
+    auto rigidity = element::BendingRigidity::isotropic(material.bending_stiffness);
+    if (options.is_set("bending-weft")) rigidity.weft = options.nonnegative_real("bending-weft");
+    if (options.is_set("bending-twist")) rigidity.twist = options.nonnegative_real("bending-twist");
+    material.bending_rigidity = rigidity;
+  }
   material.areal_density = options.nonnegative_real("density");
   material.project_membrane = options.flag("membrane-psd");
   material.project_bending = options.flag("bending-psd");

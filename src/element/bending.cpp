@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 namespace sartor::element {
 
@@ -198,6 +199,8 @@ Result<12> bending(BendingModel model, double stiffness, const HingeRest& rest, 
     result.hessian = stiffness * rest.quadratic;
     return result;
   }
+  case BendingModel::patch:
+    throw std::logic_error("bending: the patch model has no hinges (element/patch_bending.hpp)");
   }
   return result;
 }

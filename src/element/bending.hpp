@@ -51,7 +51,9 @@ namespace sartor::element {
 
 using Vector12 = Eigen::Matrix<double, 12, 1>;
 
-enum class BendingModel { discrete_shell, quadratic };
+// patch: the rotation-free Kirchhoff triangle of element/patch_bending.hpp (the
+// default), assembled per triangle instead of per hinge.
+enum class BendingModel { discrete_shell, quadratic, patch };
 
 struct HingeRest {
   double weight = 0.0;     // discrete shell: scaled 3|e|^2/(A1 + A2), dimensionless

@@ -18,5 +18,6 @@ void project_to_psd(Eigen::Matrix<double, N, N>& matrix) {
 template void project_to_psd<6>(Eigen::Matrix<double, 6, 6>&);
 template void project_to_psd<9>(Eigen::Matrix<double, 9, 9>&);
 template void project_to_psd<12>(Eigen::Matrix<double, 12, 12>&);
+template void project_to_psd<36>(Eigen::Matrix<double, 36, 36>&);
 
 } // namespace sartor::element

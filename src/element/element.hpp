@@ -22,7 +22,7 @@ enum class Want { energy, gradient, hessian };
 // (negative eigenvalues clamped to zero): Sensitive Couture's compression
 // stabilisation, and an option for Newton's method on any element. A matrix
 // that is already positive semi-definite is left exactly as it is. Compiled
-// for N = 6, 9 and 12.
+// for N = 6, 9, 12 and 36.
 template <int N>
 void project_to_psd(Eigen::Matrix<double, N, N>& matrix);
 

@@ -251,34 +251,7 @@ ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh,
     }
     triangles_.push_back(local);
   }
-  const bool any_bending =
-      std::any_of(materials_.begin(), materials_.end(),
-                  [](const ClothMaterial& material) { return material.bending_stiffness > 0.0; });
-  if (any_bending) {
-    for (const Hinge& hinge : interior_edges(mesh)) {
-      const auto first = std::size_t(std::min(hinge.triangles[0], hinge.triangles[1]));
-      if (!triangle_owned[first]) continue;
-      const ClothMaterial& one = triangle_material(std::size_t(hinge.triangles[0]));
-      const ClothMaterial& other = triangle_material(std::size_t(hinge.triangles[1]));
-      LocalHinge local;
-      local.stiffness = 0.5 * (one.bending_stiffness + other.bending_stiffness);
-      local.project = one.project_bending || other.project_bending;
-      for (std::size_t k = 0; k < 4; ++k) {
-        const PetscInt offset = vertex_dof_[std::size_t(hinge.vertices[k])];
-        if (offset < 0) throw std::logic_error("a vertex of an owned hinge is not local");
-        for (std::size_t d = 0; d < 3; ++d)
-          local.dofs[3 * k + d] = offset + PetscInt(d);
-      }
-      std::array<std::array<Eigen::Vector2d, 3>, 2> uv;
-      for (std::size_t side = 0; side < 2; ++side) {
-        const auto& corners = mesh.material_uv[std::size_t(hinge.triangles[side])];
-        for (std::size_t k = 0; k < 3; ++k)
-          uv[side][k] = corners[std::size_t(hinge.corners[side][k])];
-      }
-      local.rest = element::hinge_rest(uv[0], uv[1]);
-      hinges_.push_back(local);
-    }
-  }
+  set_up_bending(triangle_owned, is_pinned);
   set_up_contact();
 }
 
@@ -498,6 +471,10 @@ PetscErrorCode ClothProblem::energy(Vec x, ClothEnergy* result) {
                                  gather<12>(values, h.dofs), element::Want::energy)
                     .energy;
   }
+  for (const LocalPatch& p : patches_) {
+    local[1] +=
+        element::patch_bending(p.rest, gather<36>(values, p.dofs), element::Want::energy).energy;
+  }
   for (const auto& [v, force] : loads.point_forces) {
     if (!vertex_owned_[std::size_t(v)]) continue;
     const PetscInt offset = vertex_dof_[std::size_t(v)];
@@ -543,6 +520,12 @@ PetscErrorCode ClothProblem::residual(Vec x, Vec f) {
                     element::bending(materials_.front().bending_model, h.stiffness, h.rest,
                                      gather<12>(values, h.dofs), element::Want::gradient)
                         .gradient);
+  }
+  for (const LocalPatch& p : patches_) {
+    scatter_add<36>(
+        forces, p.dofs,
+        element::patch_bending(p.rest, gather<36>(values, p.dofs), element::Want::gradient)
+            .gradient);
   }
   for (const auto& [v, force] : loads.point_forces) {
     if (!vertex_owned_[std::size_t(v)]) continue;
@@ -609,6 +592,15 @@ PetscErrorCode ClothProblem::jacobian(Vec x, Mat J) {
     else
       PetscCall(add_block<12>(J, h.dofs, result.hessian));
   }
+  for (const LocalPatch& p : patches_) {
+    auto result =
+        element::patch_bending(p.rest, gather<36>(values, p.dofs), element::Want::hessian);
+    if (p.project) element::project_to_psd<36>(result.hessian);
+    if (scatter)
+      PetscCall(scatter->add<36>(result.hessian));
+    else
+      PetscCall(add_block<36>(J, p.dofs, result.hessian));
+  }
   if (scatter) PetscCall(scatter->end());
   PetscCall(add_contact_jacobian(values, J));
   PetscCall(VecRestoreArrayRead(local_x_, &values));
@@ -645,6 +637,8 @@ PetscErrorCode ClothProblem::create_jacobian(Mat* J) {
     pattern.add_element(t.dofs);
   for (const LocalHinge& h : hinges_)
     pattern.add_element(h.dofs);
+  for (const LocalPatch& p : patches_)
+    pattern.add_element(p.dofs);
   Mat recording = nullptr;
   PetscCall(pattern.recorder(&recording));
   if (seams_) PetscCall(seams_->add_pattern(recording)); // seam couplings, global indices
@@ -671,6 +665,8 @@ PetscErrorCode ClothProblem::attach_element_scatter(const fem::BlockLayout& layo
     PetscCall(scatter->add_element(t.dofs));
   for (const LocalHinge& h : hinges_)
     PetscCall(scatter->add_element(h.dofs));
+  for (const LocalPatch& p : patches_)
+    PetscCall(scatter->add_element(p.dofs));
   PetscCall(PetscContainerCreate(PETSC_COMM_SELF, &container));
   PetscCall(PetscContainerSetPointer(container, scatter.release()));
   PetscCall(PetscContainerSetUserDestroy(container, [](void* pointer) -> PetscErrorCode {

@@ -16,6 +16,7 @@
 #include "contact/penalty.hpp"
 #include "element/bending.hpp"
 #include "element/membrane.hpp"
+#include "element/patch_bending.hpp"
 #include "fem/pin_motion.hpp"
 #include "fem/seam_coupling.hpp"
 #include "mesh/triangle_mesh.hpp"
@@ -30,6 +31,7 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace sartor {
@@ -43,10 +45,26 @@ struct ClothMaterial {
       : membrane(std::move(membrane_material)) {}
   element::MembraneModel membrane_model = element::MembraneModel::baraff_witkin;
   element::MembraneMaterial membrane;
+  // The hinge model stays the default until the patch model's Newton solves
+  // are as robust in sewing from far starts (docs/finite-elements.md).
   element::BendingModel bending_model = element::BendingModel::discrete_shell;
   double bending_stiffness = 0.0; // N m
-  double areal_density = 0.0;     // kg/m^2
-  bool project_membrane = false;  // PSD-project element Hessians (compression stabilisation)
+  // Orthotropic rigidities of the patch model (warp along u, weft along v);
+  // unset: isotropic with nu = 0 from bending_stiffness.
+  std::optional<element::BendingRigidity> bending_rigidity;
+  // Rest curvature of the patch model, per mesh triangle (kappa_uu, kappa_vv,
+  // 2 kappa_uv in 1/m); empty: flat panels.
+  std::vector<Eigen::Vector3d> rest_curvature;
+  element::BendingRigidity patch_rigidity() const {
+    return bending_rigidity ? *bending_rigidity
+                            : element::BendingRigidity::isotropic(bending_stiffness);
+  }
+  bool has_bending() const {
+    const element::BendingRigidity d = patch_rigidity();
+    return bending_stiffness > 0.0 || d.warp > 0.0 || d.weft > 0.0 || d.twist > 0.0;
+  }
+  double areal_density = 0.0;    // kg/m^2
+  bool project_membrane = false; // PSD-project element Hessians (compression stabilisation)
   bool project_bending = false;
 };
 
@@ -267,6 +285,17 @@ private:
     double stiffness; // N m
     bool project;     // PSD-project its Hessian
   };
+  // The patch model's triangle (element/patch_bending.hpp): its twelve-node
+  // stencil as PatchRest numbers it.
+  struct LocalPatch {
+    std::array<PetscInt, 36> dofs;
+    element::PatchRest rest;
+    bool project; // PSD-project its Hessian
+  };
+  void set_up_bending(const std::vector<bool>& triangle_owned, const std::vector<bool>& is_pinned);
+  void set_up_patches(const std::vector<bool>& triangle_owned, const std::vector<bool>& is_pinned);
+  template <std::size_t N>
+  std::array<PetscInt, N> vertex_dofs(const std::array<int, N / 3>& vertices) const;
   const ClothMaterial& triangle_material(std::size_t triangle) const;
   // The largest initial modulus of any material, N/m.
   double largest_modulus() const;
@@ -311,6 +340,7 @@ private:
   std::vector<bool> vertex_owned_;   // this rank owns the vertex (for point forces, outputs)
   std::vector<LocalTriangle> triangles_;
   std::vector<LocalHinge> hinges_;
+  std::vector<LocalPatch> patches_;
   std::vector<Eigen::Vector3d> pin_positions_;
 
   // Contact: the owned free vertices, their material areas, the mesh size, and

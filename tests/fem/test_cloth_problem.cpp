@@ -88,7 +88,8 @@ TEST(ClothJacobian, MatchesFiniteDifferencesOfTheResidual) {
   std::uniform_real_distribution<double> jitter(-0.01, 0.01);
   for (auto& p : mesh.positions)
     p += Eigen::Vector3d(jitter(random), jitter(random), 2 * jitter(random));
-  for (auto model : {element::BendingModel::discrete_shell, element::BendingModel::quadratic}) {
+  for (auto model : {element::BendingModel::discrete_shell, element::BendingModel::quadratic,
+                     element::BendingModel::patch}) {
     ClothMaterial material = cotton(1e-3);
     material.bending_model = model;
     ClothProblem problem(PETSC_COMM_WORLD, mesh, material, {0});

@@ -1,0 +1,325 @@
+#include "element/patch_bending.hpp"
+
+#include "common/error.hpp"
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <Eigen/SVD>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace sartor::element {
+
+namespace {
+
+using Eigen::Matrix3d;
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+using Matrix36 = Eigen::Matrix<double, 36, 36>;
+using Jacobian9 = Eigen::Matrix<double, 3, 9>; // of a 3-vector with respect to x0, x1, x2
+
+// As the hinges': triangles flatter than this (twice the area relative to
+// the longest edge squared) have no normal.
+constexpr double degenerate_ratio = 1e-12;
+
+double cross2(const Vector2d& a, const Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+Matrix3d cross(const Vector3d& v) {
+  Matrix3d m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
+
+std::string point_list(const std::array<Vector2d, 3>& uv) {
+  std::ostringstream text;
+  text.precision(10);
+  for (std::size_t k = 0; k < 3; ++k)
+    text << (k ? ", (" : "(") << uv[k].x() << ", " << uv[k].y() << ")";
+  return text.str();
+}
+
+// The triangle's barycentric coordinates: lambda(p) = gradients^T (p - p0) +
+// (1, 0, 0) shifted; gradients.col(k) = grad lambda_k.
+struct Barycentric {
+  Vector2d origin;
+  Eigen::Matrix<double, 2, 3> gradients;
+  Vector3d at(const Vector2d& p) const {
+    Vector3d lambda = gradients.transpose() * (p - origin);
+    lambda(0) += 1.0;
+    return lambda;
+  }
+};
+
+Barycentric barycentric(const std::array<Vector2d, 3>& uv) {
+  Eigen::Matrix2d frame;
+  frame.col(0) = uv[1] - uv[0];
+  frame.col(1) = uv[2] - uv[0];
+  const Eigen::Matrix2d inverse = frame.inverse();
+  Barycentric b;
+  b.origin = uv[0];
+  b.gradients.col(1) = inverse.row(0).transpose();
+  b.gradients.col(2) = inverse.row(1).transpose();
+  b.gradients.col(0) = -b.gradients.col(1) - b.gradients.col(2);
+  return b;
+}
+
+// (d_uu, d_vv, d_uv) of lambda_i lambda_j.
+Vector3d second_derivatives(const Vector2d& gi, const Vector2d& gj) {
+  return {2.0 * gi.x() * gj.x(), 2.0 * gi.y() * gj.y(), gi.x() * gj.y() + gi.y() * gj.x()};
+}
+
+void check_rigidity(const BendingRigidity& d) {
+  const Matrix3d m = d.matrix();
+  const bool finite = m.allFinite();
+  const bool definite = d.warp >= 0.0 && d.weft >= 0.0 && d.twist >= 0.0 &&
+                        d.coupling * d.coupling <= d.warp * d.weft;
+  if (!finite || !definite) {
+    std::ostringstream text;
+    text << "bending rigidity: warp " << d.warp << ", weft " << d.weft << ", coupling "
+         << d.coupling << ", twist " << d.twist
+         << " N m must be finite, non-negative, with coupling^2 <= warp * weft";
+    throw InputError(text.str());
+  }
+}
+
+// Row of the free-edge condition M_nn = 0 on the edge coefficients, scaled to
+// order one (the node rows are of order one).
+Eigen::RowVector3d free_edge_row(const Vector2d& edge, const Matrix3d& second,
+                                 const Matrix3d& rigidity) {
+  const Vector2d normal = Vector2d(edge.y(), -edge.x()).normalized();
+  const Eigen::RowVector3d moment_nn(normal.x() * normal.x(), normal.y() * normal.y(),
+                                     2.0 * normal.x() * normal.y());
+  const Matrix3d voigt = Eigen::Vector3d(1.0, 1.0, 2.0).asDiagonal() * second;
+  Eigen::RowVector3d row = moment_nn * rigidity * voigt;
+  // Without rigidity the condition is kappa_nn = 0.
+  if (!(row.cwiseAbs().maxCoeff() > 0.0)) row = moment_nn * voigt;
+  return row / row.cwiseAbs().maxCoeff();
+}
+
+void check_triangle(const std::array<Vector2d, 3>& triangle, double twice_area) {
+  const double longest = std::max({(triangle[1] - triangle[0]).squaredNorm(),
+                                   (triangle[2] - triangle[0]).squaredNorm(),
+                                   (triangle[2] - triangle[1]).squaredNorm()});
+  if (!(std::abs(twice_area) > degenerate_ratio * longest) || !std::isfinite(twice_area)) {
+    throw InputError("bending patch: degenerate triangle in material coordinates " +
+                     point_list(triangle) + " m");
+  }
+}
+
+// Unit in-plane normal of edge k (opposite corner k), pointing out of the triangle.
+Vector2d outward_normal(const std::array<Vector2d, 3>& triangle, int k) {
+  const Vector2d edge = triangle[std::size_t((k + 2) % 3)] - triangle[std::size_t((k + 1) % 3)];
+  Vector2d normal = Vector2d(edge.y(), -edge.x()).normalized();
+  if (normal.dot(triangle[std::size_t(k)] - triangle[std::size_t((k + 1) % 3)]) > 0.0)
+    normal = -normal;
+  return normal;
+}
+
+constexpr int nodes = 12;
+
+} // namespace
+
+Matrix3d BendingRigidity::matrix() const {
+  Matrix3d d;
+  d << warp, coupling, 0.0, coupling, weft, 0.0, 0.0, 0.0, twist;
+  return d;
+}
+
+Vector2d node_across(const Vector2d& a, const Vector2d& b, const Vector2d& c,
+                     const Vector2d& a_other, const Vector2d& b_other, const Vector2d& p_other) {
+  const Vector2d edge_other = b_other - a_other;
+  const double length2 = edge_other.squaredNorm();
+  const double along = (p_other - a_other).dot(edge_other) / length2;
+  const double off = std::abs(cross2(edge_other, p_other - a_other)) / length2;
+  const Vector2d edge = b - a;
+  Vector2d normal(-edge.y(), edge.x()); // |normal| = |edge|
+  if (normal.dot(c - a) > 0.0) normal = -normal;
+  return a + along * edge + off * normal;
+}
+
+std::array<Eigen::Matrix<double, 1, 6>, 3> midedge_slopes(const std::array<Vector2d, 3>& triangle,
+                                                          const std::array<Vector2d, 3>& across,
+                                                          const std::array<bool, 3>& has_node,
+                                                          const BendingRigidity& rigidity) {
+  check_rigidity(rigidity);
+  const double twice_area = cross2(triangle[1] - triangle[0], triangle[2] - triangle[0]);
+  check_triangle(triangle, twice_area);
+  const Barycentric lambda = barycentric(triangle);
+  Matrix3d second; // column e: (d_uu, d_vv, d_uv) of the edge function of edge e
+  for (int e = 0; e < 3; ++e)
+    second.col(e) =
+        second_derivatives(lambda.gradients.col((e + 1) % 3), lambda.gradients.col((e + 2) % 3));
+  // system * c = nodes * x: one row per edge, c the edge coefficients.
+  Matrix3d system;
+  Eigen::Matrix<double, 3, 6> nodes = Eigen::Matrix<double, 3, 6>::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    if (has_node[std::size_t(k)]) {
+      const Vector3d at = lambda.at(across[std::size_t(k)]);
+      if (!(at(k) < 0.0)) {
+        throw InputError("bending patch: the node across an edge of triangle " +
+                         point_list(triangle) + " is not on the edge's other side");
+      }
+      for (int e = 0; e < 3; ++e)
+        system(k, e) = at((e + 1) % 3) * at((e + 2) % 3);
+      nodes(k, 3 + k) = 1.0;
+      nodes.block<1, 3>(k, 0) = -at.transpose();
+    } else {
+      system.row(k) = free_edge_row(triangle[std::size_t(j)] - triangle[std::size_t(i)], second,
+                                    rigidity.matrix());
+    }
+  }
+  const Eigen::JacobiSVD<Matrix3d> svd(system, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Vector3d sigma = svd.singularValues();
+  Eigen::Matrix<double, 3, 6> coefficients;
+  if (sigma(2) >= ill_conditioned * sigma(0)) {
+    coefficients = system.partialPivLu().solve(nodes);
+  } else {
+    const double tau2 = std::pow(ill_conditioned * sigma(0), 2);
+    const Vector3d filter = sigma.array() / (sigma.array().square() + tau2);
+    coefficients = svd.matrixV() * filter.asDiagonal() * svd.matrixU().transpose() * nodes;
+  }
+  // The quadratic's gradient at the midpoint of edge k (lambda_k = 0,
+  // the others 1/2) along the edge's outward normal.
+  std::array<Eigen::Matrix<double, 1, 6>, 3> slopes;
+  for (int k = 0; k < 3; ++k) {
+    const Vector2d outward = outward_normal(triangle, k);
+    Eigen::Matrix<double, 1, 6> slope = Eigen::Matrix<double, 1, 6>::Zero();
+    for (int c = 0; c < 3; ++c)
+      slope(c) = outward.dot(lambda.gradients.col(c));
+    for (int e = 0; e < 3; ++e) {
+      const int a = (e + 1) % 3, b = (e + 2) % 3;
+      const Vector3d mid = Vector3d::Constant(0.5) - 0.5 * Vector3d::Unit(k);
+      const Vector2d gradient = mid(a) * lambda.gradients.col(b) + mid(b) * lambda.gradients.col(a);
+      slope += outward.dot(gradient) * coefficients.row(e);
+    }
+    slopes[std::size_t(k)] = slope;
+  }
+  return slopes;
+}
+
+std::array<Eigen::Matrix<double, 1, 6>, 3> plane_slopes(const std::array<Vector2d, 3>& triangle) {
+  check_triangle(triangle, cross2(triangle[1] - triangle[0], triangle[2] - triangle[0]));
+  const Barycentric lambda = barycentric(triangle);
+  std::array<Eigen::Matrix<double, 1, 6>, 3> slopes;
+  for (int k = 0; k < 3; ++k) {
+    slopes[std::size_t(k)].setZero();
+    for (int c = 0; c < 3; ++c)
+      slopes[std::size_t(k)](c) = outward_normal(triangle, k).dot(lambda.gradients.col(c));
+  }
+  return slopes;
+}
+
+PatchRest patch_rest(const std::array<Vector2d, 3>& triangle,
+                     const std::array<Eigen::Matrix<double, 1, 12>, 3>& normal_slopes,
+                     const BendingRigidity& rigidity, const Vector3d& rest_curvature) {
+  check_rigidity(rigidity);
+  if (!rest_curvature.allFinite()) throw InputError("bending patch: rest curvature not finite");
+  const double twice_area = cross2(triangle[1] - triangle[0], triangle[2] - triangle[0]);
+  check_triangle(triangle, twice_area);
+  PatchRest rest;
+  rest.area = 0.5 * std::abs(twice_area);
+  rest.rigidity = rigidity.matrix();
+  rest.rest_curvature = rest_curvature;
+  // H_ab = (1/A) sum_k |e_k| sym(g_k,a nu_k,b), g_k = x_,u at edge k's
+  // midpoint: along the edge the chord's slope (exact for a quadratic), across
+  // it the shared normal slope.
+  rest.weights.setZero();
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const Vector2d edge = triangle[std::size_t(j)] - triangle[std::size_t(i)];
+    const double length = edge.norm();
+    const Vector2d tangent = edge / length;
+    const Vector2d outward = outward_normal(triangle, k);
+    // d x / d u_a = tangent_a (x_j - x_i) / |e| + outward_a slope . x
+    Eigen::Matrix<double, 2, 12> gradient = outward * normal_slopes[std::size_t(k)];
+    gradient.col(j) += tangent / length;
+    gradient.col(i) -= tangent / length;
+    const double scale = length / rest.area;
+    rest.weights.row(0) += scale * outward.x() * gradient.row(0);
+    rest.weights.row(1) += scale * outward.y() * gradient.row(1);
+    rest.weights.row(2) +=
+        0.5 * scale * (outward.y() * gradient.row(0) + outward.x() * gradient.row(1));
+  }
+  return rest;
+}
+
+Result<36> patch_bending(const PatchRest& rest, const Vector36& x, Want want) {
+  Result<36> result;
+  result.energy = 0.0;
+  result.gradient.setZero();
+  result.hessian.setZero();
+  const Vector3d x0 = x.segment<3>(0);
+  const Vector3d e1 = x.segment<3>(3) - x0;
+  const Vector3d e2 = x.segment<3>(6) - x0;
+  const Vector3d m = e1.cross(e2);
+  const double length = m.norm();
+  const double longest = std::max({e1.squaredNorm(), e2.squaredNorm(), (e2 - e1).squaredNorm()});
+  if (!(length > degenerate_ratio * longest)) return result;
+  const Vector3d n = m / length;
+
+  // Second derivatives (rows uu, vv, uv), relative to x0: the weights of each
+  // row sum to zero, and differences keep large coordinates out of round-off.
+  const Eigen::Vector3d voigt(1.0, 1.0, 2.0);
+  Eigen::Matrix<double, 3, 3> h; // column r: H_r
+  h.setZero();
+  for (int i = 1; i < nodes; ++i)
+    h += (x.segment<3>(3 * i) - x0) * rest.weights.col(i).transpose();
+  const Vector3d strain = voigt.cwiseProduct(h.transpose() * n) - rest.rest_curvature;
+  const Vector3d moment = rest.rigidity * strain;
+  result.energy = 0.5 * rest.area * strain.dot(moment);
+  if (want == Want::energy) return result;
+
+  // dm/dx over (x0, x1, x2); dn = P dm / |m|.
+  Jacobian9 dm;
+  dm.block<3, 3>(0, 0) = cross(e2) - cross(e1);
+  dm.block<3, 3>(0, 3) = -cross(e2);
+  dm.block<3, 3>(0, 6) = cross(e1);
+  const Matrix3d projector = Matrix3d::Identity() - n * n.transpose();
+  const Jacobian9 dn = projector * dm / length;
+
+  // Strain rows' derivatives B (3 x 36): node i carries f_r w_ri n^T, the
+  // triangle's corners also f_r H_r^T dn.
+  Eigen::Matrix<double, 3, 36> b;
+  for (int i = 0; i < nodes; ++i)
+    b.block<3, 3>(0, 3 * i) = voigt.cwiseProduct(rest.weights.col(i)) * n.transpose();
+  b.block<3, 9>(0, 0) += voigt.asDiagonal() * h.transpose() * dn;
+  result.gradient = rest.area * b.transpose() * moment;
+  if (want == Want::gradient) return result;
+
+  // sum_r M_r d^2 e_r: linear in (w, H), so with the moment-weighted sums:
+  // node i's w n differentiated through n, its transpose, and h . n's Hessian.
+  const Vector3d weighted = voigt.cwiseProduct(moment);
+  const Eigen::Matrix<double, 1, nodes> w_sum = weighted.transpose() * rest.weights;
+  const Vector3d h_sum = h * weighted;
+  Matrix36 second = Matrix36::Zero();
+  for (int i = 0; i < nodes; ++i)
+    second.block<3, 9>(3 * i, 0) += w_sum(i) * dn;
+  Matrix36 cross_terms = second + second.transpose();
+  // Hessian of g = h_sum . m/|m| over the corners.
+  const double hn = h_sum.dot(n);
+  const Matrix3d g_mm = (-(h_sum * n.transpose() + n * h_sum.transpose()) -
+                         hn * (Matrix3d::Identity() - 3.0 * n * n.transpose())) /
+                        (length * length);
+  const Vector3d a = projector * h_sum / length;
+  // a . (e1 x e2) = -e1^T [a]x e2, with e1 = x1 - x0, e2 = x2 - x0.
+  const Matrix3d bilinear = -cross(a);
+  Eigen::Matrix<double, 9, 9> triple = Eigen::Matrix<double, 9, 9>::Zero();
+  triple.block<3, 3>(3, 6) = bilinear;
+  triple.block<3, 3>(6, 3) = bilinear.transpose();
+  triple.block<3, 3>(0, 0) = bilinear + bilinear.transpose();
+  triple.block<3, 3>(0, 3) = -bilinear.transpose();
+  triple.block<3, 3>(3, 0) = -bilinear;
+  triple.block<3, 3>(0, 6) = -bilinear;
+  triple.block<3, 3>(6, 0) = -bilinear.transpose();
+  cross_terms.topLeftCorner<9, 9>() += dm.transpose() * g_mm * dm + triple;
+  result.hessian = rest.area * (b.transpose() * rest.rigidity * b + cross_terms);
+  result.hessian = 0.5 * (result.hessian + result.hessian.transpose()).eval();
+  return result;
+}
+
+} // namespace sartor::element

@@ -1,0 +1,325 @@
+// The bending models against beam theory, with references computed here:
+// the Euler elastica by shooting (heavy cantilever, Peirce's test; end-shear
+// cantilever of Sze, Liu & Lo 2004 with nu = 0) and the simply supported
+// strip's 5 w L^4 / 384 D, on rectangle meshes of every diagonal pattern,
+// cells of aspect 4, and irregular meshes (random diagonals, perturbed
+// interior vertices) refined three times.
+
+#include "fem/cloth_problem.hpp"
+#include "fem/statics.hpp"
+#include "mesh/generators.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+namespace sartor {
+namespace {
+
+// --- Elastica: theta'' = -(gamma (1 - s) + alpha) cos theta on s in [0, 1],
+// theta(0) = 0 (clamped), theta'(1) = 0 (free end); gamma = w L^3 / D (own
+// weight), alpha = P L^2 / D (end shear). RK4, shooting on theta'(0).
+struct ElasticaTip {
+  double droop = 0.0;      // vertical tip displacement / L
+  double shortening = 0.0; // horizontal tip displacement / L
+  double end_slope = 0.0;  // theta'(1), zero for the solution
+};
+
+ElasticaTip integrate(double gamma, double alpha, double start_slope) {
+  constexpr int steps = 4000;
+  const double h = 1.0 / steps;
+  double theta = 0.0, slope = start_slope, x = 0.0, z = 0.0;
+  const auto rhs = [&](double s, double th) { return -(gamma * (1.0 - s) + alpha) * std::cos(th); };
+  for (int i = 0; i < steps; ++i) {
+    const double s = i * h;
+    const double k1t = slope, k1s = rhs(s, theta);
+    const double k2t = slope + 0.5 * h * k1s, k2s = rhs(s + 0.5 * h, theta + 0.5 * h * k1t);
+    const double k3t = slope + 0.5 * h * k2s, k3s = rhs(s + 0.5 * h, theta + 0.5 * h * k2t);
+    const double k4t = slope + h * k3s, k4s = rhs(s + h, theta + h * k3t);
+    // Position by Simpson's rule on the same step.
+    const double next_theta = theta + h / 6.0 * (k1t + 2 * k2t + 2 * k3t + k4t);
+    const double mid_theta = theta + 0.5 * h * k1t + h * h / 8.0 * k1s;
+    x += h / 6.0 * (std::cos(theta) + 4.0 * std::cos(mid_theta) + std::cos(next_theta));
+    z += h / 6.0 * (std::sin(theta) + 4.0 * std::sin(mid_theta) + std::sin(next_theta));
+    slope += h / 6.0 * (k1s + 2 * k2s + 2 * k3s + k4s);
+    theta = next_theta;
+  }
+  return {z, 1.0 - x, slope};
+}
+
+ElasticaTip elastica(double gamma, double alpha) {
+  // theta'(1) grows with theta'(0) from -(gamma/2 + alpha) at 0: bisection on
+  // [0, gamma/2 + alpha], where the end slope changes sign.
+  double low = 0.0, high = gamma / 2.0 + alpha;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (low + high);
+    (integrate(gamma, alpha, mid).end_slope < 0.0 ? low : high) = mid;
+  }
+  return integrate(gamma, alpha, 0.5 * (low + high));
+}
+
+TEST(Elastica, LinearLimitsAndTabulatedValue) {
+  // Small loads: w L^4 / 8 D and P L^3 / 3 D.
+  EXPECT_NEAR(elastica(1e-3, 0.0).droop / (1e-3 / 8.0), 1.0, 1e-4);
+  EXPECT_NEAR(elastica(0.0, 1e-3).droop / (1e-3 / 3.0), 1.0, 1e-4);
+  // Bisshopp & Drucker (1945): P L^2 / EI = 1 gives 0.3017 L and 0.0566 L.
+  EXPECT_NEAR(elastica(0.0, 1.0).droop, 0.3017, 2e-4);
+  EXPECT_NEAR(elastica(0.0, 1.0).shortening, 0.0566, 2e-4);
+}
+
+// --- Meshes ---------------------------------------------------------------
+
+// nx x ny cells on [0, width] x [0, height]; irregular: each cell's diagonal
+// drawn at random and interior vertices moved by up to a quarter cell, but
+// columns 0 and 1 kept straight (the clamp's band ends on a straight line).
+TriangleMesh strip_mesh(double width, double height, int nx, int ny, bool irregular,
+                        mesh::RectanglePattern pattern = mesh::RectanglePattern::right) {
+  if (!irregular) return mesh::rectangle(width, height, nx, ny, pattern);
+  std::mt19937_64 random(std::uint64_t(1000 * nx + ny));
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const double hx = width / nx, hy = height / ny;
+  TriangleMesh mesh;
+  for (int j = 0; j <= ny; ++j) {
+    for (int i = 0; i <= nx; ++i) {
+      Eigen::Vector3d p(i * hx, j * hy, 0.0);
+      if (i > 1 && i < nx && j > 0 && j < ny)
+        p += Eigen::Vector3d(0.25 * hx * unit(random), 0.25 * hy * unit(random), 0.0);
+      mesh.positions.push_back(p);
+    }
+  }
+  const auto uv = [&](int v) { return Eigen::Vector2d(mesh.positions[std::size_t(v)].head<2>()); };
+  const auto add = [&](int a, int b, int c) {
+    mesh.triangles.push_back({a, b, c});
+    mesh.material_uv.push_back({uv(a), uv(b), uv(c)});
+  };
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const int a = j * (nx + 1) + i, b = a + 1, c = b + nx + 1, d = a + nx + 1;
+      if (unit(random) > 0.0) {
+        add(a, b, c);
+        add(a, c, d);
+      } else {
+        add(a, b, d);
+        add(b, c, d);
+      }
+    }
+  }
+  return mesh;
+}
+
+ClothMaterial strip_material(double membrane, double rigidity, double density,
+                             element::BendingModel model) {
+  ClothMaterial m({TensionCurve::linear(membrane, "test"), TensionCurve::linear(membrane, "test"),
+                   0.5 * membrane, 0.0});
+  m.bending_stiffness = rigidity;
+  m.areal_density = density;
+  m.bending_model = model;
+  return m;
+}
+
+// Mean displacement of the vertices at x = x_tip after a static solve.
+Eigen::Vector3d tip_displacement(const TriangleMesh& mesh, const ClothMaterial& material,
+                                 const std::vector<int>& pins, const ClothLoads& loads,
+                                 double x_tip, int steps) {
+  ClothProblem problem(PETSC_COMM_WORLD, mesh, material, pins);
+  problem.loads = loads;
+  Vec x = nullptr;
+  EXPECT_EQ(problem.create_solution(&x), 0);
+  StaticOptions options;
+  options.load_steps = steps;
+  StaticReport report;
+  EXPECT_EQ(solve_static(problem, x, options, &report), 0);
+  EXPECT_TRUE(report.converged) << report.reason;
+  std::vector<Eigen::Vector3d> positions;
+  EXPECT_EQ(problem.gather_positions(x, &positions), 0);
+  VecDestroy(&x);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int count = 0;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    if (std::abs(mesh.positions[v].x() - x_tip) > 1e-9) continue;
+    sum += positions[v] - mesh.positions[v];
+    ++count;
+  }
+  return sum / count;
+}
+
+std::vector<int> vertices_below(const TriangleMesh& mesh, double x_limit) {
+  std::vector<int> pins;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+    if (mesh.positions[v].x() < x_limit) pins.push_back(int(v));
+  return pins;
+}
+
+double observed_order(double coarse, double fine) {
+  return std::log(std::abs(coarse) / std::abs(fine)) / std::log(2.0);
+}
+
+constexpr double gravity = 9.80665;
+
+const char* label(element::BendingModel model) {
+  switch (model) {
+  case element::BendingModel::patch:
+    return "patch";
+  case element::BendingModel::discrete_shell:
+    return "discrete shell";
+  case element::BendingModel::quadratic:
+    return "quadratic";
+  }
+  return "";
+}
+
+// --- Simply supported strip, linear range ---------------------------------
+
+// Largest deflection of a 1 m strip on supports at both ends under its
+// weight, relative to 5 w L^4 / 384 D, minus one.
+double simply_supported_error(const TriangleMesh& mesh, element::BendingModel model) {
+  const double rigidity = 1.0, density = 1e-3; // deflection 1.3e-4 L: linear
+  std::vector<int> pins;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const double x = mesh.positions[v].x();
+    if (x < 1e-9 || x > 1.0 - 1e-9) pins.push_back(int(v));
+  }
+  ClothProblem problem(PETSC_COMM_WORLD, mesh, strip_material(1e4, rigidity, density, model), pins);
+  problem.loads.gravity = {0.0, 0.0, -gravity};
+  Vec x = nullptr;
+  EXPECT_EQ(problem.create_solution(&x), 0);
+  StaticReport report;
+  EXPECT_EQ(solve_static(problem, x, StaticOptions{}, &report), 0);
+  EXPECT_TRUE(report.converged) << report.reason;
+  std::vector<Eigen::Vector3d> positions;
+  EXPECT_EQ(problem.gather_positions(x, &positions), 0);
+  VecDestroy(&x);
+  double deflection = 0.0;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+    deflection = std::max(deflection, mesh.positions[v].z() - positions[v].z());
+  return deflection / (5.0 * density * gravity / (384.0 * rigidity)) - 1.0;
+}
+
+TEST(BendingVerification, SimplySupportedStripOnEveryPatternAndAspect) {
+  struct Case {
+    const char* name;
+    TriangleMesh mesh;
+  };
+  using mesh::RectanglePattern;
+  const std::vector<Case> cases = {
+      {"alternating 40x4", mesh::rectangle(1.0, 0.1, 40, 4, RectanglePattern::alternating)},
+      {"right 40x4", mesh::rectangle(1.0, 0.1, 40, 4, RectanglePattern::right)},
+      {"perturbed 40x4", mesh::rectangle(1.0, 0.1, 40, 4, RectanglePattern::perturbed)},
+      {"irregular 40x4", strip_mesh(1.0, 0.1, 40, 4, true)},
+      {"alternating, cells 4 x longer across (40x1)",
+       mesh::rectangle(1.0, 0.1, 40, 1, RectanglePattern::alternating)},
+      {"alternating, cells 4 x longer along (10x4)",
+       mesh::rectangle(1.0, 0.1, 10, 4, RectanglePattern::alternating)},
+      {"perturbed, cells 4 x longer across (40x4, 0.4 wide)",
+       mesh::rectangle(1.0, 0.4, 40, 4, RectanglePattern::perturbed)},
+  };
+  for (const Case& c : cases) {
+    const double patch = simply_supported_error(c.mesh, element::BendingModel::patch);
+    const double hinge = simply_supported_error(c.mesh, element::BendingModel::discrete_shell);
+    std::printf("simply supported strip, %s: patch %+.3f %%, discrete shell %+.3f %%\n", c.name,
+                100 * patch, 100 * hinge);
+    EXPECT_LT(std::abs(patch), 0.01) << c.name;
+  }
+}
+
+// --- Cantilevers ------------------------------------------------------------
+
+// A strip of free length L clamped by a pinned band of one cell (columns 0
+// and 1 of nx + 1), so that its cells are L / (nx - 1) long.
+struct Cantilever {
+  TriangleMesh mesh;
+  std::vector<int> clamp;
+  double tip_x;
+};
+
+Cantilever cantilever(double length, double width, int nx, int ny) {
+  const double cell = length / (nx - 1);
+  Cantilever c{strip_mesh(length + cell, width, nx, ny, true), {}, length + cell};
+  c.clamp = vertices_below(c.mesh, 1.5 * cell);
+  return c;
+}
+
+struct Refinement {
+  int nx, ny;
+};
+constexpr Refinement cantilever_meshes[] = {{20, 2}, {40, 4}, {80, 8}};
+
+// Relative droop error of the heavy cantilever at gamma = w L^3 / D.
+double heavy_cantilever_error(double gamma, const Refinement& r, element::BendingModel model) {
+  const double length = 1.0, rigidity = 1e-3;
+  const Cantilever c = cantilever(length, 2.0 * r.ny * length / r.nx, r.nx, r.ny);
+  ClothLoads loads;
+  loads.gravity = {0.0, 0.0, -gravity};
+  const double density = gamma * rigidity / (gravity * length * length * length);
+  const Eigen::Vector3d tip =
+      tip_displacement(c.mesh, strip_material(1e3, rigidity, density, model), c.clamp, loads,
+                       c.tip_x, gamma > 10 ? 16 : 8);
+  return -tip.z() / (length * elastica(gamma, 0.0).droop) - 1.0;
+}
+
+TEST(BendingVerification, HeavyCantileverConvergesToTheElastica) {
+  for (const double gamma : {1.0, 8.0, 32.0}) {
+    std::vector<double> errors;
+    for (const Refinement& r : cantilever_meshes)
+      errors.push_back(heavy_cantilever_error(gamma, r, element::BendingModel::patch));
+    const double hinge =
+        heavy_cantilever_error(gamma, cantilever_meshes[2], element::BendingModel::discrete_shell);
+    std::printf("heavy cantilever, gamma %g: patch droop errors %+.3f %%, %+.3f %%, %+.3f %% "
+                "(orders %.2f, %.2f); discrete shell on the finest %+.3f %%\n",
+                gamma, 100 * errors[0], 100 * errors[1], 100 * errors[2],
+                observed_order(errors[0], errors[1]), observed_order(errors[1], errors[2]),
+                100 * hinge);
+    EXPECT_LT(std::abs(errors[2]), 0.01) << "gamma " << gamma;
+    // At least first order over the three meshes (2 measured).
+    EXPECT_GT(observed_order(errors[0], errors[2]) / 2.0, 1.0) << "gamma " << gamma;
+  }
+}
+
+// Sze, Liu & Lo (2004) problem 1: L = 10, width 1, t = 0.1, E = 1.2e6, nu = 0
+// (D = E t^3 / 12 = 100 N m, membrane E t = 1.2e5 N/m), end shear P.
+Eigen::Vector3d sze_tip(double load, const Refinement& r, element::BendingModel model) {
+  const double length = 10.0, width = 1.0;
+  const Cantilever c = cantilever(length, width, r.nx, r.ny);
+  // The end shear as a uniform line load on the tip edge (trapezoidal shares).
+  ClothLoads loads;
+  for (int j = 0; j <= r.ny; ++j) {
+    const int vertex = j * (r.nx + 1) + r.nx;
+    const double share = (j == 0 || j == r.ny) ? 0.5 : 1.0;
+    loads.point_forces.push_back({vertex, Eigen::Vector3d(0.0, 0.0, load * share / r.ny)});
+  }
+  return tip_displacement(c.mesh, strip_material(1.2e5, 100.0, 0.0, model), c.clamp, loads, c.tip_x,
+                          2 * int(load) + 4);
+}
+
+TEST(BendingVerification, SzeEndShearCantileverMatchesTheElastica) {
+  for (const double load : {1.0, 2.0, 4.0}) {
+    const ElasticaTip reference = elastica(0.0, load * 100.0 / 100.0);
+    std::vector<Eigen::Vector2d> errors;
+    for (const Refinement& r : cantilever_meshes) {
+      const Eigen::Vector3d tip = sze_tip(load, r, element::BendingModel::patch);
+      errors.emplace_back(-tip.x() / (10.0 * reference.shortening) - 1.0,
+                          tip.z() / (10.0 * reference.droop) - 1.0);
+    }
+    const Eigen::Vector3d hinge =
+        sze_tip(load, cantilever_meshes[2], element::BendingModel::discrete_shell);
+    std::printf("Sze end shear P = %g: elastica tip (%.4f, %.4f) m; patch errors horizontal "
+                "%+.3f %%, %+.3f %%, %+.3f %%, vertical %+.3f %%, %+.3f %%, %+.3f %% (orders "
+                "%.2f, %.2f); discrete shell on the finest %+.3f %%, %+.3f %%\n",
+                load, 10.0 * reference.shortening, 10.0 * reference.droop, 100 * errors[0].x(),
+                100 * errors[1].x(), 100 * errors[2].x(), 100 * errors[0].y(), 100 * errors[1].y(),
+                100 * errors[2].y(), observed_order(errors[1].y(), errors[2].y()),
+                observed_order(errors[0].y(), errors[1].y()),
+                100 * (-hinge.x() / (10.0 * reference.shortening) - 1.0),
+                100 * (hinge.z() / (10.0 * reference.droop) - 1.0));
+    if (load == 4.0) {
+      EXPECT_LT(errors[2].cwiseAbs().maxCoeff(), 0.005);
+    } else {
+      EXPECT_LT(errors[2].cwiseAbs().maxCoeff(), 0.01);
+    }
+  }
+}
+
+} // namespace
+} // namespace sartor
