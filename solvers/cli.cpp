@@ -4,8 +4,11 @@
 #include "common/error.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <fstream>
+#include <regex>
+#include <set>
 #include <sstream>
 
 namespace sartor {
@@ -159,15 +162,15 @@ bool Options::is_set(const std::string& name) const {
 
 std::string Options::text(const std::string& name) const {
   const OptionSpec& option = find(name);
-  char buffer[PETSC_MAX_PATH_LEN] = "";
+  // The value in full: PETSc's string getter would cut it at 4,095 characters.
+  const char* value = nullptr;
   PetscBool set = PETSC_FALSE;
-  SartorPetscCall(PetscOptionsGetString(nullptr, nullptr, database_key(name).c_str(), buffer,
-                                        sizeof buffer, &set));
+  SartorPetscCall(PetscOptionsFindPair(nullptr, nullptr, database_key(name).c_str(), &value, &set));
   if (!set) return option.fallback;
-  if (buffer[0] == '\0' && !option.value_name.empty()) {
+  if ((!value || value[0] == '\0') && !option.value_name.empty()) {
     throw InputError("option --" + name + " needs a value (" + option.value_name + ")");
   }
-  return buffer;
+  return value ? value : "";
 }
 
 double Options::real(const std::string& name) const {
@@ -194,14 +197,64 @@ double Options::nonnegative_real(const std::string& name) const {
 }
 
 long Options::integer(const std::string& name) const {
+  return integer_in(name, INT_MIN, INT_MAX);
+}
+
+long Options::integer_in(const std::string& name, long minimum, long maximum) const {
   const std::string value = text(name);
+  long number = 0;
   try {
     std::size_t used = 0;
-    const long number = std::stol(value, &used);
-    if (used == value.size()) return number;
+    number = std::stol(value, &used);
+    if (used != value.size()) throw std::invalid_argument(value);
+  } catch (const std::out_of_range&) {
+    number = value.find('-') == std::string::npos ? LONG_MAX : LONG_MIN;
   } catch (const std::exception&) {
+    throw InputError("option --" + name + ": '" + value + "' is not an integer");
   }
-  throw InputError("option --" + name + ": '" + value + "' is not an integer");
+  if (number < minimum || number > maximum) {
+    throw InputError("option --" + name + ": must be between " + std::to_string(minimum) + " and " +
+                     std::to_string(maximum) + ", got " + value);
+  }
+  return number;
+}
+
+namespace {
+
+// The kinds a help text is scoped to: "dynamic, creep: end time" gives
+// {dynamic, creep}; "dynamic: time step; creep: the first step" gives both.
+std::set<std::string> help_scopes(const std::string& help, const std::set<std::string>& kinds) {
+  std::set<std::string> scopes;
+  static const std::regex scope_list("(^|; )([a-z_]+(, [a-z_]+)*):");
+  for (auto match = std::sregex_iterator(help.begin(), help.end(), scope_list);
+       match != std::sregex_iterator(); ++match) {
+    std::stringstream words((*match)[2].str());
+    std::set<std::string> found;
+    for (std::string word; std::getline(words, word, ',');) {
+      if (word.front() == ' ') word.erase(0, 1);
+      found.insert(word);
+    }
+    const bool all_kinds = std::all_of(found.begin(), found.end(),
+                                       [&](const std::string& w) { return kinds.count(w) > 0; });
+    if (all_kinds) scopes.insert(found.begin(), found.end());
+  }
+  return scopes;
+}
+
+} // namespace
+
+void Options::reject_inapplicable(const std::string& selector,
+                                  const std::set<std::string>& kinds) const {
+  const std::string kind = text(selector);
+  for (const auto& option : spec_.options) {
+    const std::set<std::string> scopes = help_scopes(option.help, kinds);
+    if (scopes.empty() || scopes.count(kind) || !is_set(option.name)) continue;
+    std::string list;
+    for (const auto& scope : scopes)
+      list += (list.empty() ? "" : " or ") + scope;
+    throw InputError("option --" + option.name + " applies to --" + selector + " " + list +
+                     " only, not to --" + selector + " " + kind);
+  }
 }
 
 bool Options::flag(const std::string& name) const {
