@@ -2,6 +2,7 @@
 #include "fem/petsc_call.hpp"
 
 #include "common/error.hpp"
+#include "common/yaml_input.hpp"
 
 #include <algorithm>
 #include <climits>
@@ -60,6 +61,30 @@ const OptionSpec* lookup(const CommandSpec& spec, const std::string& name) {
   throw InputError(message + "; see `sartor " + spec.name + " --help`");
 }
 
+// PETSc's YAML options are scalars, in mappings for prefixes; it answers a
+// list with a traceback.
+void reject_lists(const YAML::Node& node, const std::string& path) {
+  if (!node.IsMap()) return;
+  for (const auto& entry : node) {
+    if (entry.second.IsSequence()) {
+      throw InputError(path, entry.second.Mark().line + 1,
+                       "option '" + entry.first.Scalar() +
+                           "': a list is not an option value (write a,b,c)");
+    }
+    reject_lists(entry.second, path);
+  }
+}
+
+// PETSc reads a YAML case itself, with a traceback and no line for a syntax
+// error, and lets a repeated key win silently: read here first.
+void check_case_file(const CommandSpec& spec, const std::string& path) {
+  try {
+    reject_lists(load_yaml_input(path, "case file"), path);
+  } catch (const InputError& error) {
+    throw InputError("sartor " + spec.name + ": " + error.what());
+  }
+}
+
 } // namespace
 
 ParsedCommandLine parse_command_line(const CommandSpec& spec, const std::string& program,
@@ -99,6 +124,9 @@ ParsedCommandLine parse_command_line(const CommandSpec& spec, const std::string&
                i + 1 < arguments.size() && !std::ifstream(arguments[i + 1])) {
       throw InputError("sartor " + spec.name + ": " + arguments[i + 1] +
                        ": cannot open options file (" + argument + ")");
+    } else if (argument == "-options_file_yaml" && i + 1 < arguments.size()) {
+      check_case_file(spec, arguments[i + 1]);
+      parsed.petsc_arguments.insert(parsed.petsc_arguments.end(), {argument, arguments[++i]});
     } else if (argument.size() > 1 && argument[0] == '-') {
       // A PETSc option; a following word that is not an option is its value.
       parsed.petsc_arguments.push_back(argument);
@@ -119,6 +147,7 @@ ParsedCommandLine parse_command_line(const CommandSpec& spec, const std::string&
     if (!std::ifstream(file)) {
       throw InputError("sartor " + spec.name + ": " + file + ": cannot open case file");
     }
+    check_case_file(spec, file);
     parsed.petsc_arguments.insert(parsed.petsc_arguments.begin() + 1, {"-options_file_yaml", file});
   }
   return parsed;

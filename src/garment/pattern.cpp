@@ -2,6 +2,7 @@
 
 #include "common/csv.hpp"
 #include "common/error.hpp"
+#include "common/json_input.hpp"
 #include "material/fabric.hpp"
 
 #include <Eigen/Geometry>
@@ -790,12 +791,7 @@ void read_packs(const Node& root, Pattern& pattern, double scale) {
 } // namespace
 
 Pattern parse_pattern(const std::string& text, const std::string& source) {
-  json document;
-  try {
-    document = json::parse(text);
-  } catch (const json::parse_error& error) {
-    throw InputError(source + ": not valid JSON: " + error.what());
-  }
+  const json document = parse_json_input(text, source);
   const Node root{document, "", source};
   root.object();
   root.only_keys({"format", "version", "name", "units", "tolerance", "panels", "packs"});
