@@ -19,6 +19,50 @@ void check_mesh_size(double triangles, int refinements, const std::string& what)
   throw InputError(message.str());
 }
 
+void check_time_divisions(double span, const std::string& span_option, double step,
+                          const std::string& step_option) {
+  if (step <= 0.0 || span / step <= max_time_divisions) return;
+  std::ostringstream message;
+  message << "option --" << step_option << ": " << step << " s divides --" << span_option << " ("
+          << span << " s) into " << span / step << " parts, more than the " << max_time_divisions
+          << " a run may have";
+  throw InputError(message.str());
+}
+
+void check_simulated_time(double time, const std::string& option) {
+  if (time <= max_simulated_time) return;
+  std::ostringstream message;
+  message << "option --" << option << ": " << time << " s is longer than the " << max_simulated_time
+          << " s (300 years) a run may simulate";
+  throw InputError(message.str());
+}
+
+void check_panel_mesh_size(const garment::Pattern& pattern, double edge_length) {
+  double triangles = 0.0;
+  for (const garment::Panel& panel : pattern.panels) {
+    Eigen::AlignedBox2d box;
+    double perimeter = 0.0; // a curve is no longer than its control polygon
+    for (const garment::OutlineLine& line : panel.outline) {
+      const auto& points = line.curve.points;
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        box.extend(points[i]);
+        if (i > 0) perimeter += (points[i] - points[i - 1]).norm();
+      }
+    }
+    // Equilateral triangles of side edge_length fill the box, and the
+    // boundary adds a row of them.
+    const double area = box.isEmpty() ? 0.0 : box.sizes().prod();
+    triangles +=
+        area / (0.25 * std::sqrt(3.0) * edge_length * edge_length) + 2.0 * perimeter / edge_length;
+  }
+  if (triangles <= double(max_case_triangles)) return;
+  std::ostringstream message;
+  message << "option --edge-length: " << edge_length << " m would mesh the panels of "
+          << pattern.source << " into up to " << triangles << " triangles, more than the "
+          << max_case_triangles << " a case may have; give a longer edge length";
+  throw InputError(message.str());
+}
+
 namespace {
 
 bool is_flat(const TriangleMesh& mesh) {

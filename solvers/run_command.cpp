@@ -569,6 +569,9 @@ DynamicOptions dynamic_options(const Options& options) {
   dynamic.kinetic_damping = options.flag("kinetic-damping");
   dynamic.rest_tolerance = options.nonnegative_real("rest-tolerance");
   dynamic.output_interval = options.nonnegative_real("output-interval");
+  check_simulated_time(dynamic.time_end, "time-end");
+  check_time_divisions(dynamic.time_end, "time-end", dynamic.time_step, "time-step");
+  check_time_divisions(dynamic.time_end, "time-end", dynamic.output_interval, "output-interval");
   dynamic.settle = options.flag("settle");
   dynamic.print_progress = true;
   return dynamic;
