@@ -77,8 +77,29 @@ void reject_lists(const YAML::Node& node, const std::string& path) {
 
 // PETSc reads a YAML case itself, with a traceback and no line for a syntax
 // error, and lets a repeated key win silently: read here first.
+// PETSc's YAML reader stops with a traceback on bytes that are not UTF-8.
+void reject_non_utf8(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  long line = 1;
+  int continuation = 0; // bytes still expected in the current character
+  for (char c; in.get(c);) {
+    const auto byte = static_cast<unsigned char>(c);
+    const bool follows = (byte & 0xC0) == 0x80;
+    if (continuation > 0 ? !follows : (follows || byte >= 0xF8 || byte == 0)) {
+      throw InputError(path, line, "not UTF-8 text (byte " + std::to_string(byte) + ")");
+    }
+    continuation = continuation > 0 ? continuation - 1
+                   : byte >= 0xF0   ? 3
+                   : byte >= 0xE0   ? 2
+                   : byte >= 0xC0   ? 1
+                                    : 0;
+    if (byte == '\n') ++line;
+  }
+}
+
 void check_case_file(const CommandSpec& spec, const std::string& path) {
   try {
+    reject_non_utf8(path);
     reject_lists(load_yaml_input(path, "case file"), path);
   } catch (const InputError& error) {
     throw InputError("sartor " + spec.name + ": " + error.what());
