@@ -63,6 +63,13 @@ void check_panel_mesh_size(const garment::Pattern& pattern, double edge_length) 
   throw InputError(message.str());
 }
 
+void reject_unmet_residual(double force_scale, StaticReport* report) {
+  const double met = std::max(1e-6 * report->initial_residual_norm, 1e-9 * force_scale);
+  if (!report->converged || report->final_residual_norm <= met) return;
+  report->converged = false;
+  report->reason += " with the residual above its tolerance";
+}
+
 namespace {
 
 bool is_flat(const TriangleMesh& mesh) {

@@ -4,6 +4,7 @@
 // option instead of a hang, an exhausted memory or a solver's traceback.
 
 #include "fem/cloth_problem.hpp"
+#include "fem/statics.hpp"
 #include "garment/pattern.hpp"
 #include "mesh/triangle_mesh.hpp"
 #include "solvers/cli.hpp"
@@ -40,6 +41,15 @@ void check_mesh_size(double triangles, int refinements, const std::string& what)
 // --edge-length) would give more than max_case_triangles; bounded from the
 // curves' control points, before any mesher runs.
 void check_panel_mesh_size(const garment::Pattern& pattern, double edge_length);
+
+// PETSc calls a stop on a small Newton step (CONVERGED_SNORM_RELATIVE)
+// converged whatever the residual: with a singular tangent (nothing pinned, a
+// free panel) or a load far beyond the cloth's strength the residual stays
+// where it started. A static solve whose final residual is not six orders
+// below its initial one (nor below 1e-9 of the membrane force scale
+// `force_scale`, N, for a solve that starts near equilibrium) is marked not
+// converged, its reason saying so.
+void reject_unmet_residual(double force_scale, StaticReport* report);
 
 // A flat membrane without bending has no stiffness out of its plane at the
 // flat start: Newton's tangent is singular (static and quasi-static creep

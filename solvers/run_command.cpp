@@ -114,7 +114,9 @@ const std::vector<OptionSpec>& case_option_specs() {
       {"time-end", "S", "1", "dynamic, creep: end time, s"},
       {"time-step", "S", "0.01",
        "dynamic: time step, s (halved up to 8 times on failure); creep: the first step"},
-      {"damping", "1/S", "0", "dynamic: mass-proportional damping alpha (force -alpha M v), 1/s"},
+      {"damping", "1/S", "0",
+       "dynamic, creep: mass-proportional damping alpha (force -alpha M v), 1/s (creep: with "
+       "--creep-dynamics)"},
       {"kinetic-damping", "", "", "dynamic: zero every velocity at each kinetic-energy peak"},
       {"rest-tolerance", "R", "0",
        "dynamic: stop once the static residual is below R times its initial value (0: never)"},
@@ -729,6 +731,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
     result.creep = std::move(run);
   } else {
     SartorPetscCall(solve_static(problem, x, solve, &result.report));
+    reject_unmet_residual(problem.force_scale(), &result.report);
     result.converged = result.report.converged;
     result.solve_seconds = result.report.solve_seconds;
   }
