@@ -661,6 +661,9 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   }
   const bool dynamic = analysis == "dynamic";
   const bool creep = analysis == "creep";
+  if (!dynamic && !creep && options.is_set("pin-release")) {
+    throw InputError("option --pin-release: pins let go in time; give --analysis dynamic or creep");
+  }
   options.reject_inapplicable("analysis", {"static", "dynamic", "creep"});
   reject_flat_membrane_without_bending(options, mesh, materials, pinned);
   if ((dynamic || creep) && problem.pin_motion != Eigen::Vector3d::Zero()) {
