@@ -2,6 +2,7 @@
 
 #include "common/csv.hpp"
 #include "common/error.hpp"
+#include "common/json_input.hpp"
 #include "common/output.hpp"
 
 #include <nlohmann/json.hpp>
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 
@@ -137,7 +139,9 @@ std::vector<int> vertex_list(const nlohmann::json& value, const std::string& whe
   std::vector<int> vertices;
   for (const auto& item : value) {
     if (!item.is_number_integer()) {
-      throw InputError(where + ": " + item.dump() + " is not a vertex index (an integer)");
+      throw InputError(where + ": " +
+                       item.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) +
+                       " is not a vertex index (an integer)");
     }
     vertices.push_back(item.get<int>());
   }
@@ -195,14 +199,17 @@ void check_seams(const TriangleMesh& mesh, const std::vector<Seam>& seams,
 std::vector<Seam> read_seams(const std::string& path, const TriangleMesh& mesh) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open the seam file");
-  nlohmann::json document;
-  try {
-    document = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& error) {
-    throw InputError(path + ": not valid JSON: " + error.what());
-  }
+  const std::string text(std::istreambuf_iterator<char>(in), {});
+  nlohmann::json document = parse_json_input(text, path);
   if (!document.is_object() || !document.contains("seams") || !document["seams"].is_array()) {
     throw InputError(path + ": expected an object {\"seams\": [...]}");
+  }
+  // A seam joins two boundary lines: more seams than boundary edges cannot be.
+  const std::size_t most_seams = std::max<std::size_t>(1, mesh.triangle_count());
+  if (document["seams"].size() > most_seams) {
+    throw InputError(path + ": " + std::to_string(document["seams"].size()) +
+                     " seams, more than the mesh's " + std::to_string(most_seams) +
+                     " triangles could have");
   }
   std::vector<Seam> seams;
   for (const auto& entry : document["seams"]) {

@@ -2,10 +2,14 @@
 #include "fem/petsc_call.hpp"
 
 #include "common/error.hpp"
+#include "common/yaml_input.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <fstream>
+#include <regex>
+#include <set>
 #include <sstream>
 
 namespace sartor {
@@ -57,6 +61,51 @@ const OptionSpec* lookup(const CommandSpec& spec, const std::string& name) {
   throw InputError(message + "; see `sartor " + spec.name + " --help`");
 }
 
+// PETSc's YAML options are scalars, in mappings for prefixes; it answers a
+// list with a traceback.
+void reject_lists(const YAML::Node& node, const std::string& path) {
+  if (!node.IsMap()) return;
+  for (const auto& entry : node) {
+    if (entry.second.IsSequence()) {
+      throw InputError(path, entry.second.Mark().line + 1,
+                       "option '" + entry.first.Scalar() +
+                           "': a list is not an option value (write a,b,c)");
+    }
+    reject_lists(entry.second, path);
+  }
+}
+
+// PETSc reads a YAML case itself, with a traceback and no line for a syntax
+// error, and lets a repeated key win silently: read here first.
+// PETSc's YAML reader stops with a traceback on bytes that are not UTF-8.
+void reject_non_utf8(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  long line = 1;
+  int continuation = 0; // bytes still expected in the current character
+  for (char c; in.get(c);) {
+    const auto byte = static_cast<unsigned char>(c);
+    const bool follows = (byte & 0xC0) == 0x80;
+    if (continuation > 0 ? !follows : (follows || byte >= 0xF8 || byte == 0)) {
+      throw InputError(path, line, "not UTF-8 text (byte " + std::to_string(byte) + ")");
+    }
+    continuation = continuation > 0 ? continuation - 1
+                   : byte >= 0xF0   ? 3
+                   : byte >= 0xE0   ? 2
+                   : byte >= 0xC0   ? 1
+                                    : 0;
+    if (byte == '\n') ++line;
+  }
+}
+
+void check_case_file(const CommandSpec& spec, const std::string& path) {
+  try {
+    reject_non_utf8(path);
+    reject_lists(load_yaml_input(path, "case file"), path);
+  } catch (const InputError& error) {
+    throw InputError("sartor " + spec.name + ": " + error.what());
+  }
+}
+
 } // namespace
 
 ParsedCommandLine parse_command_line(const CommandSpec& spec, const std::string& program,
@@ -96,6 +145,9 @@ ParsedCommandLine parse_command_line(const CommandSpec& spec, const std::string&
                i + 1 < arguments.size() && !std::ifstream(arguments[i + 1])) {
       throw InputError("sartor " + spec.name + ": " + arguments[i + 1] +
                        ": cannot open options file (" + argument + ")");
+    } else if (argument == "-options_file_yaml" && i + 1 < arguments.size()) {
+      check_case_file(spec, arguments[i + 1]);
+      parsed.petsc_arguments.insert(parsed.petsc_arguments.end(), {argument, arguments[++i]});
     } else if (argument.size() > 1 && argument[0] == '-') {
       // A PETSc option; a following word that is not an option is its value.
       parsed.petsc_arguments.push_back(argument);
@@ -116,6 +168,7 @@ ParsedCommandLine parse_command_line(const CommandSpec& spec, const std::string&
     if (!std::ifstream(file)) {
       throw InputError("sartor " + spec.name + ": " + file + ": cannot open case file");
     }
+    check_case_file(spec, file);
     parsed.petsc_arguments.insert(parsed.petsc_arguments.begin() + 1, {"-options_file_yaml", file});
   }
   return parsed;
@@ -159,15 +212,15 @@ bool Options::is_set(const std::string& name) const {
 
 std::string Options::text(const std::string& name) const {
   const OptionSpec& option = find(name);
-  char buffer[PETSC_MAX_PATH_LEN] = "";
+  // The value in full: PETSc's string getter would cut it at 4,095 characters.
+  const char* value = nullptr;
   PetscBool set = PETSC_FALSE;
-  SartorPetscCall(PetscOptionsGetString(nullptr, nullptr, database_key(name).c_str(), buffer,
-                                        sizeof buffer, &set));
+  SartorPetscCall(PetscOptionsFindPair(nullptr, nullptr, database_key(name).c_str(), &value, &set));
   if (!set) return option.fallback;
-  if (buffer[0] == '\0' && !option.value_name.empty()) {
+  if ((!value || value[0] == '\0') && !option.value_name.empty()) {
     throw InputError("option --" + name + " needs a value (" + option.value_name + ")");
   }
-  return buffer;
+  return value ? value : "";
 }
 
 double Options::real(const std::string& name) const {
@@ -194,14 +247,64 @@ double Options::nonnegative_real(const std::string& name) const {
 }
 
 long Options::integer(const std::string& name) const {
+  return integer_in(name, INT_MIN, INT_MAX);
+}
+
+long Options::integer_in(const std::string& name, long minimum, long maximum) const {
   const std::string value = text(name);
+  long number = 0;
   try {
     std::size_t used = 0;
-    const long number = std::stol(value, &used);
-    if (used == value.size()) return number;
+    number = std::stol(value, &used);
+    if (used != value.size()) throw std::invalid_argument(value);
+  } catch (const std::out_of_range&) {
+    number = value.find('-') == std::string::npos ? LONG_MAX : LONG_MIN;
   } catch (const std::exception&) {
+    throw InputError("option --" + name + ": '" + value + "' is not an integer");
   }
-  throw InputError("option --" + name + ": '" + value + "' is not an integer");
+  if (number < minimum || number > maximum) {
+    throw InputError("option --" + name + ": must be between " + std::to_string(minimum) + " and " +
+                     std::to_string(maximum) + ", got " + value);
+  }
+  return number;
+}
+
+namespace {
+
+// The kinds a help text is scoped to: "dynamic, creep: end time" gives
+// {dynamic, creep}; "dynamic: time step; creep: the first step" gives both.
+std::set<std::string> help_scopes(const std::string& help, const std::set<std::string>& kinds) {
+  std::set<std::string> scopes;
+  static const std::regex scope_list("(^|; )([a-z_]+(, [a-z_]+)*):");
+  for (auto match = std::sregex_iterator(help.begin(), help.end(), scope_list);
+       match != std::sregex_iterator(); ++match) {
+    std::stringstream words((*match)[2].str());
+    std::set<std::string> found;
+    for (std::string word; std::getline(words, word, ',');) {
+      if (word.front() == ' ') word.erase(0, 1);
+      found.insert(word);
+    }
+    const bool all_kinds = std::all_of(found.begin(), found.end(),
+                                       [&](const std::string& w) { return kinds.count(w) > 0; });
+    if (all_kinds) scopes.insert(found.begin(), found.end());
+  }
+  return scopes;
+}
+
+} // namespace
+
+void Options::reject_inapplicable(const std::string& selector,
+                                  const std::set<std::string>& kinds) const {
+  const std::string kind = text(selector);
+  for (const auto& option : spec_.options) {
+    const std::set<std::string> scopes = help_scopes(option.help, kinds);
+    if (scopes.empty() || scopes.count(kind) || !is_set(option.name)) continue;
+    std::string list;
+    for (const auto& scope : scopes)
+      list += (list.empty() ? "" : " or ") + scope;
+    throw InputError("option --" + option.name + " applies to --" + selector + " " + list +
+                     " only, not to --" + selector + " " + kind);
+  }
 }
 
 bool Options::flag(const std::string& name) const {

@@ -10,6 +10,7 @@
 
 #include <petscsys.h>
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,12 @@ public:
   double nonnegative_real(const std::string& name) const;
   long integer(const std::string& name) const;
   bool flag(const std::string& name) const;
+  // An integer in [minimum, maximum]; the message names the option and the range.
+  long integer_in(const std::string& name, long minimum, long maximum) const;
+  // Options whose help is scoped to some of the `kinds` of `selector`
+  // ("dynamic: ...", "dynamic, creep: ...", or "...; creep: ..." further on) do
+  // nothing for another kind: giving one is an error, not silently ignored.
+  void reject_inapplicable(const std::string& selector, const std::set<std::string>& kinds) const;
   // The options as given (or defaulted), for the run's metadata.
   std::vector<std::pair<std::string, std::string>> effective() const;
 

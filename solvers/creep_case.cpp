@@ -4,6 +4,7 @@
 #include "common/error.hpp"
 #include "fem/petsc_call.hpp"
 #include "material/fabric.hpp"
+#include "solvers/case_checks.hpp"
 #include "solvers/commands.hpp"
 
 #include <algorithm>
@@ -74,6 +75,8 @@ CreepOptions creep_options(const Options& options) {
   creep.dynamic = options.flag("creep-dynamics");
   creep.damping = options.nonnegative_real("damping");
   creep.output_interval = options.nonnegative_real("output-interval");
+  check_simulated_time(creep.time_end, "time-end");
+  check_time_divisions(creep.time_end, "time-end", creep.output_interval, "output-interval");
   creep.equilibrium.load_steps = int(std::max(1L, options.integer("load-steps")));
   creep.print_progress = true;
   return creep;
@@ -159,6 +162,8 @@ CreepRunResult run_creep_case(const Options& options, ClothProblem& problem, Vec
   CreepRestart restart;
   restart.resume = resume ? &*resume : nullptr;
   restart.checkpoint_interval = checkpointing.interval;
+  check_time_divisions(options.positive_real("time-end"), "time-end", checkpointing.interval,
+                       "checkpoint-interval");
   restart.write = [&](const CreepStepReport& step, Vec state, Vec velocity,
                       double next_step) -> PetscErrorCode {
     RunCheckpoint checkpoint;

@@ -5,6 +5,7 @@
 #include "common/output.hpp"
 #include "fem/petsc_call.hpp"
 #include "material/strip_creep.hpp"
+#include "solvers/case_checks.hpp"
 #include "solvers/commands.hpp"
 
 #include <nlohmann/json.hpp>
@@ -57,6 +58,21 @@ const CommandSpec& creep_command() {
 }
 
 namespace {
+
+// A strain past the range of doubles (a tension of 1e300 N/m, a modulus of
+// 1e-300) would be written as inf: said instead, with the values that did it.
+void reject_overflow(const std::vector<StripState>& rows, const std::string& label) {
+  for (const StripState& r : rows) {
+    for (double value :
+         {r.tension, r.strain_total, r.strain_elastic, r.strain_viscoelastic, r.strain_permanent}) {
+      if (std::isfinite(value)) continue;
+      throw InputError(label + ": the strain at t = " + format_number(r.time) + " s under " +
+                       format_number(r.tension) +
+                       " N/m is not a finite number; check the load and the moduli and their "
+                       "units");
+    }
+  }
+}
 
 std::string csv_text(const std::vector<StripState>& rows) {
   std::ostringstream out;
@@ -157,11 +173,16 @@ int run_creep(const Invocation& invocation) {
     }
     return TensionHistory::creep_recovery(tension, load_duration, recovery_duration);
   }();
+  check_simulated_time(history.end_time(), "load-duration");
+  if (options.is_set("sample-interval")) {
+    check_time_divisions(history.end_time(), "load-duration",
+                         options.positive_real("sample-interval"), "sample-interval");
+  }
   const std::vector<double> times =
       options.is_set("sample-interval")
           ? uniform_sample_times(history, options.positive_real("sample-interval"))
           : log_sample_times(history, options.positive_real("first-sample"),
-                             int(std::max(1L, options.integer("samples-per-decade"))));
+                             int(options.integer_in("samples-per-decade", 1, 10000)));
 
   const std::string directory = options.text("output");
   if (is_root()) make_output_directory(directory);
@@ -170,6 +191,7 @@ int run_creep(const Invocation& invocation) {
   summary["runs"] = nlohmann::json::array();
   for (const auto& choice : choices) {
     const std::vector<StripState> rows = simulate_strip(choice.material(), history, times);
+    reject_overflow(rows, choice.label());
     const std::string csv =
         choices.size() == 1 ? "creep.csv" : "creep_" + file_label(choice) + ".csv";
     if (is_root()) write_file_atomically(directory + "/" + csv, csv_text(rows));

@@ -403,6 +403,9 @@ int run_drape(const Invocation& invocation) {
         {"drape_setup", result.setup_seconds},
         {"total", total_seconds}}}};
   write_case_results(directory, result, summary, labels);
+  // The seams file is drape's own (the pattern's seams, written above): the
+  // echoed options re-run the job, and drape refuses a --seams-file given to it.
+  SartorPetscCall(PetscOptionsClearValue(nullptr, "-seams_file"));
   write_petsc_options(directory);
 
   SartorPetscCall(PetscPrintf(

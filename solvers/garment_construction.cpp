@@ -10,6 +10,7 @@
 #include "garment/pattern_svg.hpp"
 #include "garment/tagcon_svg.hpp"
 #include "mesh/mannequin.hpp"
+#include "solvers/case_checks.hpp"
 #include "solvers/commands.hpp"
 
 #include <nlohmann/json.hpp>
@@ -56,6 +57,7 @@ ConstructedGarment construct_garment(const std::string& path,
   constructed.path = path;
   constructed.mesh_options = mesh_options;
   constructed.pattern = garment::read_pattern(path);
+  check_panel_mesh_size(constructed.pattern, mesh_options.edge_length);
   using Clock = std::chrono::steady_clock;
   const auto body_start = Clock::now();
   const Mannequin& body = default_mannequin();

@@ -7,11 +7,14 @@
 
 #include <petscsys.h>
 
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <set>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 namespace {
 
@@ -96,6 +99,27 @@ PetscErrorCode warn_about_unused_options() {
   PetscFunctionReturn(0);
 }
 
+// An interrupted run ends with a one-line note and the status of the signal
+// (128 + number), not PETSc's handler, which prints a traceback as for a
+// crash and calls MPI_Abort. Files are written atomically, so what was written
+// before the signal is intact.
+extern "C" void end_on_signal(int number) {
+  static const char note[] = "sartor: interrupted\n";
+  if (number != SIGPIPE) {
+    const ssize_t ignored = ::write(STDERR_FILENO, note, sizeof note - 1);
+    static_cast<void>(ignored);
+  }
+  std::signal(number, SIG_DFL);
+  std::raise(number);
+}
+
+// A closed pipe (`sartor creep | head -1`), Ctrl-C and kill end the program
+// quietly; PETSc keeps its handler for crashes (SIGSEGV, SIGFPE), which are bugs.
+void install_signal_handlers() {
+  for (int number : {SIGPIPE, SIGINT, SIGTERM, SIGHUP})
+    std::signal(number, end_on_signal);
+}
+
 int run_with_petsc(const Command& command, sartor::ParsedCommandLine parsed,
                    std::vector<std::string> arguments) {
   std::vector<char*> petsc_argv;
@@ -106,6 +130,7 @@ int run_with_petsc(const Command& command, sartor::ParsedCommandLine parsed,
   char** argv = petsc_argv.data();
   PetscCall(PetscInitialize(&argc, &argv, nullptr, nullptr));
   PetscCall(PetscPushErrorHandler(report_petsc_error, nullptr));
+  install_signal_handlers();
 
   int status = 1;
   try {

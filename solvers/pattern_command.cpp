@@ -7,6 +7,7 @@
 #include "garment/pattern_svg.hpp"
 #include "mesh/obj.hpp"
 #include "mesh/panel_mesher.hpp"
+#include "solvers/case_checks.hpp"
 #include "solvers/commands.hpp"
 
 #include <nlohmann/json.hpp>
@@ -76,6 +77,7 @@ int run_pattern(const Invocation& invocation) {
     throw InputError("option --min-angle: must be <= 33 degrees, got " + options.text("min-angle"));
 
   const garment::Pattern pattern = garment::read_pattern(path);
+  if (mesh) check_panel_mesh_size(pattern, mesh_options.edge_length);
   SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s: %zu panels in %zu packs, valid\n",
                               path.c_str(), pattern.panels.size(), pattern.packs.size()));
   if (is_root()) {

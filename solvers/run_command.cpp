@@ -11,6 +11,7 @@
 #include "material/fabric.hpp"
 #include "mesh/generators.hpp"
 #include "mesh/obj.hpp"
+#include "solvers/case_checks.hpp"
 #include "solvers/cloth_case.hpp"
 #include "solvers/commands.hpp"
 
@@ -22,8 +23,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <map>
-#include <memory>
 #include <sstream>
 
 namespace sartor {
@@ -116,7 +117,9 @@ const std::vector<OptionSpec>& case_option_specs() {
       {"time-end", "S", "1", "dynamic, creep: end time, s"},
       {"time-step", "S", "0.01",
        "dynamic: time step, s (halved up to 8 times on failure); creep: the first step"},
-      {"damping", "1/S", "0", "dynamic: mass-proportional damping alpha (force -alpha M v), 1/s"},
+      {"damping", "1/S", "0",
+       "dynamic, creep: mass-proportional damping alpha (force -alpha M v), 1/s (creep: with "
+       "--creep-dynamics)"},
       {"kinetic-damping", "", "", "dynamic: zero every velocity at each kinetic-energy peak"},
       {"rest-tolerance", "R", "0",
        "dynamic: stop once the static residual is below R times its initial value (0: never)"},
@@ -200,6 +203,17 @@ int count_option(const Options& options, const std::string& name, long minimum) 
   return int(value);
 }
 
+// The triangles the generated --mesh KIND will have, before refinement (0 for
+// a mesh read from a file), computed without building it.
+double generated_triangles(const Options& options, const std::string& kind) {
+  const auto count = [&](const char* name) { return double(count_option(options, name, 0)); };
+  if (kind == "rectangle") return 2.0 * count("mesh-nx") * count("mesh-ny");
+  if (kind == "disk" || kind == "sphere_cap")
+    return 6.0 * count("mesh-rings") * count("mesh-rings");
+  if (kind == "cylinder_band") return 2.0 * count("mesh-segments") * count("mesh-rows");
+  return 0.0;
+}
+
 // Moves the boundary vertices of a disk of `radius` centred at the origin
 // radially onto its circle, in position and in every corner's uv (disk: uv = x, y).
 void snap_to_circle(TriangleMesh& cloth, double radius) {
@@ -225,6 +239,9 @@ void snap_to_circle(TriangleMesh& cloth, double radius) {
 TriangleMesh build_mesh(const Options& options, int extra_refinements, int* refinements,
                         const TriangleMesh* given) {
   const std::string kind = options.text("mesh");
+  const int refine = count_option(options, "mesh-refine", 0);
+  check_mesh_size(generated_triangles(options, kind), refine + extra_refinements,
+                  "options --mesh-* and --mesh-refine");
   TriangleMesh cloth;
   if (given) {
     cloth = *given;
@@ -258,7 +275,9 @@ TriangleMesh build_mesh(const Options& options, int extra_refinements, int* refi
     throw InputError("option --mesh-snap-boundary applies to --mesh disk only (the mesh is " +
                      kind + ")");
   }
-  *refinements = count_option(options, "mesh-refine", 0) + extra_refinements;
+  check_mesh_size(double(cloth.triangle_count()), refine + extra_refinements,
+                  "option --mesh-refine");
+  *refinements = refine + extra_refinements;
   for (int level = *refinements; level > 0; --level) {
     cloth = mesh::refine(cloth);
     if (snap) snap_to_circle(cloth, options.positive_real("mesh-radius"));
@@ -569,6 +588,9 @@ DynamicOptions dynamic_options(const Options& options) {
   dynamic.kinetic_damping = options.flag("kinetic-damping");
   dynamic.rest_tolerance = options.nonnegative_real("rest-tolerance");
   dynamic.output_interval = options.nonnegative_real("output-interval");
+  check_simulated_time(dynamic.time_end, "time-end");
+  check_time_divisions(dynamic.time_end, "time-end", dynamic.time_step, "time-step");
+  check_time_divisions(dynamic.time_end, "time-end", dynamic.output_interval, "output-interval");
   dynamic.settle = options.flag("settle");
   dynamic.print_progress = true;
   return dynamic;
@@ -656,15 +678,14 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   }
   const bool dynamic = analysis == "dynamic";
   const bool creep = analysis == "creep";
-  if ((dynamic || creep) && problem.pin_motion != Eigen::Vector3d::Zero()) {
-    throw InputError("option --pin-move ramps the pins with the load in statics; with --analysis " +
-                     analysis + " give a history in time: --pin-motion \"0:0,0,0; T:DX,DY,DZ\"");
-  }
   if (!dynamic && !creep && options.is_set("pin-release")) {
     throw InputError("option --pin-release: pins let go in time; give --analysis dynamic or creep");
   }
-  if (!creep && !checkpointing.restart_file.empty()) {
-    throw InputError("option --restart: only --analysis creep runs resume from checkpoints");
+  options.reject_inapplicable("analysis", {"static", "dynamic", "creep"});
+  reject_flat_membrane_without_bending(options, mesh, materials, pinned);
+  if ((dynamic || creep) && problem.pin_motion != Eigen::Vector3d::Zero()) {
+    throw InputError("option --pin-move ramps the pins with the load in statics; with --analysis " +
+                     analysis + " give a history in time: --pin-motion \"0:0,0,0; T:DX,DY,DZ\"");
   }
   if (dynamic && material.areal_density <= 0.0) {
     throw InputError("option --density: --analysis dynamic needs a positive areal density, got " +
@@ -730,6 +751,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
     result.creep = std::move(run);
   } else {
     SartorPetscCall(solve_static(problem, x, solve, &result.report));
+    reject_unmet_residual(problem.force_scale(), &result.report);
     result.converged = result.report.converged;
     result.solve_seconds = result.report.solve_seconds;
   }
@@ -911,12 +933,30 @@ void write_case_results(const std::string& directory, const CaseResult& result,
   write_json(directory + "/summary.json", summary);
 }
 
+// PETSc lists one option a line, `-name value`, but reads a file back word by
+// word: a value with spaces (--body "mannequin mu=0.3") is quoted so that
+// `-options_file petsc_options.txt` re-runs the job.
+std::string quote_option_values(const std::string& path) {
+  std::ifstream lines(path);
+  std::string quoted;
+  for (std::string line; std::getline(lines, line);) {
+    const std::size_t space = line.find(' ');
+    if (line.rfind('-', 0) == 0 && space != std::string::npos &&
+        line.find_first_of(" \t", space + 1) != std::string::npos) {
+      line = line.substr(0, space) + " \"" + line.substr(space + 1) + "\"";
+    }
+    quoted += line + "\n";
+  }
+  return quoted;
+}
+
 void write_petsc_options(const std::string& directory) {
+  const std::string path = directory + "/petsc_options.txt";
   PetscViewer viewer = nullptr;
-  SartorPetscCall(
-      PetscViewerASCIIOpen(PETSC_COMM_WORLD, (directory + "/petsc_options.txt").c_str(), &viewer));
+  SartorPetscCall(PetscViewerASCIIOpen(PETSC_COMM_WORLD, path.c_str(), &viewer));
   SartorPetscCall(PetscOptionsView(nullptr, viewer));
   SartorPetscCall(PetscViewerDestroy(&viewer));
+  if (is_root()) write_file_atomically(path, quote_option_values(path));
 }
 
 CaseStepObserver series_writer(const std::string& directory, const ClothOutputLabels& labels) {

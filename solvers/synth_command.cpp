@@ -89,9 +89,8 @@ int run_synth(const Invocation& invocation) {
                              : options.positive_real("force") / options.positive_real("width");
   const double load_duration = options.positive_real("load-duration");
   const double recovery_duration = options.positive_real("recovery-duration");
-  const long samples = options.integer("samples");
-  if (samples < 10)
-    throw InputError("option --samples: need at least 10, got " + options.text("samples"));
+  // At most 1e7 rows (some 300 MB of CSV).
+  const long samples = options.integer_in("samples", 10, 10'000'000);
   const double noise = options.nonnegative_real("noise");
   const long seed = options.integer("seed");
 

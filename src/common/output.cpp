@@ -38,7 +38,10 @@ void write_file_atomically(const std::string& path, const std::string& content) 
 }
 
 void write_json(const std::string& path, const nlohmann::json& value) {
-  write_file_atomically(path, value.dump(2) + "\n");
+  // Text from inputs (a fabric's or a file's name) need not be UTF-8, which
+  // JSON requires: an invalid byte is written as U+FFFD rather than failing.
+  write_file_atomically(path,
+                        value.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 } // namespace sartor

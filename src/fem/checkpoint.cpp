@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
@@ -16,7 +17,31 @@ namespace sartor {
 
 namespace {
 
-constexpr const char* format_tag = "sartor-checkpoint 1";
+constexpr const char* format_tag = "sartor-checkpoint 2";
+
+// FNV-1a over bytes: each byte is xor-ed into the state, which is then
+// multiplied by an odd number (a bijection modulo 2^64), so a change of any
+// one byte, a flipped bit included, always changes the sum.
+class Checksum {
+public:
+  void add(const void* data, std::size_t size) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) {
+      state_ ^= bytes[i];
+      state_ *= 0x100000001b3ULL;
+    }
+  }
+  void add(double value) { add(&value, sizeof value); }
+  void add(const std::vector<double>& values) {
+    const std::uint64_t count = values.size();
+    add(&count, sizeof count);
+    add(values.data(), values.size() * sizeof(double));
+  }
+  std::uint64_t value() const { return state_; }
+
+private:
+  std::uint64_t state_ = 0xcbf29ce484222325ULL;
+};
 
 void write_set(hid_t file, const char* name, hid_t type, const void* data,
                const std::vector<hsize_t>& dims, const std::string& path) {
@@ -31,6 +56,12 @@ void write_set(hid_t file, const char* name, hid_t type, const void* data,
 void write_rows(hid_t file, const char* name, const std::vector<double>& values,
                 std::size_t columns, const std::string& path) {
   write_set(file, name, H5T_NATIVE_DOUBLE, values.data(), {values.size() / columns, columns}, path);
+}
+
+std::size_t file_bytes(hid_t file) {
+  hsize_t size = 0;
+  H5Fget_filesize(file, &size);
+  return std::size_t(size);
 }
 
 // The dataset's values and its dimensions; `required` false: empty when absent.
@@ -52,6 +83,9 @@ std::vector<double> read_rows(hid_t file, const char* name, std::size_t columns,
   if (set.get() < 0 || !shaped) {
     throw InputError(path + ": dataset " + name + " does not have " + std::to_string(columns) +
                      " column(s)");
+  }
+  if (count > file_bytes(file) / sizeof(double)) {
+    throw InputError(path + ": dataset " + name + " claims more values than the file holds");
   }
   std::vector<double> values(count);
   if (count > 0 &&
@@ -93,6 +127,20 @@ std::string read_format(hid_t file) {
   return text.substr(0, text.find('\0'));
 }
 
+std::uint64_t read_checksum(hid_t file, const std::string& path) {
+  if (H5Lexists(file, "/checksum", H5P_DEFAULT) <= 0) {
+    throw InputError(path + ": not a complete checkpoint (no dataset /checksum)");
+  }
+  const H5Handle set(H5Dopen2(file, "/checksum", H5P_DEFAULT), H5Dclose);
+  const H5Handle space(H5Dget_space(set.get()), H5Sclose);
+  unsigned long long sum = 0;
+  if (set.get() < 0 || H5Sget_simple_extent_npoints(space.get()) != 1 ||
+      H5Dread(set.get(), H5T_NATIVE_ULLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &sum) < 0) {
+    throw InputError(path + ": cannot read dataset /checksum");
+  }
+  return sum;
+}
+
 // The file's data reach the disk before the rename makes it the checkpoint.
 void flush_to_disk(const std::string& path) {
   const int descriptor = ::open(path.c_str(), O_RDONLY);
@@ -100,6 +148,38 @@ void flush_to_disk(const std::string& path) {
   const int status = ::fsync(descriptor);
   ::close(descriptor);
   if (status != 0) throw InputError(path + ": cannot flush to disk");
+}
+
+std::vector<double> creep_rows(const std::vector<ElementCreep>& creep) {
+  std::vector<double> values;
+  for (const ElementCreep& c : creep) {
+    values.insert(values.end(), {c.warp.viscoelastic, c.warp.permanent, c.weft.viscoelastic,
+                                 c.weft.permanent, c.tension_warp, c.tension_weft});
+  }
+  return values;
+}
+
+std::vector<double> anchor_rows(const std::vector<std::array<double, 8>>& anchors) {
+  std::vector<double> values;
+  for (const auto& row : anchors)
+    values.insert(values.end(), row.begin(), row.end());
+  return values;
+}
+
+// The sum of everything a checkpoint holds, in the order it is written.
+std::uint64_t checksum(const RunCheckpoint& checkpoint) {
+  Checksum sum;
+  sum.add(checkpoint.time);
+  sum.add(checkpoint.next_step);
+  sum.add(checkpoint.load_factor);
+  const long long step = checkpoint.step;
+  sum.add(&step, sizeof step);
+  sum.add(flatten(checkpoint.positions));
+  sum.add(flatten(checkpoint.velocities));
+  sum.add(creep_rows(checkpoint.creep));
+  sum.add(anchor_rows(checkpoint.anchors));
+  sum.add(checkpoint.history.data(), checkpoint.history.size());
+  return sum.value();
 }
 
 } // namespace
@@ -120,16 +200,10 @@ void write_checkpoint(const std::string& path, const RunCheckpoint& checkpoint) 
     if (!checkpoint.velocities.empty()) {
       write_rows(f, "/velocities", flatten(checkpoint.velocities), 3, path);
     }
-    std::vector<double> creep;
-    for (const ElementCreep& c : checkpoint.creep) {
-      creep.insert(creep.end(), {c.warp.viscoelastic, c.warp.permanent, c.weft.viscoelastic,
-                                 c.weft.permanent, c.tension_warp, c.tension_weft});
-    }
-    write_rows(f, "/creep", creep, 6, path);
-    std::vector<double> anchors;
-    for (const auto& row : checkpoint.anchors)
-      anchors.insert(anchors.end(), row.begin(), row.end());
-    write_rows(f, "/anchors", anchors, 8, path);
+    write_rows(f, "/creep", creep_rows(checkpoint.creep), 6, path);
+    write_rows(f, "/anchors", anchor_rows(checkpoint.anchors), 8, path);
+    const unsigned long long sum = checksum(checkpoint);
+    write_set(f, "/checksum", H5T_NATIVE_ULLONG, &sum, {1}, path);
     write_set(f, "/history", H5T_NATIVE_CHAR, checkpoint.history.data(),
               {checkpoint.history.size()}, path);
     const H5Handle string_type(H5Tcopy(H5T_C_S1), H5Tclose);
@@ -171,7 +245,9 @@ RunCheckpoint read_checkpoint(const std::string& path) {
   checkpoint.time = read_scalar(f, "/time", path);
   checkpoint.next_step = read_scalar(f, "/next_step", path);
   checkpoint.load_factor = read_scalar(f, "/load_factor", path);
-  checkpoint.step = long(read_scalar(f, "/step", path));
+  const double step = read_scalar(f, "/step", path);
+  if (!(step >= 0.0 && step <= 1e15)) throw InputError(path + ": the step count is not valid");
+  checkpoint.step = long(step);
   checkpoint.positions = vectors(read_rows(f, "/positions", 3, path));
   checkpoint.velocities = vectors(read_rows(f, "/velocities", 3, path, false));
   const auto creep = read_rows(f, "/creep", 6, path);
@@ -193,13 +269,22 @@ RunCheckpoint read_checkpoint(const std::string& path) {
     const H5Handle set(H5Dopen2(f, "/history", H5P_DEFAULT), H5Dclose);
     if (set.get() < 0) throw InputError(path + ": not a complete checkpoint (no /history)");
     const H5Handle space(H5Dget_space(set.get()), H5Sclose);
-    checkpoint.history.resize(std::size_t(H5Sget_simple_extent_npoints(space.get())));
+    const hssize_t characters = H5Sget_simple_extent_npoints(space.get());
+    if (characters < 0 || std::size_t(characters) > file_bytes(f)) {
+      throw InputError(path + ": dataset /history claims more characters than the file holds");
+    }
+    checkpoint.history.resize(std::size_t(characters));
     if (!checkpoint.history.empty() && H5Dread(set.get(), H5T_NATIVE_CHAR, H5S_ALL, H5S_ALL,
                                                H5P_DEFAULT, checkpoint.history.data()) < 0) {
       throw InputError(path + ": cannot read /history");
     }
   }
-  if (!std::isfinite(checkpoint.time) || !(checkpoint.next_step > 0.0)) {
+  if (checksum(checkpoint) != read_checksum(f, path)) {
+    throw InputError(path + ": the checkpoint is corrupted (its checksum does not match its "
+                            "contents); resume from another checkpoint or start again");
+  }
+  if (!(checkpoint.time >= 0.0) || !std::isfinite(checkpoint.time) ||
+      !(checkpoint.next_step > 0.0) || !std::isfinite(checkpoint.next_step)) {
     throw InputError(path + ": time or next step size is not valid");
   }
   return checkpoint;

@@ -13,7 +13,9 @@
 // /step (int64), /positions (n x 3), /velocities (n x 3, optional),
 // /creep (t x 6: eps_v warp, eps_p warp, eps_v weft, eps_p weft, tension
 // warp, tension weft), /anchors (k x 8: body, vertex, point, normal),
-// /history (the history CSV text), and the attribute /format = "sartor-checkpoint 1".
+// /history (the history CSV text), /checksum (uint64: FNV-1a over all of the
+// above, verified on reading: a corrupted file is refused), and the attribute
+// /format = "sartor-checkpoint 2".
 
 #include "fem/creep_coupling.hpp"
 

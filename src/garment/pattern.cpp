@@ -2,6 +2,7 @@
 
 #include "common/csv.hpp"
 #include "common/error.hpp"
+#include "common/json_input.hpp"
 #include "material/fabric.hpp"
 
 #include <Eigen/Geometry>
@@ -303,6 +304,10 @@ std::vector<Placement> sheet_layout(const Pattern& pattern, double gap) {
 namespace {
 
 // A JSON value and where it is, so that every message can say both.
+std::string point_text(const Vector2d& p) {
+  return "(" + format_number(p.x()) + ", " + format_number(p.y()) + ")";
+}
+
 struct Node {
   const json& value;
   std::string path;
@@ -367,13 +372,16 @@ struct Node {
   Vector2d point(double scale) const {
     if (array_size() != 2)
       fail("expected a point [x, y], got " + std::to_string(value.size()) + " numbers");
-    return scale * Vector2d(element(0).number(), element(1).number());
+    const Vector2d point = scale * Vector2d(element(0).number(), element(1).number());
+    // Beyond this no garment lies; the meshers and flattening would not end.
+    constexpr double farthest = 1000.0; // m
+    if (!(point.lpNorm<Eigen::Infinity>() <= farthest)) {
+      fail("the point " + point_text(point) + " (m) is more than " + format_number(farthest) +
+           " m from the origin; check \"units\"");
+    }
+    return point;
   }
 };
-
-std::string point_text(const Vector2d& p) {
-  return "(" + format_number(p.x()) + ", " + format_number(p.y()) + ")";
-}
 
 Curve read_curve(const Node& node, double scale) {
   Curve curve;
@@ -790,12 +798,7 @@ void read_packs(const Node& root, Pattern& pattern, double scale) {
 } // namespace
 
 Pattern parse_pattern(const std::string& text, const std::string& source) {
-  json document;
-  try {
-    document = json::parse(text);
-  } catch (const json::parse_error& error) {
-    throw InputError(source + ": not valid JSON: " + error.what());
-  }
+  const json document = parse_json_input(text, source);
   const Node root{document, "", source};
   root.object();
   root.only_keys({"format", "version", "name", "units", "tolerance", "panels", "packs"});

@@ -1,6 +1,7 @@
 #include "material/fabric.hpp"
 
 #include "common/error.hpp"
+#include "common/yaml_input.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -64,14 +65,7 @@ public:
   explicit FabricFileReader(std::string path) : path_(std::move(path)) {}
 
   Fabric read() {
-    YAML::Node root;
-    try {
-      root = YAML::LoadFile(path_);
-    } catch (const YAML::BadFile&) {
-      throw InputError(path_ + ": cannot open fabric file");
-    } catch (const YAML::ParserException& e) {
-      throw InputError(path_, e.mark.line + 1, "YAML syntax error: " + e.msg);
-    }
+    const YAML::Node root = load_yaml_input(path_, "fabric file");
     if (!root.IsMap()) fail(root, "a fabric file is a mapping with keys name, warp, weft");
     check_keys(root, {"name", "source", "warp", "weft"});
     Fabric fabric;

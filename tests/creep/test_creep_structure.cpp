@@ -15,9 +15,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <random>
 
@@ -304,6 +307,64 @@ TEST(Checkpoint, RejectsWhatIsNotACheckpoint) {
   }
   std::remove(path.c_str());
   EXPECT_THROW(read_checkpoint("no_such_checkpoint.h5"), InputError);
+}
+
+// The bytes of a file, and the file written back from them.
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void write_bytes(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+// A checkpoint read back from `bytes` must be refused with a message naming
+// the file (InputError), whatever the damage.
+void expect_refused(const std::string& path, const std::string& bytes, const std::string& what) {
+  write_bytes(path, bytes);
+  try {
+    read_checkpoint(path);
+    ADD_FAILURE() << "a checkpoint with " << what << " was accepted";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()).rfind(path + ": ", 0), 0u) << error.what();
+  }
+}
+
+TEST(Checkpoint, CorruptedFilesAreRefused) {
+  RunCheckpoint written;
+  written.time = 12.5;
+  written.next_step = 0.25;
+  written.step = 7;
+  // A value whose bytes occur once in the file: the bits flipped below.
+  const double marker = 0.123456789012345678;
+  written.positions = {{marker, 0.2, 0.3}, {0.4, 0.5, 0.6}};
+  written.creep = {ElementCreep{}};
+  written.history = "time_s,x\n0,1\n";
+  const std::string path = "test_checkpoint_corrupted.h5";
+  write_checkpoint(path, written);
+  const std::string good = file_bytes(path);
+  std::string marker_bytes(sizeof marker, '\0');
+  std::memcpy(marker_bytes.data(), &marker, sizeof marker);
+  const std::size_t at = good.find(marker_bytes);
+  ASSERT_NE(at, std::string::npos);
+  ASSERT_EQ(good.find(marker_bytes, at + 1), std::string::npos);
+  for (std::size_t bit = 0; bit < 8 * sizeof marker; ++bit) {
+    std::string flipped = good;
+    flipped[at + bit / 8] = char(flipped[at + bit / 8] ^ (1 << (bit % 8)));
+    expect_refused(path, flipped, "bit " + std::to_string(bit) + " of a position flipped");
+  }
+  std::string zeroed_tail = good;
+  std::fill(zeroed_tail.begin() + long(good.size() / 2), zeroed_tail.end(), '\0');
+  expect_refused(path, zeroed_tail, "its second half zeroed");
+  std::string garbage = good;
+  for (std::size_t i = 0; i < garbage.size(); i += 97)
+    garbage[i] = char(i * 31 + 7);
+  expect_refused(path, garbage, "garbage bytes");
+  expect_refused(path, good.substr(0, good.size() / 3), "its end cut off");
+  write_bytes(path, good);
+  EXPECT_EQ(read_checkpoint(path).positions[0].x(), marker); // the intact file still reads
+  std::remove(path.c_str());
 }
 
 } // namespace
