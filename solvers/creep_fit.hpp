@@ -20,7 +20,11 @@ struct CreepTestData {
   std::vector<double> time;   // s, non-decreasing
   std::vector<double> strain; // elongation over the rest length
   std::vector<long> line;     // file line of each sample, for messages
+  // The load: a step test (`test`) when `history` is empty, else `history`;
+  // `test` then describes its largest load (peak tension, first rise to and
+  // last fall from half of it) for the report and the saturation warnings.
   CreepTest test;
+  LoadHistory history;
   // How the tension and the load/unload times were obtained, for the report.
   std::string tension_origin;
   std::string load_time_origin;
@@ -35,7 +39,8 @@ struct CreepTestDescription {
   std::optional<double> width;   // m
   std::optional<double> load_time;
   std::optional<double> unload_time;
-  std::optional<double> gauge_length; // m, turns an extension column into strain
+  std::optional<double> gauge_length;      // m, turns an extension column into strain
+  std::optional<std::string> load_history; // CSV of time and tension or force (with width)
 };
 
 // Reads the CSV (docs/formats.md) and settles the test description.
@@ -52,6 +57,19 @@ struct ThesisEstimate {
   std::vector<std::string> notes;
 };
 ThesisEstimate thesis_estimate(const CreepTestData& data);
+
+// A start for any load history: over a grid of (lambda_load, lambda_unload),
+// the strain is nearly linear in 1/K, (1 - alpha)/E and alpha/E (the small
+// product of elastic and creep strain left out); the grid point whose linear
+// least-squares fit has the least misfit gives the start. For a step test
+// (`history` empty) this is thesis_estimate().
+ThesisEstimate start_estimate(const CreepTestData& data);
+
+// The model strain of samples [begin, end) of `data` (step test or history),
+// with the Jacobian as evaluate_creep_test() when `jacobian` is not null.
+void evaluate_model(const CreepTestData& data, const CreepTestParameters& p, std::size_t begin,
+                    std::size_t end, double* strain, double* jacobian = nullptr,
+                    std::size_t leading_dimension = 0);
 
 struct ParameterEstimate {
   double value = 0.0;

@@ -35,7 +35,10 @@ const CommandSpec& fit_command() {
       "intervals. Warns when the test did not reach\n"
       "saturation or full recovery (thesis App. A).\n\n"
       "DATA.csv has columns time_s and strain, and optionally tension_N_per_m or\n"
-      "force_N (then the load and unload times are read from it). Headers may\n"
+      "force_N (then the load and unload times are read from it; a column that\n"
+      "varies during loading - ramps, several levels, cycles - is the load history,\n"
+      "piecewise linear between samples, integrated exactly by the law; so is\n"
+      "--load-history FILE for DATA without a load column). Headers may\n"
       "carry units, as instruments write them: \"Time (s)\", time [min], Strain (%),\n"
       "Extension (mm) with --gauge-length, Force (kgf), Load (kN), Tension (N/mm); see\n"
       "docs/formats.md. Without them the load is taken to start at the first sample\n"
@@ -53,6 +56,9 @@ const CommandSpec& fit_command() {
           {"tension", "N/M", "", "test tension per unit width, N/m"},
           {"load-time", "S", "", "time at which the load was applied, s"},
           {"unload-time", "S", "", "time at which the load was removed, s"},
+          {"load-history", "FILE", "",
+           "CSV of time and tension (or force, with --width): any piecewise-linear load, for "
+           "DATA without a load column"},
           {"confidence", "LEVEL", "0.95", "confidence level of the intervals, in (0, 1)"},
           {"bootstrap", "N", "200",
            "residual-bootstrap refits for the second, non-linearised intervals (0: none)"},
@@ -88,13 +94,18 @@ nlohmann::json parameters_json(const CreepTestParameters& p) {
 
 std::string fit_csv(const CreepTestData& data, const CreepTestParameters& parameters) {
   std::vector<double> model(data.time.size());
-  evaluate_creep_test(data.test, parameters, data.time.data(), data.time.size(), model.data());
+  evaluate_model(data, parameters, 0, data.time.size(), model.data());
   std::ostringstream out;
-  out << "time_s,strain_measured,strain_fit,residual,phase\n";
+  out << "time_s,strain_measured,strain_fit,residual,phase,tension_N_per_m\n";
   for (std::size_t i = 0; i < model.size(); ++i) {
     out << format_number(data.time[i]) << ',' << format_number(data.strain[i]) << ','
         << format_number(model[i]) << ',' << format_number(data.strain[i] - model[i]) << ','
-        << int(data.test.phase(data.time[i])) << '\n';
+        << int(data.test.phase(data.time[i])) << ','
+        << format_number(
+               data.history.empty()
+                   ? (data.test.phase(data.time[i]) == TestPhase::loading ? data.test.tension : 0.0)
+                   : tension_at(data.history, data.time[i]))
+        << '\n';
   }
   return out.str();
 }
@@ -140,7 +151,9 @@ nlohmann::json fit_report(const Invocation& invocation, const CreepTestData& dat
                      {"load_time_from", data.load_time_origin},
                      {"unload_time_s", data.test.unload_time},
                      {"unload_time_from", data.unload_time_origin},
-                     {"end_time_s", data.time.back()}};
+                     {"end_time_s", data.time.back()},
+                     {"load_history_knots", data.history.size()}};
+  report["start_method"] = data.history.empty() ? "thesis §5.2.2" : "grid of linear fits";
   report["thesis_estimate"] = parameters_json(initial.parameters);
   report["thesis_estimate"]["immediate_strain"] = initial.immediate_strain;
   report["thesis_estimate"]["nonelastic_strain_at_unload"] = initial.nonelastic_at_unload;
@@ -250,11 +263,12 @@ int run_fit(const Invocation& invocation) {
   given.gauge_length = optional_positive(options, "gauge-length");
   given.load_time = optional_real(options, "load-time");
   given.unload_time = optional_real(options, "unload-time");
+  if (options.is_set("load-history")) given.load_history = options.text("load-history");
 
   const auto started = std::chrono::steady_clock::now();
   const CreepTestData data = read_creep_test_data(path, given);
   const auto read = std::chrono::steady_clock::now();
-  const ThesisEstimate initial = thesis_estimate(data);
+  const ThesisEstimate initial = start_estimate(data);
   const auto estimated = std::chrono::steady_clock::now();
   CreepFit fit;
   SartorPetscCall(fit_creep_test(PETSC_COMM_WORLD, data, initial.parameters, confidence, &fit));
