@@ -917,6 +917,7 @@ void fill_statistics(const CreepTestData& data, const FitSums& sums, CreepFit* f
       sums.normal.completeOrthogonalDecomposition().pseudoInverse();
   const double t = student_t_quantile(0.5 + 0.5 * fit->confidence_level,
                                       std::max(correlated.effective_samples - double(p), 1.0));
+  fit->t_quantile = t;
   if (correlated.present) {
     fit->warnings.push_back(
         "the residuals are autocorrelated (lag-1 correlation " +
@@ -943,6 +944,7 @@ void fill_statistics(const CreepTestData& data, const FitSums& sums, CreepFit* f
     estimate.ci_high =
         logarithmic ? estimate.value * std::exp(t * q_error) : estimate.value + t * q_error;
     for (long k = 0; k < p; ++k) {
+      fit->covariance[std::size_t(j)][std::size_t(k)] = covariance(j, k);
       const double scale = std::sqrt(covariance(j, j) * covariance(k, k));
       fit->correlation[std::size_t(j)][std::size_t(k)] =
           scale > 0.0 ? covariance(j, k) / scale : 0.0;
@@ -1135,6 +1137,45 @@ PetscErrorCode bootstrap_creep_fit(MPI_Comm comm, const CreepTestData& data, con
              "only %ld of %ld bootstrap refits converged", bootstrap->replicates, replicates);
   PetscCallCXX(summarise_replicates(q, fit, bootstrap));
   PetscFunctionReturn(0);
+}
+
+CreepPrediction predict_creep_test(const CreepTestData& data, const CreepFit& fit) {
+  const std::size_t n = data.time.size();
+  constexpr std::size_t p = creep_test_parameter_count;
+  CreepPrediction prediction;
+  prediction.strain.resize(n);
+  std::vector<double> jacobian(n * p);
+  evaluate_model(data, fit.parameters, 0, n, prediction.strain.data(), jacobian.data(), n);
+  prediction.band.resize(n);
+  prediction.interval.resize(n);
+  prediction.error.resize(n);
+  double squared_error = 0.0, squared_band = 0.0;
+  long within = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    double variance = 0.0;
+    for (std::size_t j = 0; j < p; ++j) {
+      for (std::size_t k = 0; k < p; ++k)
+        variance += jacobian[j * n + i] * fit.covariance[j][k] * jacobian[k * n + i];
+    }
+    variance = std::max(variance, 0.0);
+    prediction.band[i] = fit.t_quantile * std::sqrt(variance);
+    const double error = data.strain[i] - prediction.strain[i];
+    prediction.error[i] = error;
+    squared_error += error * error;
+    squared_band += prediction.band[i] * prediction.band[i];
+    prediction.band_max = std::max(prediction.band_max, prediction.band[i]);
+    if (std::abs(error) > prediction.max_abs_error) {
+      prediction.max_abs_error = std::abs(error);
+      prediction.time_of_max_error = data.time[i];
+    }
+    prediction.interval[i] =
+        fit.t_quantile * std::sqrt(variance + fit.residual_std * fit.residual_std);
+    if (std::abs(error) <= prediction.interval[i]) ++within;
+  }
+  prediction.rmse = std::sqrt(squared_error / double(n));
+  prediction.band_rms = std::sqrt(squared_band / double(n));
+  prediction.within_prediction_interval = double(within) / double(n);
+  return prediction;
 }
 
 } // namespace sartor

@@ -94,6 +94,11 @@ struct CreepFit {
   std::array<ParameterEstimate, creep_test_parameter_count> estimates; // K, E, alpha, l_l, l_u
   std::array<std::array<double, creep_test_parameter_count>, creep_test_parameter_count>
       correlation{};
+  // Of the fit variables q (ln K, ln E, alpha, ln lambda_l, ln lambda_u),
+  // including the autocorrelation's inflation; t_quantile draws the intervals.
+  std::array<std::array<double, creep_test_parameter_count>, creep_test_parameter_count>
+      covariance{};
+  double t_quantile = 0.0;
   double confidence_level = 0.95;
   long samples = 0;
   long degrees_of_freedom = 0;
@@ -146,6 +151,25 @@ struct BootstrapEstimate {
 PetscErrorCode bootstrap_creep_fit(MPI_Comm comm, const CreepTestData& data, const CreepFit& fit,
                                    long replicates, unsigned long seed,
                                    BootstrapEstimate* bootstrap);
+
+// The fitted model's prediction of another test (another load level or
+// history) and its error there: the check `sartor validate` reports. The band
+// is the confidence band of the predicted curve, t sqrt(J C J^T) with C the
+// fit's covariance (delta method); a measurement is expected within the
+// prediction interval t sqrt(J C J^T + s^2), s the fit's residual_std.
+struct CreepPrediction {
+  std::vector<double> strain;   // predicted
+  std::vector<double> band;     // half-width of the confidence band of the curve
+  std::vector<double> interval; // half-width of the prediction interval
+  std::vector<double> error;    // measured - predicted
+  double rmse = 0.0;            // of the error
+  double max_abs_error = 0.0;
+  double time_of_max_error = 0.0; // s
+  double band_rms = 0.0;          // root mean square of the band's half-width
+  double band_max = 0.0;
+  double within_prediction_interval = 0.0; // fraction of the samples
+};
+CreepPrediction predict_creep_test(const CreepTestData& data, const CreepFit& fit);
 
 // The names used in fit.json and fabric files, in fit-variable order.
 const std::array<const char*, creep_test_parameter_count>& creep_test_parameter_names();
