@@ -13,6 +13,7 @@
 #include <limits>
 #include <numeric>
 #include <random>
+#include <stdexcept>
 
 namespace sartor {
 
@@ -547,9 +548,57 @@ ThesisEstimate thesis_estimate(const CreepTestData& data) {
   return estimate;
 }
 
+CreepTestData combine_tests(const std::vector<CreepTestData>& tests) {
+  if (tests.empty()) throw std::logic_error("combine_tests: no tests");
+  CreepTestData combined;
+  for (const CreepTestData& test : tests) {
+    if (!test.segments.empty()) throw std::logic_error("combine_tests: nested combination");
+    combined.path += (combined.path.empty() ? "" : " + ") + test.path;
+    LoadSegment segment{combined.time.size(), combined.time.size() + test.time.size(),
+                        test.history};
+    if (segment.history.empty()) {
+      const CreepTest& step = test.test;
+      segment.history = {{step.load_time, 0.0},
+                         {step.load_time, step.tension},
+                         {step.unload_time, step.tension},
+                         {step.unload_time, 0.0}};
+    }
+    combined.segments.push_back(segment);
+    combined.time.insert(combined.time.end(), test.time.begin(), test.time.end());
+    combined.strain.insert(combined.strain.end(), test.strain.begin(), test.strain.end());
+    combined.line.insert(combined.line.end(), test.line.begin(), test.line.end());
+  }
+  combined.test = tests.front().test;
+  combined.tension_origin = "each test's own load";
+  combined.load_time_origin = combined.unload_time_origin = "the first test's";
+  return combined;
+}
+
+namespace {
+
+// The tests of `data`: its segments, or the whole data under its history.
+std::vector<LoadSegment> segments_of(const CreepTestData& data) {
+  if (!data.segments.empty()) return data.segments;
+  return {{0, data.time.size(), data.history}};
+}
+
+} // namespace
+
 void evaluate_model(const CreepTestData& data, const CreepTestParameters& p, std::size_t begin,
                     std::size_t end, double* strain, double* jacobian,
                     std::size_t leading_dimension) {
+  if (!data.segments.empty()) {
+    for (const LoadSegment& segment : data.segments) {
+      const std::size_t first = std::max(begin, segment.begin);
+      const std::size_t last = std::min(end, segment.end);
+      if (first >= last) continue;
+      const std::size_t offset = first - begin;
+      evaluate_load_history(segment.history, p, data.time.data() + segment.begin,
+                            last - segment.begin, first - segment.begin, strain + offset,
+                            jacobian ? jacobian + offset : nullptr, leading_dimension);
+    }
+    return;
+  }
   if (data.history.empty()) {
     evaluate_creep_test(data.test, p, data.time.data() + begin, end - begin, strain, jacobian,
                         leading_dimension);
@@ -574,17 +623,25 @@ struct GridPoint {
   Eigen::Vector3d amplitudes = Eigen::Vector3d::Zero(); // 1/K, (1 - alpha)/E, alpha/E
 };
 
-GridPoint linear_fit_at(const CreepTestData& data, const std::vector<double>& times,
-                        const std::vector<double>& strain, double lambda_load,
-                        double lambda_unload) {
+// The (thinned) samples of one test.
+struct GridSamples {
+  const LoadHistory* history;
+  std::vector<double> times, strain;
   UnitCreep unit;
-  unit_creep(data.history, lambda_load, lambda_unload, times.data(), times.size(), 0, &unit);
+};
+
+GridPoint linear_fit_at(std::vector<GridSamples>& tests, double lambda_load, double lambda_unload) {
   Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
   Eigen::Vector3d right = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i < times.size(); ++i) {
-    const Eigen::Vector3d row(unit.tension[i], unit.viscoelastic[i], unit.permanent[i]);
-    normal += row * row.transpose();
-    right += row * strain[i];
+  for (GridSamples& test : tests) {
+    unit_creep(*test.history, lambda_load, lambda_unload, test.times.data(), test.times.size(), 0,
+               &test.unit);
+    for (std::size_t i = 0; i < test.times.size(); ++i) {
+      const Eigen::Vector3d row(test.unit.tension[i], test.unit.viscoelastic[i],
+                                test.unit.permanent[i]);
+      normal += row * row.transpose();
+      right += row * test.strain[i];
+    }
   }
   GridPoint point;
   point.lambda_load = lambda_load;
@@ -593,10 +650,13 @@ GridPoint linear_fit_at(const CreepTestData& data, const std::vector<double>& ti
   const Eigen::Vector3d& c = point.amplitudes;
   if (!(c(0) > 0.0 && c(1) + c(2) > 0.0)) return point; // no physical start here
   double misfit = 0.0;
-  for (std::size_t i = 0; i < times.size(); ++i) {
-    const double r =
-        c(0) * unit.tension[i] + c(1) * unit.viscoelastic[i] + c(2) * unit.permanent[i] - strain[i];
-    misfit += r * r;
+  for (const GridSamples& test : tests) {
+    const UnitCreep& unit = test.unit;
+    for (std::size_t i = 0; i < test.times.size(); ++i) {
+      const double r = c(0) * unit.tension[i] + c(1) * unit.viscoelastic[i] +
+                       c(2) * unit.permanent[i] - test.strain[i];
+      misfit += r * r;
+    }
   }
   point.misfit = misfit;
   return point;
@@ -604,19 +664,26 @@ GridPoint linear_fit_at(const CreepTestData& data, const std::vector<double>& ti
 
 ThesisEstimate history_start(const CreepTestData& data) {
   const std::size_t stride = std::max<std::size_t>(1, data.time.size() / start_grid_samples);
-  std::vector<double> times, strain;
-  for (std::size_t i = 0; i < data.time.size(); i += stride) {
-    times.push_back(data.time[i]);
-    strain.push_back(data.strain[i]);
+  const std::vector<LoadSegment> segments = segments_of(data);
+  std::vector<GridSamples> tests;
+  double span = 0.0;
+  for (const LoadSegment& segment : segments) {
+    GridSamples test{&segment.history, {}, {}, {}};
+    for (std::size_t i = segment.begin; i < segment.end; i += stride) {
+      test.times.push_back(data.time[i]);
+      test.strain.push_back(data.strain[i]);
+    }
+    span = std::max(span, data.time[segment.end - 1] -
+                              std::min(data.time[segment.begin], segment.history.front().time));
+    tests.push_back(std::move(test));
   }
-  const double span = data.time.back() - std::min(data.time.front(), data.history.front().time);
   const auto rate = [span](int k) {
     return 0.1 / span * std::pow(10.0, double(k) / start_grid_points_per_decade);
   };
   GridPoint best;
   for (int k = 0; k < start_grid_points; ++k) {
     for (int l = 0; l < start_grid_points; ++l) {
-      const GridPoint point = linear_fit_at(data, times, strain, rate(k), rate(l));
+      const GridPoint point = linear_fit_at(tests, rate(k), rate(l));
       if (point.misfit < best.misfit) best = point;
     }
   }
@@ -643,7 +710,8 @@ ThesisEstimate history_start(const CreepTestData& data) {
 } // namespace
 
 ThesisEstimate start_estimate(const CreepTestData& data) {
-  return data.history.empty() ? thesis_estimate(data) : history_start(data);
+  return data.history.empty() && data.segments.empty() ? thesis_estimate(data)
+                                                       : history_start(data);
 }
 
 namespace {

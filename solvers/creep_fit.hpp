@@ -15,6 +15,14 @@
 
 namespace sartor {
 
+// One test of several fitted as one (combine_tests): samples [begin, end)
+// under `history`, from a virgin specimen.
+struct LoadSegment {
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  LoadHistory history;
+};
+
 struct CreepTestData {
   std::string path;
   std::vector<double> time;   // s, non-decreasing
@@ -25,6 +33,9 @@ struct CreepTestData {
   // last fall from half of it) for the report and the saturation warnings.
   CreepTest test;
   LoadHistory history;
+  // Several tests fitted together: each segment its own test; `history` is
+  // then empty and `test` that of the first test.
+  std::vector<LoadSegment> segments;
   // How the tension and the load/unload times were obtained, for the report.
   std::string tension_origin;
   std::string load_time_origin;
@@ -42,6 +53,10 @@ struct CreepTestDescription {
   std::optional<double> gauge_length;      // m, turns an extension column into strain
   std::optional<std::string> load_history; // CSV of time and tension or force (with width)
 };
+
+// Several tests of the same fabric direction as one data set, each test with
+// its own load (a constant-force test becomes its step history) and time axis.
+CreepTestData combine_tests(const std::vector<CreepTestData>& tests);
 
 // Reads the CSV (docs/formats.md) and settles the test description.
 // Throws InputError with FILE:LINE for anything malformed or inconsistent.

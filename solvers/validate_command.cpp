@@ -21,7 +21,8 @@ const CommandSpec& validate_command() {
       "fit one creep test, predict another: the prediction error with its uncertainty band",
       "sartor validate FIT.csv PREDICT.csv [options]",
       "Fits the five parameters (K, E, alpha, lambda_load, lambda_unload) to FIT.csv\n"
-      "as `sartor fit` does, then predicts PREDICT.csv (another load level, another\n"
+      "(with the tests of --also-fit: one least-squares fit) as `sartor fit` does, then predicts "
+      "PREDICT.csv (another load level, another\n"
       "load history) with them and reports the prediction error: its RMSE, its\n"
       "largest value and when it occurs, the confidence band of the predicted curve\n"
       "(delta method with the fit's covariance, widened when the fit's residuals are\n"
@@ -42,6 +43,9 @@ const CommandSpec& validate_command() {
           {"predict-tension", "N/M", "", "tension of PREDICT.csv when it has no load column, N/m"},
           {"fit-load-history", "FILE", "",
            "load history of FIT.csv (as sartor fit --load-history)"},
+          {"also-fit", "FILES", "",
+           "comma-separated further tests of the same fabric direction, fitted together with "
+           "FIT.csv (each with its load column)"},
           {"predict-load-history", "FILE", "", "load history of PREDICT.csv"},
           {"confidence", "LEVEL", "0.95", "confidence level of the band, in (0, 1)"},
           {"output", "DIR", "out/validate", "output folder (created; files in it are replaced)"},
@@ -88,7 +92,8 @@ nlohmann::json test_json(const CreepTestData& data) {
           {"samples", data.time.size()},
           {"peak_tension_N_per_m", data.test.tension},
           {"tension_from", data.tension_origin},
-          {"load_history_knots", data.history.size()}};
+          {"load_history_knots", data.history.size()},
+          {"tests", std::max<std::size_t>(1, data.segments.size())}};
 }
 
 nlohmann::json validate_report(const Invocation& invocation, const CreepTestData& fitted,
@@ -132,7 +137,18 @@ int run_validate(const Invocation& invocation) {
     throw InputError("option --confidence: must lie in (0, 1), got " + options.text("confidence"));
   }
   const auto& files = invocation.command_line.positionals;
-  const CreepTestData fitted = read_test(options, files.at(0), "fit");
+  std::vector<CreepTestData> tests{read_test(options, files.at(0), "fit")};
+  if (options.is_set("also-fit")) {
+    CreepTestDescription given;
+    given.width = optional_positive(options, "width");
+    given.gauge_length = optional_positive(options, "gauge-length");
+    std::istringstream list(options.text("also-fit"));
+    for (std::string path; std::getline(list, path, ',');) {
+      if (path.empty()) throw InputError("option --also-fit: an empty file name in the list");
+      tests.push_back(read_creep_test_data(path, given));
+    }
+  }
+  const CreepTestData fitted = tests.size() == 1 ? tests.front() : combine_tests(tests);
   const CreepTestData predicted = read_test(options, files.at(1), "predict");
 
   const ThesisEstimate start = start_estimate(fitted);

@@ -235,6 +235,23 @@ TEST(CreepLoadHistory, FitsATwoLevelTestOfEveryTable51Set) {
   }
 }
 
+TEST(CreepLoadHistory, FitsARampedAndATwoLevelTestTogether) {
+  // Two tests of one fabric, each from a virgin specimen, in one fit: the
+  // samples of the second test restart at t = 0 and see only its own load.
+  constexpr double noise = 2e-4;
+  unsigned seed = 131;
+  for (const TableSet& set : table_5_1) {
+    const CreepTestData ramped =
+        history_data(ramped_test, {0.0, ramp + hour}, 2 * ramp + 2 * hour, set.p, noise, seed++);
+    const CreepTestData two_level =
+        history_data(two_level_test, {0.0, hour, 2 * hour}, 3 * hour, set.p, noise, seed++);
+    const CreepTestData both = combine_tests({ramped, two_level});
+    ASSERT_EQ(both.segments.size(), 2u);
+    ASSERT_EQ(both.time.size(), ramped.time.size() + two_level.time.size());
+    expect_fit_recovers(both, set, noise);
+  }
+}
+
 TEST(CreepLoadHistory, ReadsTheForceColumnOfARampedTestAsItsHistory) {
   // The file a tensile tester writes: force in N on an 8 cm strip, ramped;
   // the reader must take the column as the load history, not refuse it.
