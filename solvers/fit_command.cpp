@@ -65,6 +65,10 @@ const CommandSpec& fit_command() {
           {"seed", "N", "1", "random seed of the bootstrap"},
           {"name", "NAME", "", "fabric name in fabric.yaml [file name of DATA]"},
           {"direction", "DIR", "warp", "fabric direction the test measured: warp or weft"},
+          {"weft-data", "FILE", "",
+           "the weft test of the same fabric (with its load column), fitted in the same run: "
+           "DATA is then the warp test, fabric.yaml has both directions, the weft's fit files "
+           "are in DIR/weft"},
           {"output", "DIR", "out/fit", "output folder (created; files in it are replaced)"},
           {"no-plot", "", "", "write data only, no PNG"},
       },
@@ -110,19 +114,31 @@ std::string fit_csv(const CreepTestData& data, const CreepTestParameters& parame
   return out.str();
 }
 
-std::string fabric_yaml(const std::string& name, const std::string& direction,
-                        const std::string& source, const CreepTestParameters& p) {
+struct FittedDirection {
+  std::string direction, source;
+  CreepTestParameters parameters;
+};
+
+std::string fabric_yaml(const std::string& name, const std::vector<FittedDirection>& fitted) {
+  std::string sources;
+  for (const FittedDirection& f : fitted)
+    sources += (sources.empty() ? "" : " and ") + f.source;
   YAML::Emitter out;
   out.SetDoublePrecision(17);
   out << YAML::Comment("Written by sartor fit; loads with sartor creep --fabric FILE")
       << YAML::BeginMap << YAML::Key << "name" << YAML::Value << name << YAML::Key << "source"
-      << YAML::Value << "sartor fit of " + source << YAML::Key << direction << YAML::Value
-      << YAML::BeginMap << YAML::Key << "E" << YAML::Value << p.creep_modulus
-      << YAML::Comment("N/m") << YAML::Key << "alpha" << YAML::Value << p.alpha << YAML::Key
-      << "lambda_load" << YAML::Value << p.lambda_load << YAML::Comment("1/s") << YAML::Key
-      << "lambda_unload" << YAML::Value << p.lambda_unload << YAML::Comment("1/s") << YAML::Key
-      << "elastic_modulus" << YAML::Value << p.elastic_modulus
-      << YAML::Comment("N/m, secant modulus at the test load") << YAML::EndMap << YAML::EndMap;
+      << YAML::Value << "sartor fit of " + sources;
+  for (const FittedDirection& f : fitted) {
+    const CreepTestParameters& p = f.parameters;
+    out << YAML::Key << f.direction << YAML::Value << YAML::BeginMap << YAML::Key << "E"
+        << YAML::Value << p.creep_modulus << YAML::Comment("N/m") << YAML::Key << "alpha"
+        << YAML::Value << p.alpha << YAML::Key << "lambda_load" << YAML::Value << p.lambda_load
+        << YAML::Comment("1/s") << YAML::Key << "lambda_unload" << YAML::Value << p.lambda_unload
+        << YAML::Comment("1/s") << YAML::Key << "elastic_modulus" << YAML::Value
+        << p.elastic_modulus << YAML::Comment("N/m, secant modulus at the test load")
+        << YAML::EndMap;
+  }
+  out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }
 
@@ -239,20 +255,82 @@ void print_fit(const CreepTestData& data, const CreepFit& fit, const BootstrapEs
 
 } // namespace
 
+namespace {
+
+struct FitSettings {
+  double confidence = 0.95;
+  long replicates = 0;
+  unsigned long seed = 1;
+  bool plot = true;
+};
+
+// Fits one direction's test and writes fit.json and fit.csv (and fit.png) in
+// `directory`; throws when the fit reaches no certified optimum.
+CreepFit fit_direction(const Invocation& invocation, const std::string& path,
+                       const CreepTestDescription& given, const FitSettings& settings,
+                       const std::string& directory) {
+  const auto started = std::chrono::steady_clock::now();
+  const CreepTestData data = read_creep_test_data(path, given);
+  const auto read = std::chrono::steady_clock::now();
+  const ThesisEstimate initial = start_estimate(data);
+  const auto estimated = std::chrono::steady_clock::now();
+  CreepFit fit;
+  SartorPetscCall(
+      fit_creep_test(PETSC_COMM_WORLD, data, initial.parameters, settings.confidence, &fit));
+  const auto fitted = std::chrono::steady_clock::now();
+
+  BootstrapEstimate bootstrap;
+  if (settings.replicates > 0 && fit.converged) {
+    SartorPetscCall(bootstrap_creep_fit(PETSC_COMM_WORLD, data, fit, settings.replicates,
+                                        settings.seed, &bootstrap));
+  }
+  const auto bootstrapped = std::chrono::steady_clock::now();
+
+  nlohmann::json report = fit_report(invocation, data, initial, fit, bootstrap);
+  report["solver"]["read_time_s"] = std::chrono::duration<double>(read - started).count();
+  report["solver"]["estimate_time_s"] = std::chrono::duration<double>(estimated - read).count();
+  report["solver"]["refine_time_s"] = std::chrono::duration<double>(fitted - estimated).count();
+  report["solver"]["bootstrap_time_s"] =
+      std::chrono::duration<double>(bootstrapped - fitted).count();
+
+  if (is_root()) {
+    make_output_directory(directory);
+    write_json(directory + "/fit.json", report);
+    write_file_atomically(directory + "/fit.csv", fit_csv(data, fit.parameters));
+  }
+  if (!fit.converged) {
+    throw InputError("the least-squares refinement did not reach a certified optimum (" +
+                     fit.converged_reason + "; " + fit.certification + "); " + directory +
+                     "/fit.json holds the thesis estimate and the last iterate");
+  }
+  print_fit(data, fit, bootstrap);
+  if (settings.plot) make_plot("plot_fit.py", directory);
+  return fit;
+}
+
+} // namespace
+
 int run_fit(const Invocation& invocation) {
   const Options& options = invocation.options;
   const std::string path = invocation.command_line.positionals.at(0);
-  const double confidence = options.real("confidence");
-  if (!(confidence > 0.0 && confidence < 1.0)) {
+  FitSettings settings;
+  settings.confidence = options.real("confidence");
+  if (!(settings.confidence > 0.0 && settings.confidence < 1.0)) {
     throw InputError("option --confidence: must lie in (0, 1), got " + options.text("confidence"));
   }
-  const long replicates = options.integer("bootstrap");
-  if (replicates != 0 && replicates < 20) {
+  settings.replicates = options.integer("bootstrap");
+  if (settings.replicates != 0 && settings.replicates < 20) {
     throw InputError("option --bootstrap: give 0 (none) or at least 20 refits, got " +
                      options.text("bootstrap"));
   }
+  settings.seed = (unsigned long)options.integer("seed");
+  settings.plot = !options.flag("no-plot");
   const std::string direction = options.text("direction");
   parse_direction(direction, "option --direction");
+  if (options.is_set("weft-data") && direction != "warp") {
+    throw InputError("option --weft-data: DATA.csv is then the warp test; drop --direction " +
+                     direction);
+  }
   const std::string name =
       options.is_set("name") ? options.text("name") : std::filesystem::path(path).stem().string();
 
@@ -265,47 +343,21 @@ int run_fit(const Invocation& invocation) {
   given.unload_time = optional_real(options, "unload-time");
   if (options.is_set("load-history")) given.load_history = options.text("load-history");
 
-  const auto started = std::chrono::steady_clock::now();
-  const CreepTestData data = read_creep_test_data(path, given);
-  const auto read = std::chrono::steady_clock::now();
-  const ThesisEstimate initial = start_estimate(data);
-  const auto estimated = std::chrono::steady_clock::now();
-  CreepFit fit;
-  SartorPetscCall(fit_creep_test(PETSC_COMM_WORLD, data, initial.parameters, confidence, &fit));
-  const auto fitted = std::chrono::steady_clock::now();
-
-  BootstrapEstimate bootstrap;
-  if (replicates > 0 && fit.converged) {
-    SartorPetscCall(bootstrap_creep_fit(PETSC_COMM_WORLD, data, fit, replicates,
-                                        (unsigned long)options.integer("seed"), &bootstrap));
-  }
-  const auto bootstrapped = std::chrono::steady_clock::now();
-
-  nlohmann::json report = fit_report(invocation, data, initial, fit, bootstrap);
-  report["solver"]["read_time_s"] = std::chrono::duration<double>(read - started).count();
-  report["solver"]["estimate_time_s"] = std::chrono::duration<double>(estimated - read).count();
-  report["solver"]["refine_time_s"] = std::chrono::duration<double>(fitted - estimated).count();
-  report["solver"]["bootstrap_time_s"] =
-      std::chrono::duration<double>(bootstrapped - fitted).count();
-
   const std::string directory = options.text("output");
-  if (is_root()) {
-    make_output_directory(directory);
-    write_json(directory + "/fit.json", report);
-    write_file_atomically(directory + "/fit.csv", fit_csv(data, fit.parameters));
-    if (fit.converged) {
-      write_file_atomically(directory + "/fabric.yaml",
-                            fabric_yaml(name, direction, path, fit.parameters));
-    }
+  std::vector<FittedDirection> fitted;
+  fitted.push_back(
+      {direction, path, fit_direction(invocation, path, given, settings, directory).parameters});
+  if (options.is_set("weft-data")) {
+    // The weft test carries its own load; only the specimen's geometry is shared.
+    CreepTestDescription weft;
+    weft.width = given.width;
+    weft.gauge_length = given.gauge_length;
+    const std::string weft_path = options.text("weft-data");
+    fitted.push_back(
+        {"weft", weft_path,
+         fit_direction(invocation, weft_path, weft, settings, directory + "/weft").parameters});
   }
-  if (!fit.converged) {
-    throw InputError("the least-squares refinement did not reach a certified optimum (" +
-                     fit.converged_reason + "; " + fit.certification + "); " + directory +
-                     "/fit.json holds the thesis estimate and the last iterate");
-  }
-
-  print_fit(data, fit, bootstrap);
-  if (!options.flag("no-plot")) make_plot("plot_fit.py", directory);
+  if (is_root()) write_file_atomically(directory + "/fabric.yaml", fabric_yaml(name, fitted));
   SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "sartor fit: wrote %s\n", directory.c_str()));
   return 0;
 }
