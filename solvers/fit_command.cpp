@@ -25,8 +25,9 @@ const CommandSpec& fit_command() {
       "fit creep-law parameters to a measured creep-and-recovery curve",
       "sartor fit DATA.csv [--force N --width M | --tension N/M] [options]",
       "Determines the immediate-elastic modulus K and the creep parameters E, alpha,\n"
-      "lambda_load, lambda_unload from a constant-force creep-and-recovery test:\n"
-      "first by the thesis' step-by-step procedure (§5.2.2), then by a joint\n"
+      "lambda_load, lambda_unload from a creep-and-recovery test (constant force or\n"
+      "any load history): first by the thesis' step-by-step procedure (§5.2.2; for\n"
+      "a load history a grid of linear fits over the rates), then by a joint\n"
       "nonlinear least-squares fit of all five (Levenberg-Marquardt in log\n"
       "parameters with column scaling; the optimum is certified by a final\n"
       "Gauss-Newton step, recorded in fit.json), with standard errors and\n"
@@ -47,7 +48,9 @@ const CommandSpec& fit_command() {
       "by sartor creep --fabric), fit.png.\n\n"
       "examples:\n"
       "  sartor fit cases/fit/cotton_twill_warp.csv\n"
-      "  sartor fit my_test.csv --force 196.1 --width 0.08 --unload-time 3600",
+      "  sartor fit my_test.csv --force 196.1 --width 0.08 --unload-time 3600\n"
+      "  sartor fit ramped.csv --load-history load.csv\n"
+      "  sartor fit silk_warp.csv --weft-data silk_weft.csv --name silk",
       {
           {"force", "N", "", "test force, N (with --width), when DATA has no tension column"},
           {"width", "M", "", "specimen width, m"},

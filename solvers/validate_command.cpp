@@ -21,9 +21,9 @@ const CommandSpec& validate_command() {
       "fit one creep test, predict another: the prediction error with its uncertainty band",
       "sartor validate FIT.csv PREDICT.csv [options]",
       "Fits the five parameters (K, E, alpha, lambda_load, lambda_unload) to FIT.csv\n"
-      "(with the tests of --also-fit: one least-squares fit) as `sartor fit` does, then predicts "
-      "PREDICT.csv (another load level, another\n"
-      "load history) with them and reports the prediction error: its RMSE, its\n"
+      "(with the tests of --also-fit: one least-squares fit) as `sartor fit` does,\n"
+      "then predicts PREDICT.csv (another load level, another load history) with\n"
+      "them and reports the prediction error: its RMSE, its\n"
       "largest value and when it occurs, the confidence band of the predicted curve\n"
       "(delta method with the fit's covariance, widened when the fit's residuals are\n"
       "autocorrelated), and the fraction of the measured samples inside the\n"
