@@ -615,7 +615,7 @@ namespace {
 constexpr int start_grid_points = 16;
 constexpr double start_grid_points_per_decade = 3.0;
 // The linear fits of the grid use at most about this many samples.
-constexpr std::size_t start_grid_samples = 2000;
+constexpr std::size_t start_grid_samples = 500;
 
 struct GridPoint {
   double misfit = std::numeric_limits<double>::infinity();

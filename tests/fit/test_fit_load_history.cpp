@@ -252,6 +252,44 @@ TEST(CreepLoadHistory, FitsARampedAndATwoLevelTestTogether) {
   }
 }
 
+TEST(CreepLoadHistory, IntervalsOfRampedFitsCoverTheGeneratingValues) {
+  // 200 noisy replicates of the ramped test of one set: the 95% intervals
+  // from the Jacobian must cover each generating value 92-98% of the time on
+  // average over the five parameters (binomial spread ~1.5% per parameter).
+  constexpr double noise = 2e-4;
+  constexpr int replicates = 200;
+  for (const TableSet& set : {table_5_1[2], table_5_1[9]}) {
+    const auto truth = values_of(set.p);
+    std::array<int, 5> covered{};
+    // One sampling, the Runge-Kutta curve computed once; fresh noise each time.
+    const CreepTestData exact =
+        history_data(ramped_test, {0.0, ramp + hour}, 2 * ramp + 2 * hour, set.p, 0.0, 500);
+    std::mt19937_64 generator(501);
+    std::normal_distribution<double> gaussian(0.0, noise);
+    for (int r = 0; r < replicates; ++r) {
+      CreepTestData data = exact;
+      for (double& e : data.strain)
+        e += gaussian(generator);
+      CreepFit fit;
+      ASSERT_EQ(fit_creep_test(PETSC_COMM_WORLD, data, start_estimate(data).parameters, 0.95, &fit),
+                0);
+      ASSERT_TRUE(fit.converged) << set.name << " replicate " << r;
+      for (std::size_t j = 0; j < 5; ++j) {
+        const ParameterEstimate& e = fit.estimates[j];
+        if (e.ci_low <= truth[j] && truth[j] <= e.ci_high) ++covered[j];
+      }
+    }
+    double mean = 0.0;
+    for (std::size_t j = 0; j < 5; ++j) {
+      const double fraction = double(covered[j]) / replicates;
+      mean += fraction / 5;
+      EXPECT_GT(fraction, 0.88) << set.name << " " << creep_test_parameter_names()[j];
+    }
+    EXPECT_GE(mean, 0.92) << set.name;
+    EXPECT_LE(mean, 0.98) << set.name;
+  }
+}
+
 TEST(CreepLoadHistory, ReadsTheForceColumnOfARampedTestAsItsHistory) {
   // The file a tensile tester writes: force in N on an 8 cm strip, ramped;
   // the reader must take the column as the load history, not refuse it.
