@@ -290,6 +290,31 @@ TEST(CreepLoadHistory, IntervalsOfRampedFitsCoverTheGeneratingValues) {
   }
 }
 
+TEST(CreepLoadHistory, TheFitOfARampedTestPredictsATwoLevelTest) {
+  // sartor validate's core: the parameters fitted to one protocol predict the
+  // other within the noise, and about 95% of the samples fall inside the 95%
+  // prediction interval (band and noise).
+  constexpr double noise = 2e-4;
+  unsigned seed = 171;
+  for (const TableSet& set : {table_5_1[0], table_5_1[5], table_5_1[6]}) {
+    const CreepTestData ramped =
+        history_data(ramped_test, {0.0, ramp + hour}, 2 * ramp + 2 * hour, set.p, noise, seed++);
+    const CreepTestData two_level =
+        history_data(two_level_test, {0.0, hour, 2 * hour}, 3 * hour, set.p, noise, seed++);
+    CreepFit fit;
+    ASSERT_EQ(
+        fit_creep_test(PETSC_COMM_WORLD, ramped, start_estimate(ramped).parameters, 0.95, &fit), 0);
+    ASSERT_TRUE(fit.converged) << set.name;
+    const CreepPrediction prediction = predict_creep_test(two_level, fit);
+    EXPECT_NEAR(prediction.rmse / noise, 1.0, 0.05) << set.name;
+    // ~6,400 samples: the fraction scatters by ~0.3%.
+    EXPECT_NEAR(prediction.within_prediction_interval, 0.95, 0.02) << set.name;
+    // The band is the parameters' share: far inside the noise on such data.
+    EXPECT_GT(prediction.band_rms, 0.0) << set.name;
+    EXPECT_LT(prediction.band_rms, 0.5 * noise) << set.name;
+  }
+}
+
 TEST(CreepLoadHistory, ReadsTheForceColumnOfARampedTestAsItsHistory) {
   // The file a tensile tester writes: force in N on an 8 cm strip, ramped;
   // the reader must take the column as the load history, not refuse it.
