@@ -315,6 +315,38 @@ TEST(CreepLoadHistory, TheFitOfARampedTestPredictsATwoLevelTest) {
   }
 }
 
+TEST(CreepLoadHistory, PredictionBandsCoverTheTrueCurve) {
+  // The delta-method band of a prediction is honest: over 200 fits of noisy
+  // ramped tests, the 95% band of the predicted two-level curve contains the
+  // true (noise-free) curve 92-98% of the time, averaged over its samples.
+  constexpr double noise = 2e-4;
+  constexpr int replicates = 200;
+  const TableSet& set = table_5_1[3];
+  const CreepTestData exact_ramped =
+      history_data(ramped_test, {0.0, ramp + hour}, 2 * ramp + 2 * hour, set.p, 0.0, 600);
+  const CreepTestData true_two_level =
+      history_data(two_level_test, {0.0, hour, 2 * hour}, 3 * hour, set.p, 0.0, 601);
+  std::mt19937_64 generator(602);
+  std::normal_distribution<double> gaussian(0.0, noise);
+  double covered = 0.0;
+  for (int r = 0; r < replicates; ++r) {
+    CreepTestData data = exact_ramped;
+    for (double& e : data.strain)
+      e += gaussian(generator);
+    CreepFit fit;
+    ASSERT_EQ(fit_creep_test(PETSC_COMM_WORLD, data, start_estimate(data).parameters, 0.95, &fit),
+              0);
+    ASSERT_TRUE(fit.converged) << "replicate " << r;
+    const CreepPrediction prediction = predict_creep_test(true_two_level, fit);
+    long inside = 0;
+    for (std::size_t i = 0; i < prediction.error.size(); ++i)
+      inside += std::abs(prediction.error[i]) <= prediction.band[i];
+    covered += double(inside) / double(prediction.error.size()) / replicates;
+  }
+  EXPECT_GE(covered, 0.92);
+  EXPECT_LE(covered, 0.98);
+}
+
 TEST(CreepLoadHistory, ReadsTheForceColumnOfARampedTestAsItsHistory) {
   // The file a tensile tester writes: force in N on an 8 cm strip, ramped;
   // the reader must take the column as the load history, not refuse it.
