@@ -291,6 +291,13 @@ void read_load_history(const std::string& path, const CreepTestDescription& give
                      " gives the load; --tension, --force, --load-time and --unload-time do "
                      "not apply");
   }
+  data.history = read_load_history_file(path, given.width);
+  settle_history(data, "--load-history " + path + ", piecewise linear between its rows");
+}
+
+} // namespace
+
+LoadHistory read_load_history_file(const std::string& path, std::optional<double> width) {
   const CsvTable table = read_csv(path);
   const auto time = find_quantity(table, time_quantity);
   if (!time) table.require({"time_s", "time"}, "time in s");
@@ -300,21 +307,19 @@ void read_load_history(const std::string& path, const CreepTestDescription& give
   if (!load) {
     load = find_quantity(table, force_quantity);
     if (!load) table.require({"tension_N_per_m", "force_N"}, "the load");
-    if (!given.width) {
+    if (!width) {
       throw InputError(path + ": the force column needs --width (m), the specimen width");
     }
-    scale = 1.0 / *given.width;
+    scale = 1.0 / *width;
   }
-  data.history.clear();
+  LoadHistory history;
   for (std::size_t i = 0; i < table.columns[time->first].size(); ++i) {
-    data.history.push_back({table.columns[time->first][i] * time->second,
-                            table.columns[load->first][i] * load->second * scale});
+    history.push_back({table.columns[time->first][i] * time->second,
+                       table.columns[load->first][i] * load->second * scale});
   }
-  if (data.history.empty()) throw InputError(path + ": the load history has no rows");
-  settle_history(data, "--load-history " + path + ", piecewise linear between its rows");
+  if (history.empty()) throw InputError(path + ": the load history has no rows");
+  return history;
 }
-
-} // namespace
 
 CreepTestData read_creep_test_data(const std::string& path, const CreepTestDescription& given) {
   const CsvTable table = read_csv(path);

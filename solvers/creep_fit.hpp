@@ -58,6 +58,10 @@ struct CreepTestDescription {
 // its own load (a constant-force test becomes its step history) and time axis.
 CreepTestData combine_tests(const std::vector<CreepTestData>& tests);
 
+// A load-history CSV: time and tension, or force divided by `width` (units in
+// the header as in the measurement CSV). Throws InputError naming the file.
+LoadHistory read_load_history_file(const std::string& path, std::optional<double> width);
+
 // Reads the CSV (docs/formats.md) and settles the test description.
 // Throws InputError with FILE:LINE for anything malformed or inconsistent.
 CreepTestData read_creep_test_data(const std::string& path, const CreepTestDescription& given);
