@@ -7,8 +7,9 @@ Reads OUTDIR/fit.json and OUTDIR/fit.csv and writes one PNG (150 dpi):
   recovery part against the time since load removal, both on a logarithmic
   time axis, with the measured samples (grey dots, thinned evenly in log time)
   and the fitted model (coloured line), plus the thesis' step-by-step
-  (§5.2.2) starting estimate when fit.json has one (dashed; --no-estimate
-  hides it); a box with the fitted parameters
+  (§5.2.2) starting estimate when fit.json has one and the test is at
+  constant force (dashed; --no-estimate hides it); for a load history the
+  phases are those of its largest load; a box with the fitted parameters
   (value +- standard error, confidence interval), RMSE and R^2; saturation
   warnings of the fit in red under the title;
 * bottom: the residuals (% strain) against time on a linear axis, and their
@@ -172,6 +173,9 @@ def thesis_curve(fit, load_time, unload_time):
     estimate = fit.get("thesis_estimate")
     tension = number((fit.get("input") or {}).get("tension_N_per_m"))
     if not isinstance(estimate, dict) or tension is None or load_time is None or unload_time is None:
+        return None
+    # A load history's start is no constant-force curve: nothing to draw.
+    if ((fit.get("input") or {}).get("load_history_knots") or 0) > 0:
         return None
     keys = ("elastic_modulus_N_per_m", "E_N_per_m", "alpha", "lambda_load_per_s",
             "lambda_unload_per_s")

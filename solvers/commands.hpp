@@ -27,6 +27,8 @@ const CommandSpec& fit_command();
 int run_fit(const Invocation&);
 const CommandSpec& synth_command();
 int run_synth(const Invocation&);
+const CommandSpec& validate_command();
+int run_validate(const Invocation&);
 const CommandSpec& fabrics_command();
 int run_fabrics(const Invocation&);
 const CommandSpec& run_command();

@@ -13,6 +13,7 @@
 #include <limits>
 #include <numeric>
 #include <random>
+#include <stdexcept>
 
 namespace sartor {
 
@@ -50,8 +51,62 @@ PhaseRanges phase_ranges(const CreepTestData& data) {
   return {first_at(data.test.load_time), first_at(data.test.unload_time), t.size()};
 }
 
+// Half the peak tension is first reached at load_time and last left at
+// unload_time (interpolated between knots); a load never removed ends at
+// `end_time`.
+CreepTest equivalent_step(const LoadHistory& history, double end_time) {
+  double peak = 0.0;
+  for (const LoadKnot& k : history)
+    peak = std::max(peak, k.tension);
+  const double half = 0.5 * peak;
+  CreepTest step{peak, history.front().time, end_time};
+  bool loaded = history.front().tension >= half;
+  for (std::size_t k = 1; k < history.size(); ++k) {
+    const LoadKnot& a = history[k - 1];
+    const LoadKnot& b = history[k];
+    const auto crossing = [&] {
+      return a.time + (half - a.tension) / (b.tension - a.tension) * (b.time - a.time);
+    };
+    if (!loaded && a.tension < half && b.tension >= half) {
+      step.load_time = crossing();
+      loaded = true;
+    }
+    if (a.tension >= half && b.tension < half) step.unload_time = crossing();
+  }
+  return step;
+}
+
+void settle_history(CreepTestData& data, const std::string& origin) {
+  data.test = equivalent_step(data.history, data.time.back());
+  if (!(data.test.tension > 0.0)) {
+    throw InputError(data.path + ": the load history (" + origin + ") is never positive");
+  }
+  data.tension_origin = origin;
+  data.load_time_origin = "first rise to half the peak tension of the load history";
+  data.unload_time_origin = "last fall from half the peak tension of the load history";
+}
+
+void use_column_as_history(CreepTestData& data, const CsvTable& table, std::size_t column,
+                           double scale, const std::string& what, bool values_are_tension) {
+  if (!values_are_tension) {
+    throw InputError(data.path + ": the " + what +
+                     " column varies during loading (a ramp, several levels or cycles); give "
+                     "--width (m) so that it becomes the load history");
+  }
+  if (!data.tension_origin.empty() || !data.load_time_origin.empty() ||
+      !data.unload_time_origin.empty()) {
+    throw InputError(data.path + ": the " + what +
+                     " column varies during loading and is used as the load history; "
+                     "--tension, --force, --load-time and --unload-time do not apply");
+  }
+  data.history.clear();
+  for (std::size_t i = 0; i < table.columns[column].size(); ++i)
+    data.history.push_back({data.time[i], table.columns[column][i] * scale});
+  settle_history(data, "the " + what + " column, piecewise linear between samples");
+}
+
 void settle_times_from_tension(CreepTestData& data, const CsvTable& table, std::size_t column,
-                               double scale, const std::string& what) {
+                               double scale, const std::string& what, bool values_are_tension) {
   const auto& values = table.columns[column];
   const double peak = *std::max_element(values.begin(), values.end()) * scale;
   if (!(peak > 0.0)) throw InputError(data.path + ": the " + what + " column is never positive");
@@ -70,17 +125,14 @@ void settle_times_from_tension(CreepTestData& data, const CsvTable& table, std::
     v *= scale;
   const double mean = mean_of(loaded, 0, loaded.size());
   double worst = 0.0;
-  std::size_t worst_row = on;
-  for (std::size_t i = 0; i < loaded.size(); ++i) {
-    if (std::abs(loaded[i] - mean) > worst) {
-      worst = std::abs(loaded[i] - mean);
-      worst_row = on + i;
-    }
-  }
-  if (worst > 0.05 * mean) {
-    throw InputError(data.path, table.lines[worst_row],
-                     "the " + what + " deviates " + format_number(100.0 * worst / mean) +
-                         "% from its mean during loading; the fit needs a constant-force test");
+  for (double v : loaded)
+    worst = std::max(worst, std::abs(v - mean));
+  const bool reloaded = std::any_of(values.begin() + long(off), values.end(),
+                                    [&](double v) { return v * scale >= 0.5 * peak; });
+  // Ramps, several levels or cycles: the column is the load history.
+  if (worst > 0.05 * mean || reloaded) {
+    use_column_as_history(data, table, column, scale, what, values_are_tension);
+    return;
   }
   if (!data.test.tension) {
     data.test.tension = mean;
@@ -231,7 +283,43 @@ void read_time_and_strain(const CsvTable& table, const CreepTestDescription& giv
   data.line = table.lines;
 }
 
+// --load-history FILE: time and tension (or force over --width) knots.
+void read_load_history(const std::string& path, const CreepTestDescription& given,
+                       CreepTestData& data) {
+  if (given.tension || given.force || given.load_time || given.unload_time) {
+    throw InputError("--load-history " + path +
+                     " gives the load; --tension, --force, --load-time and --unload-time do "
+                     "not apply");
+  }
+  data.history = read_load_history_file(path, given.width);
+  settle_history(data, "--load-history " + path + ", piecewise linear between its rows");
+}
+
 } // namespace
+
+LoadHistory read_load_history_file(const std::string& path, std::optional<double> width) {
+  const CsvTable table = read_csv(path);
+  const auto time = find_quantity(table, time_quantity);
+  if (!time) table.require({"time_s", "time"}, "time in s");
+  require_nondecreasing(table, time->first);
+  double scale = 1.0;
+  auto load = find_quantity(table, tension_quantity);
+  if (!load) {
+    load = find_quantity(table, force_quantity);
+    if (!load) table.require({"tension_N_per_m", "force_N"}, "the load");
+    if (!width) {
+      throw InputError(path + ": the force column needs --width (m), the specimen width");
+    }
+    scale = 1.0 / *width;
+  }
+  LoadHistory history;
+  for (std::size_t i = 0; i < table.columns[time->first].size(); ++i) {
+    history.push_back({table.columns[time->first][i] * time->second,
+                       table.columns[load->first][i] * load->second * scale});
+  }
+  if (history.empty()) throw InputError(path + ": the load history has no rows");
+  return history;
+}
 
 CreepTestData read_creep_test_data(const std::string& path, const CreepTestDescription& given) {
   const CsvTable table = read_csv(path);
@@ -261,15 +349,24 @@ CreepTestData read_creep_test_data(const std::string& path, const CreepTestDescr
     throw InputError("--force needs --width (m) to give the tension per unit width");
   }
 
-  if (const auto column = find_quantity(table, tension_quantity)) {
-    settle_times_from_tension(data, table, column->first, column->second, "tension");
-  } else if (const auto force = find_quantity(table, force_quantity)) {
+  const auto tension_column = find_quantity(table, tension_quantity);
+  const auto force_column = find_quantity(table, force_quantity);
+  if (given.load_history) {
+    if (tension_column || force_column) {
+      throw InputError(path + ": has a " + (tension_column ? "tension" : "force") +
+                       " column, and --load-history gives the load too; give one of them");
+    }
+    read_load_history(*given.load_history, given, data);
+  } else if (const auto column = tension_column) {
+    settle_times_from_tension(data, table, column->first, column->second, "tension", true);
+  } else if (const auto force = force_column) {
     if (!given.width && !given.tension) {
       throw InputError(path + ": the force column needs --width (m), the specimen width");
     }
     // With --tension the column only tells when the load was on.
     const double to_tension = force->second / (given.width ? *given.width : 1.0);
-    settle_times_from_tension(data, table, force->first, to_tension, "force / width");
+    settle_times_from_tension(data, table, force->first, to_tension, "force / width",
+                              given.width.has_value());
   } else {
     if (!data.test.tension) {
       throw InputError(path + ": no tension: give --tension (N/m), or --force (N) and --width "
@@ -290,6 +387,8 @@ CreepTestData read_creep_test_data(const std::string& path, const CreepTestDescr
                      ") must come after the load time (" + describe_time(data.test.load_time) +
                      ")");
   }
+  // A history is fitted as a whole; the phases are those of a step test.
+  if (!data.history.empty()) return data;
   const PhaseRanges phases = phase_ranges(data);
   const std::size_t loading = phases.load_end - phases.load_begin;
   const std::size_t recovery = phases.recovery_end - phases.load_end;
@@ -454,6 +553,172 @@ ThesisEstimate thesis_estimate(const CreepTestData& data) {
   return estimate;
 }
 
+CreepTestData combine_tests(const std::vector<CreepTestData>& tests) {
+  if (tests.empty()) throw std::logic_error("combine_tests: no tests");
+  CreepTestData combined;
+  for (const CreepTestData& test : tests) {
+    if (!test.segments.empty()) throw std::logic_error("combine_tests: nested combination");
+    combined.path += (combined.path.empty() ? "" : " + ") + test.path;
+    LoadSegment segment{combined.time.size(), combined.time.size() + test.time.size(),
+                        test.history};
+    if (segment.history.empty()) {
+      const CreepTest& step = test.test;
+      segment.history = {{step.load_time, 0.0},
+                         {step.load_time, step.tension},
+                         {step.unload_time, step.tension},
+                         {step.unload_time, 0.0}};
+    }
+    combined.segments.push_back(segment);
+    combined.time.insert(combined.time.end(), test.time.begin(), test.time.end());
+    combined.strain.insert(combined.strain.end(), test.strain.begin(), test.strain.end());
+    combined.line.insert(combined.line.end(), test.line.begin(), test.line.end());
+  }
+  combined.test = tests.front().test;
+  combined.tension_origin = "each test's own load";
+  combined.load_time_origin = combined.unload_time_origin = "the first test's";
+  return combined;
+}
+
+namespace {
+
+// The tests of `data`: its segments, or the whole data under its history.
+std::vector<LoadSegment> segments_of(const CreepTestData& data) {
+  if (!data.segments.empty()) return data.segments;
+  return {{0, data.time.size(), data.history}};
+}
+
+} // namespace
+
+void evaluate_model(const CreepTestData& data, const CreepTestParameters& p, std::size_t begin,
+                    std::size_t end, double* strain, double* jacobian,
+                    std::size_t leading_dimension) {
+  if (!data.segments.empty()) {
+    for (const LoadSegment& segment : data.segments) {
+      const std::size_t first = std::max(begin, segment.begin);
+      const std::size_t last = std::min(end, segment.end);
+      if (first >= last) continue;
+      const std::size_t offset = first - begin;
+      evaluate_load_history(segment.history, p, data.time.data() + segment.begin,
+                            last - segment.begin, first - segment.begin, strain + offset,
+                            jacobian ? jacobian + offset : nullptr, leading_dimension);
+    }
+    return;
+  }
+  if (data.history.empty()) {
+    evaluate_creep_test(data.test, p, data.time.data() + begin, end - begin, strain, jacobian,
+                        leading_dimension);
+  } else {
+    evaluate_load_history(data.history, p, data.time.data(), end, begin, strain, jacobian,
+                          leading_dimension);
+  }
+}
+
+namespace {
+
+// The grid of the history start: rates from 0.1 / span to 1e4 / span, three
+// per decade; a coarse grid is enough, the refinement works in ln(lambda).
+constexpr int start_grid_points = 16;
+constexpr double start_grid_points_per_decade = 3.0;
+// The linear fits of the grid use at most about this many samples.
+constexpr std::size_t start_grid_samples = 500;
+
+struct GridPoint {
+  double misfit = std::numeric_limits<double>::infinity();
+  double lambda_load = 0.0, lambda_unload = 0.0;
+  Eigen::Vector3d amplitudes = Eigen::Vector3d::Zero(); // 1/K, (1 - alpha)/E, alpha/E
+};
+
+// The (thinned) samples of one test.
+struct GridSamples {
+  const LoadHistory* history;
+  std::vector<double> times, strain;
+  UnitCreep unit;
+};
+
+GridPoint linear_fit_at(std::vector<GridSamples>& tests, double lambda_load, double lambda_unload) {
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d right = Eigen::Vector3d::Zero();
+  for (GridSamples& test : tests) {
+    unit_creep(*test.history, lambda_load, lambda_unload, test.times.data(), test.times.size(), 0,
+               &test.unit);
+    for (std::size_t i = 0; i < test.times.size(); ++i) {
+      const Eigen::Vector3d row(test.unit.tension[i], test.unit.viscoelastic[i],
+                                test.unit.permanent[i]);
+      normal += row * row.transpose();
+      right += row * test.strain[i];
+    }
+  }
+  GridPoint point;
+  point.lambda_load = lambda_load;
+  point.lambda_unload = lambda_unload;
+  point.amplitudes = normal.completeOrthogonalDecomposition().solve(right);
+  const Eigen::Vector3d& c = point.amplitudes;
+  if (!(c(0) > 0.0 && c(1) + c(2) > 0.0)) return point; // no physical start here
+  double misfit = 0.0;
+  for (const GridSamples& test : tests) {
+    const UnitCreep& unit = test.unit;
+    for (std::size_t i = 0; i < test.times.size(); ++i) {
+      const double r = c(0) * unit.tension[i] + c(1) * unit.viscoelastic[i] +
+                       c(2) * unit.permanent[i] - test.strain[i];
+      misfit += r * r;
+    }
+  }
+  point.misfit = misfit;
+  return point;
+}
+
+ThesisEstimate history_start(const CreepTestData& data) {
+  const std::size_t stride = std::max<std::size_t>(1, data.time.size() / start_grid_samples);
+  const std::vector<LoadSegment> segments = segments_of(data);
+  std::vector<GridSamples> tests;
+  double span = 0.0;
+  for (const LoadSegment& segment : segments) {
+    GridSamples test{&segment.history, {}, {}, {}};
+    for (std::size_t i = segment.begin; i < segment.end; i += stride) {
+      test.times.push_back(data.time[i]);
+      test.strain.push_back(data.strain[i]);
+    }
+    span = std::max(span, data.time[segment.end - 1] -
+                              std::min(data.time[segment.begin], segment.history.front().time));
+    tests.push_back(std::move(test));
+  }
+  const auto rate = [span](int k) {
+    return 0.1 / span * std::pow(10.0, double(k) / start_grid_points_per_decade);
+  };
+  GridPoint best;
+  for (int k = 0; k < start_grid_points; ++k) {
+    for (int l = 0; l < start_grid_points; ++l) {
+      const GridPoint point = linear_fit_at(tests, rate(k), rate(l));
+      if (point.misfit < best.misfit) best = point;
+    }
+  }
+  if (!std::isfinite(best.misfit)) {
+    throw InputError(data.path + ": no start for the fit: on no rates of the grid do the data "
+                                 "show a positive immediate and creep strain");
+  }
+  const Eigen::Vector3d& c = best.amplitudes;
+  ThesisEstimate estimate;
+  CreepTestParameters& p = estimate.parameters;
+  p.elastic_modulus = 1.0 / c(0);
+  p.creep_modulus = 1.0 / (c(1) + c(2));
+  p.alpha = std::clamp(c(2) / (c(1) + c(2)), 1e-3, 1.0 - 1e-3);
+  p.lambda_load = best.lambda_load;
+  p.lambda_unload = best.lambda_unload;
+  estimate.notes.push_back("load history: the start is the best of linear fits on a " +
+                           std::to_string(start_grid_points) + " x " +
+                           std::to_string(start_grid_points) +
+                           " grid of (lambda_load, lambda_unload) from " + format_number(rate(0)) +
+                           " to " + format_number(rate(start_grid_points - 1)) + " 1/s");
+  return estimate;
+}
+
+} // namespace
+
+ThesisEstimate start_estimate(const CreepTestData& data) {
+  return data.history.empty() && data.segments.empty() ? thesis_estimate(data)
+                                                       : history_start(data);
+}
+
 namespace {
 
 constexpr std::size_t parameter_count = creep_test_parameter_count;
@@ -484,9 +749,8 @@ PetscErrorCode sum_at(MPI_Comm comm, SampleShare* share, const CreepTestVector& 
   const std::size_t count = share->end - share->begin;
   share->model.resize(count);
   share->jacobian.resize(count * parameter_count);
-  evaluate_creep_test(share->data->test, from_fit_variables(q),
-                      share->data->time.data() + share->begin, count, share->model.data(),
-                      share->jacobian.data(), count);
+  evaluate_model(*share->data, from_fit_variables(q), share->begin, share->end, share->model.data(),
+                 share->jacobian.data(), count);
   share->evaluated_at = q;
   const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, long(parameter_count)>> jacobian(
       share->jacobian.data(), long(count), long(parameter_count));
@@ -726,6 +990,7 @@ void fill_statistics(const CreepTestData& data, const FitSums& sums, CreepFit* f
       sums.normal.completeOrthogonalDecomposition().pseudoInverse();
   const double t = student_t_quantile(0.5 + 0.5 * fit->confidence_level,
                                       std::max(correlated.effective_samples - double(p), 1.0));
+  fit->t_quantile = t;
   if (correlated.present) {
     fit->warnings.push_back(
         "the residuals are autocorrelated (lag-1 correlation " +
@@ -752,6 +1017,7 @@ void fill_statistics(const CreepTestData& data, const FitSums& sums, CreepFit* f
     estimate.ci_high =
         logarithmic ? estimate.value * std::exp(t * q_error) : estimate.value + t * q_error;
     for (long k = 0; k < p; ++k) {
+      fit->covariance[std::size_t(j)][std::size_t(k)] = covariance(j, k);
       const double scale = std::sqrt(covariance(j, j) * covariance(k, k));
       fit->correlation[std::size_t(j)][std::size_t(k)] =
           scale > 0.0 ? covariance(j, k) / scale : 0.0;
@@ -829,8 +1095,7 @@ PetscErrorCode fit_creep_test(MPI_Comm comm, const CreepTestData& data,
   fit->parameters = from_fit_variables(solution.q);
   // The autocorrelation needs the residuals at the solution (the sums there are kept).
   if (share.evaluated_at != solution.q) {
-    evaluate_creep_test(data.test, fit->parameters, data.time.data() + share.begin,
-                        share.end - share.begin, share.model.data());
+    evaluate_model(data, fit->parameters, share.begin, share.end, share.model.data());
   }
   // On exact data the residuals are round-off, with no noise to correlate.
   fit->autocorrelation.effective_samples = double(samples);
@@ -849,7 +1114,7 @@ std::vector<double> bootstrap_residuals(const CreepTestData& data, const CreepFi
                                         std::vector<double>* model) {
   const std::size_t n = data.time.size();
   model->resize(n);
-  evaluate_creep_test(data.test, fit.parameters, data.time.data(), n, model->data());
+  evaluate_model(data, fit.parameters, 0, n, model->data());
   std::vector<double> residual(n);
   for (std::size_t i = 0; i < n; ++i)
     residual[i] = data.strain[i] - (*model)[i];
@@ -945,6 +1210,45 @@ PetscErrorCode bootstrap_creep_fit(MPI_Comm comm, const CreepTestData& data, con
              "only %ld of %ld bootstrap refits converged", bootstrap->replicates, replicates);
   PetscCallCXX(summarise_replicates(q, fit, bootstrap));
   PetscFunctionReturn(0);
+}
+
+CreepPrediction predict_creep_test(const CreepTestData& data, const CreepFit& fit) {
+  const std::size_t n = data.time.size();
+  constexpr std::size_t p = creep_test_parameter_count;
+  CreepPrediction prediction;
+  prediction.strain.resize(n);
+  std::vector<double> jacobian(n * p);
+  evaluate_model(data, fit.parameters, 0, n, prediction.strain.data(), jacobian.data(), n);
+  prediction.band.resize(n);
+  prediction.interval.resize(n);
+  prediction.error.resize(n);
+  double squared_error = 0.0, squared_band = 0.0;
+  long within = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    double variance = 0.0;
+    for (std::size_t j = 0; j < p; ++j) {
+      for (std::size_t k = 0; k < p; ++k)
+        variance += jacobian[j * n + i] * fit.covariance[j][k] * jacobian[k * n + i];
+    }
+    variance = std::max(variance, 0.0);
+    prediction.band[i] = fit.t_quantile * std::sqrt(variance);
+    const double error = data.strain[i] - prediction.strain[i];
+    prediction.error[i] = error;
+    squared_error += error * error;
+    squared_band += prediction.band[i] * prediction.band[i];
+    prediction.band_max = std::max(prediction.band_max, prediction.band[i]);
+    if (std::abs(error) > prediction.max_abs_error) {
+      prediction.max_abs_error = std::abs(error);
+      prediction.time_of_max_error = data.time[i];
+    }
+    prediction.interval[i] =
+        fit.t_quantile * std::sqrt(variance + fit.residual_std * fit.residual_std);
+    if (std::abs(error) <= prediction.interval[i]) ++within;
+  }
+  prediction.rmse = std::sqrt(squared_error / double(n));
+  prediction.band_rms = std::sqrt(squared_band / double(n));
+  prediction.within_prediction_interval = double(within) / double(n);
+  return prediction;
 }
 
 } // namespace sartor

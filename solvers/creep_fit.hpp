@@ -15,12 +15,27 @@
 
 namespace sartor {
 
+// One test of several fitted as one (combine_tests): samples [begin, end)
+// under `history`, from a virgin specimen.
+struct LoadSegment {
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  LoadHistory history;
+};
+
 struct CreepTestData {
   std::string path;
   std::vector<double> time;   // s, non-decreasing
   std::vector<double> strain; // elongation over the rest length
   std::vector<long> line;     // file line of each sample, for messages
+  // The load: a step test (`test`) when `history` is empty, else `history`;
+  // `test` then describes its largest load (peak tension, first rise to and
+  // last fall from half of it) for the report and the saturation warnings.
   CreepTest test;
+  LoadHistory history;
+  // Several tests fitted together: each segment its own test; `history` is
+  // then empty and `test` that of the first test.
+  std::vector<LoadSegment> segments;
   // How the tension and the load/unload times were obtained, for the report.
   std::string tension_origin;
   std::string load_time_origin;
@@ -35,8 +50,17 @@ struct CreepTestDescription {
   std::optional<double> width;   // m
   std::optional<double> load_time;
   std::optional<double> unload_time;
-  std::optional<double> gauge_length; // m, turns an extension column into strain
+  std::optional<double> gauge_length;      // m, turns an extension column into strain
+  std::optional<std::string> load_history; // CSV of time and tension or force (with width)
 };
+
+// Several tests of the same fabric direction as one data set, each test with
+// its own load (a constant-force test becomes its step history) and time axis.
+CreepTestData combine_tests(const std::vector<CreepTestData>& tests);
+
+// A load-history CSV: time and tension, or force divided by `width` (units in
+// the header as in the measurement CSV). Throws InputError naming the file.
+LoadHistory read_load_history_file(const std::string& path, std::optional<double> width);
 
 // Reads the CSV (docs/formats.md) and settles the test description.
 // Throws InputError with FILE:LINE for anything malformed or inconsistent.
@@ -52,6 +76,19 @@ struct ThesisEstimate {
   std::vector<std::string> notes;
 };
 ThesisEstimate thesis_estimate(const CreepTestData& data);
+
+// A start for any load history: over a grid of (lambda_load, lambda_unload),
+// the strain is nearly linear in 1/K, (1 - alpha)/E and alpha/E (the small
+// product of elastic and creep strain left out); the grid point whose linear
+// least-squares fit has the least misfit gives the start. For a step test
+// (`history` empty) this is thesis_estimate().
+ThesisEstimate start_estimate(const CreepTestData& data);
+
+// The model strain of samples [begin, end) of `data` (step test or history),
+// with the Jacobian as evaluate_creep_test() when `jacobian` is not null.
+void evaluate_model(const CreepTestData& data, const CreepTestParameters& p, std::size_t begin,
+                    std::size_t end, double* strain, double* jacobian = nullptr,
+                    std::size_t leading_dimension = 0);
 
 struct ParameterEstimate {
   double value = 0.0;
@@ -76,6 +113,11 @@ struct CreepFit {
   std::array<ParameterEstimate, creep_test_parameter_count> estimates; // K, E, alpha, l_l, l_u
   std::array<std::array<double, creep_test_parameter_count>, creep_test_parameter_count>
       correlation{};
+  // Of the fit variables q (ln K, ln E, alpha, ln lambda_l, ln lambda_u),
+  // including the autocorrelation's inflation; t_quantile draws the intervals.
+  std::array<std::array<double, creep_test_parameter_count>, creep_test_parameter_count>
+      covariance{};
+  double t_quantile = 0.0;
   double confidence_level = 0.95;
   long samples = 0;
   long degrees_of_freedom = 0;
@@ -128,6 +170,25 @@ struct BootstrapEstimate {
 PetscErrorCode bootstrap_creep_fit(MPI_Comm comm, const CreepTestData& data, const CreepFit& fit,
                                    long replicates, unsigned long seed,
                                    BootstrapEstimate* bootstrap);
+
+// The fitted model's prediction of another test (another load level or
+// history) and its error there: the check `sartor validate` reports. The band
+// is the confidence band of the predicted curve, t sqrt(J C J^T) with C the
+// fit's covariance (delta method); a measurement is expected within the
+// prediction interval t sqrt(J C J^T + s^2), s the fit's residual_std.
+struct CreepPrediction {
+  std::vector<double> strain;   // predicted
+  std::vector<double> band;     // half-width of the confidence band of the curve
+  std::vector<double> interval; // half-width of the prediction interval
+  std::vector<double> error;    // measured - predicted
+  double rmse = 0.0;            // of the error
+  double max_abs_error = 0.0;
+  double time_of_max_error = 0.0; // s
+  double band_rms = 0.0;          // root mean square of the band's half-width
+  double band_max = 0.0;
+  double within_prediction_interval = 0.0; // fraction of the samples
+};
+CreepPrediction predict_creep_test(const CreepTestData& data, const CreepFit& fit);
 
 // The names used in fit.json and fabric files, in fit-variable order.
 const std::array<const char*, creep_test_parameter_count>& creep_test_parameter_names();

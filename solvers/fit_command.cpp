@@ -25,8 +25,9 @@ const CommandSpec& fit_command() {
       "fit creep-law parameters to a measured creep-and-recovery curve",
       "sartor fit DATA.csv [--force N --width M | --tension N/M] [options]",
       "Determines the immediate-elastic modulus K and the creep parameters E, alpha,\n"
-      "lambda_load, lambda_unload from a constant-force creep-and-recovery test:\n"
-      "first by the thesis' step-by-step procedure (§5.2.2), then by a joint\n"
+      "lambda_load, lambda_unload from a creep-and-recovery test (constant force or\n"
+      "any load history): first by the thesis' step-by-step procedure (§5.2.2; for\n"
+      "a load history a grid of linear fits over the rates), then by a joint\n"
       "nonlinear least-squares fit of all five (Levenberg-Marquardt in log\n"
       "parameters with column scaling; the optimum is certified by a final\n"
       "Gauss-Newton step, recorded in fit.json), with standard errors and\n"
@@ -35,7 +36,10 @@ const CommandSpec& fit_command() {
       "intervals. Warns when the test did not reach\n"
       "saturation or full recovery (thesis App. A).\n\n"
       "DATA.csv has columns time_s and strain, and optionally tension_N_per_m or\n"
-      "force_N (then the load and unload times are read from it). Headers may\n"
+      "force_N (then the load and unload times are read from it; a column that\n"
+      "varies during loading - ramps, several levels, cycles - is the load history,\n"
+      "piecewise linear between samples, integrated exactly by the law; so is\n"
+      "--load-history FILE for DATA without a load column). Headers may\n"
       "carry units, as instruments write them: \"Time (s)\", time [min], Strain (%),\n"
       "Extension (mm) with --gauge-length, Force (kgf), Load (kN), Tension (N/mm); see\n"
       "docs/formats.md. Without them the load is taken to start at the first sample\n"
@@ -44,7 +48,9 @@ const CommandSpec& fit_command() {
       "by sartor creep --fabric), fit.png.\n\n"
       "examples:\n"
       "  sartor fit cases/fit/cotton_twill_warp.csv\n"
-      "  sartor fit my_test.csv --force 196.1 --width 0.08 --unload-time 3600",
+      "  sartor fit my_test.csv --force 196.1 --width 0.08 --unload-time 3600\n"
+      "  sartor fit ramped.csv --load-history load.csv\n"
+      "  sartor fit silk_warp.csv --weft-data silk_weft.csv --name silk",
       {
           {"force", "N", "", "test force, N (with --width), when DATA has no tension column"},
           {"width", "M", "", "specimen width, m"},
@@ -53,12 +59,19 @@ const CommandSpec& fit_command() {
           {"tension", "N/M", "", "test tension per unit width, N/m"},
           {"load-time", "S", "", "time at which the load was applied, s"},
           {"unload-time", "S", "", "time at which the load was removed, s"},
+          {"load-history", "FILE", "",
+           "CSV of time and tension (or force, with --width): any piecewise-linear load, for "
+           "DATA without a load column"},
           {"confidence", "LEVEL", "0.95", "confidence level of the intervals, in (0, 1)"},
           {"bootstrap", "N", "200",
            "residual-bootstrap refits for the second, non-linearised intervals (0: none)"},
           {"seed", "N", "1", "random seed of the bootstrap"},
           {"name", "NAME", "", "fabric name in fabric.yaml [file name of DATA]"},
           {"direction", "DIR", "warp", "fabric direction the test measured: warp or weft"},
+          {"weft-data", "FILE", "",
+           "the weft test of the same fabric (with its load column), fitted in the same run: "
+           "DATA is then the warp test, fabric.yaml has both directions, the weft's fit files "
+           "are in DIR/weft"},
           {"output", "DIR", "out/fit", "output folder (created; files in it are replaced)"},
           {"no-plot", "", "", "write data only, no PNG"},
       },
@@ -88,30 +101,47 @@ nlohmann::json parameters_json(const CreepTestParameters& p) {
 
 std::string fit_csv(const CreepTestData& data, const CreepTestParameters& parameters) {
   std::vector<double> model(data.time.size());
-  evaluate_creep_test(data.test, parameters, data.time.data(), data.time.size(), model.data());
+  evaluate_model(data, parameters, 0, data.time.size(), model.data());
   std::ostringstream out;
-  out << "time_s,strain_measured,strain_fit,residual,phase\n";
+  out << "time_s,strain_measured,strain_fit,residual,phase,tension_N_per_m\n";
   for (std::size_t i = 0; i < model.size(); ++i) {
     out << format_number(data.time[i]) << ',' << format_number(data.strain[i]) << ','
         << format_number(model[i]) << ',' << format_number(data.strain[i] - model[i]) << ','
-        << int(data.test.phase(data.time[i])) << '\n';
+        << int(data.test.phase(data.time[i])) << ','
+        << format_number(
+               data.history.empty()
+                   ? (data.test.phase(data.time[i]) == TestPhase::loading ? data.test.tension : 0.0)
+                   : tension_at(data.history, data.time[i]))
+        << '\n';
   }
   return out.str();
 }
 
-std::string fabric_yaml(const std::string& name, const std::string& direction,
-                        const std::string& source, const CreepTestParameters& p) {
+struct FittedDirection {
+  std::string direction, source;
+  CreepTestParameters parameters;
+};
+
+std::string fabric_yaml(const std::string& name, const std::vector<FittedDirection>& fitted) {
+  std::string sources;
+  for (const FittedDirection& f : fitted)
+    sources += (sources.empty() ? "" : " and ") + f.source;
   YAML::Emitter out;
   out.SetDoublePrecision(17);
   out << YAML::Comment("Written by sartor fit; loads with sartor creep --fabric FILE")
       << YAML::BeginMap << YAML::Key << "name" << YAML::Value << name << YAML::Key << "source"
-      << YAML::Value << "sartor fit of " + source << YAML::Key << direction << YAML::Value
-      << YAML::BeginMap << YAML::Key << "E" << YAML::Value << p.creep_modulus
-      << YAML::Comment("N/m") << YAML::Key << "alpha" << YAML::Value << p.alpha << YAML::Key
-      << "lambda_load" << YAML::Value << p.lambda_load << YAML::Comment("1/s") << YAML::Key
-      << "lambda_unload" << YAML::Value << p.lambda_unload << YAML::Comment("1/s") << YAML::Key
-      << "elastic_modulus" << YAML::Value << p.elastic_modulus
-      << YAML::Comment("N/m, secant modulus at the test load") << YAML::EndMap << YAML::EndMap;
+      << YAML::Value << "sartor fit of " + sources;
+  for (const FittedDirection& f : fitted) {
+    const CreepTestParameters& p = f.parameters;
+    out << YAML::Key << f.direction << YAML::Value << YAML::BeginMap << YAML::Key << "E"
+        << YAML::Value << p.creep_modulus << YAML::Comment("N/m") << YAML::Key << "alpha"
+        << YAML::Value << p.alpha << YAML::Key << "lambda_load" << YAML::Value << p.lambda_load
+        << YAML::Comment("1/s") << YAML::Key << "lambda_unload" << YAML::Value << p.lambda_unload
+        << YAML::Comment("1/s") << YAML::Key << "elastic_modulus" << YAML::Value
+        << p.elastic_modulus << YAML::Comment("N/m, secant modulus at the test load")
+        << YAML::EndMap;
+  }
+  out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }
 
@@ -140,7 +170,9 @@ nlohmann::json fit_report(const Invocation& invocation, const CreepTestData& dat
                      {"load_time_from", data.load_time_origin},
                      {"unload_time_s", data.test.unload_time},
                      {"unload_time_from", data.unload_time_origin},
-                     {"end_time_s", data.time.back()}};
+                     {"end_time_s", data.time.back()},
+                     {"load_history_knots", data.history.size()}};
+  report["start_method"] = data.history.empty() ? "thesis §5.2.2" : "grid of linear fits";
   report["thesis_estimate"] = parameters_json(initial.parameters);
   report["thesis_estimate"]["immediate_strain"] = initial.immediate_strain;
   report["thesis_estimate"]["nonelastic_strain_at_unload"] = initial.nonelastic_at_unload;
@@ -226,44 +258,34 @@ void print_fit(const CreepTestData& data, const CreepFit& fit, const BootstrapEs
 
 } // namespace
 
-int run_fit(const Invocation& invocation) {
-  const Options& options = invocation.options;
-  const std::string path = invocation.command_line.positionals.at(0);
-  const double confidence = options.real("confidence");
-  if (!(confidence > 0.0 && confidence < 1.0)) {
-    throw InputError("option --confidence: must lie in (0, 1), got " + options.text("confidence"));
-  }
-  const long replicates = options.integer("bootstrap");
-  if (replicates != 0 && replicates < 20) {
-    throw InputError("option --bootstrap: give 0 (none) or at least 20 refits, got " +
-                     options.text("bootstrap"));
-  }
-  const std::string direction = options.text("direction");
-  parse_direction(direction, "option --direction");
-  const std::string name =
-      options.is_set("name") ? options.text("name") : std::filesystem::path(path).stem().string();
+namespace {
 
-  CreepTestDescription given;
-  given.tension = optional_positive(options, "tension");
-  given.force = optional_positive(options, "force");
-  given.width = optional_positive(options, "width");
-  given.gauge_length = optional_positive(options, "gauge-length");
-  given.load_time = optional_real(options, "load-time");
-  given.unload_time = optional_real(options, "unload-time");
+struct FitSettings {
+  double confidence = 0.95;
+  long replicates = 0;
+  unsigned long seed = 1;
+  bool plot = true;
+};
 
+// Fits one direction's test and writes fit.json and fit.csv (and fit.png) in
+// `directory`; throws when the fit reaches no certified optimum.
+CreepFit fit_direction(const Invocation& invocation, const std::string& path,
+                       const CreepTestDescription& given, const FitSettings& settings,
+                       const std::string& directory) {
   const auto started = std::chrono::steady_clock::now();
   const CreepTestData data = read_creep_test_data(path, given);
   const auto read = std::chrono::steady_clock::now();
-  const ThesisEstimate initial = thesis_estimate(data);
+  const ThesisEstimate initial = start_estimate(data);
   const auto estimated = std::chrono::steady_clock::now();
   CreepFit fit;
-  SartorPetscCall(fit_creep_test(PETSC_COMM_WORLD, data, initial.parameters, confidence, &fit));
+  SartorPetscCall(
+      fit_creep_test(PETSC_COMM_WORLD, data, initial.parameters, settings.confidence, &fit));
   const auto fitted = std::chrono::steady_clock::now();
 
   BootstrapEstimate bootstrap;
-  if (replicates > 0 && fit.converged) {
-    SartorPetscCall(bootstrap_creep_fit(PETSC_COMM_WORLD, data, fit, replicates,
-                                        (unsigned long)options.integer("seed"), &bootstrap));
+  if (settings.replicates > 0 && fit.converged) {
+    SartorPetscCall(bootstrap_creep_fit(PETSC_COMM_WORLD, data, fit, settings.replicates,
+                                        settings.seed, &bootstrap));
   }
   const auto bootstrapped = std::chrono::steady_clock::now();
 
@@ -274,24 +296,71 @@ int run_fit(const Invocation& invocation) {
   report["solver"]["bootstrap_time_s"] =
       std::chrono::duration<double>(bootstrapped - fitted).count();
 
-  const std::string directory = options.text("output");
   if (is_root()) {
     make_output_directory(directory);
     write_json(directory + "/fit.json", report);
     write_file_atomically(directory + "/fit.csv", fit_csv(data, fit.parameters));
-    if (fit.converged) {
-      write_file_atomically(directory + "/fabric.yaml",
-                            fabric_yaml(name, direction, path, fit.parameters));
-    }
   }
   if (!fit.converged) {
     throw InputError("the least-squares refinement did not reach a certified optimum (" +
                      fit.converged_reason + "; " + fit.certification + "); " + directory +
                      "/fit.json holds the thesis estimate and the last iterate");
   }
-
   print_fit(data, fit, bootstrap);
-  if (!options.flag("no-plot")) make_plot("plot_fit.py", directory);
+  if (settings.plot) make_plot("plot_fit.py", directory);
+  return fit;
+}
+
+} // namespace
+
+int run_fit(const Invocation& invocation) {
+  const Options& options = invocation.options;
+  const std::string path = invocation.command_line.positionals.at(0);
+  FitSettings settings;
+  settings.confidence = options.real("confidence");
+  if (!(settings.confidence > 0.0 && settings.confidence < 1.0)) {
+    throw InputError("option --confidence: must lie in (0, 1), got " + options.text("confidence"));
+  }
+  settings.replicates = options.integer("bootstrap");
+  if (settings.replicates != 0 && settings.replicates < 20) {
+    throw InputError("option --bootstrap: give 0 (none) or at least 20 refits, got " +
+                     options.text("bootstrap"));
+  }
+  settings.seed = (unsigned long)options.integer("seed");
+  settings.plot = !options.flag("no-plot");
+  const std::string direction = options.text("direction");
+  parse_direction(direction, "option --direction");
+  if (options.is_set("weft-data") && direction != "warp") {
+    throw InputError("option --weft-data: DATA.csv is then the warp test; drop --direction " +
+                     direction);
+  }
+  const std::string name =
+      options.is_set("name") ? options.text("name") : std::filesystem::path(path).stem().string();
+
+  CreepTestDescription given;
+  given.tension = optional_positive(options, "tension");
+  given.force = optional_positive(options, "force");
+  given.width = optional_positive(options, "width");
+  given.gauge_length = optional_positive(options, "gauge-length");
+  given.load_time = optional_real(options, "load-time");
+  given.unload_time = optional_real(options, "unload-time");
+  if (options.is_set("load-history")) given.load_history = options.text("load-history");
+
+  const std::string directory = options.text("output");
+  std::vector<FittedDirection> fitted;
+  fitted.push_back(
+      {direction, path, fit_direction(invocation, path, given, settings, directory).parameters});
+  if (options.is_set("weft-data")) {
+    // The weft test carries its own load; only the specimen's geometry is shared.
+    CreepTestDescription weft;
+    weft.width = given.width;
+    weft.gauge_length = given.gauge_length;
+    const std::string weft_path = options.text("weft-data");
+    fitted.push_back(
+        {"weft", weft_path,
+         fit_direction(invocation, weft_path, weft, settings, directory + "/weft").parameters});
+  }
+  if (is_root()) write_file_atomically(directory + "/fabric.yaml", fabric_yaml(name, fitted));
   SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "sartor fit: wrote %s\n", directory.c_str()));
   return 0;
 }

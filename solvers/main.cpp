@@ -25,6 +25,7 @@ const std::vector<Command>& commands() {
       {sartor::creep_command, sartor::run_creep},
       {sartor::fit_command, sartor::run_fit},
       {sartor::synth_command, sartor::run_synth},
+      {sartor::validate_command, sartor::run_validate},
       {sartor::fabrics_command, sartor::run_fabrics},
       {sartor::run_command, sartor::run_run},
       {sartor::converge_command, sartor::run_converge},

@@ -8,6 +8,7 @@
 #include "material/creep_recovery_model.hpp"
 #include "material/fabric.hpp"
 #include "solvers/commands.hpp"
+#include "solvers/creep_fit.hpp"
 
 #include <petscsys.h>
 
@@ -27,7 +28,9 @@ const CommandSpec& synth_command() {
       "at N equally spaced times over loading + recovery and adds independent Gaussian\n"
       "noise of standard deviation SD to the strain (Box-Muller on a 64-bit Mersenne\n"
       "Twister seeded with --seed, so files are reproducible). The file is labelled\n"
-      "synthetic in its header and reads back with `sartor fit`.",
+      "synthetic in its header and reads back with `sartor fit`. With --load-history\n"
+      "the load is that history (ramps, several levels, cycles), the creep law\n"
+      "integrated exactly through it, with the elastic secant at its peak tension.",
       {
           {"fabric", "SPEC", "cotton_twill:warp",
            "one fabric direction: preset:dir or FILE.yaml:dir"},
@@ -39,6 +42,9 @@ const CommandSpec& synth_command() {
           {"samples", "N", "86400", "number of samples (equally spaced from t = 0)"},
           {"noise", "SD", "2e-4", "standard deviation of the additive strain noise"},
           {"seed", "N", "1", "random seed"},
+          {"load-history", "FILE", "",
+           "any piecewise-linear load (time and tension, or force over --width) instead of the "
+           "constant-force test; the samples span its first to its last row"},
           {"output", "FILE", "synthetic_creep.csv", "output CSV file"},
       },
       0};
@@ -84,9 +90,30 @@ int run_synth(const Invocation& invocation) {
   if (options.is_set("tension") && (options.is_set("force") || options.is_set("width"))) {
     throw InputError("give --tension or --force with --width, not both");
   }
-  const double tension = options.is_set("tension")
-                             ? options.positive_real("tension")
-                             : options.positive_real("force") / options.positive_real("width");
+  LoadHistory history;
+  if (options.is_set("load-history")) {
+    for (const char* other : {"tension", "force", "load-duration", "recovery-duration"}) {
+      if (options.is_set(other)) {
+        throw InputError("option --load-history gives the load; drop --" + std::string(other));
+      }
+    }
+    history = read_load_history_file(options.text("load-history"),
+                                     options.is_set("width")
+                                         ? std::optional<double>(options.positive_real("width"))
+                                         : std::nullopt);
+  }
+  double tension = 0.0; // of the test, or the history's peak (the elastic secant's)
+  if (history.empty()) {
+    tension = options.is_set("tension")
+                  ? options.positive_real("tension")
+                  : options.positive_real("force") / options.positive_real("width");
+  }
+  for (const LoadKnot& knot : history)
+    tension = std::max(tension, knot.tension);
+  if (!(tension > 0.0)) {
+    throw InputError("option --load-history: the tension of " + options.text("load-history") +
+                     " is never positive");
+  }
   const double load_duration = options.positive_real("load-duration");
   const double recovery_duration = options.positive_real("recovery-duration");
   // At most 1e7 rows (some 300 MB of CSV).
@@ -104,12 +131,22 @@ int run_synth(const Invocation& invocation) {
   parameters.lambda_unload = material.creep.lambda_unload;
   const CreepTest test{tension, 0.0, load_duration};
 
-  const double duration = load_duration + recovery_duration;
+  const double start = history.empty() ? 0.0 : history.front().time;
+  const double duration =
+      history.empty() ? load_duration + recovery_duration : history.back().time - start;
+  if (!(duration > 0.0)) {
+    throw InputError("option --load-history: " + options.text("load-history") +
+                     " must span a positive time");
+  }
   std::vector<double> times(static_cast<std::size_t>(samples));
   for (long i = 0; i < samples; ++i)
-    times[std::size_t(i)] = double(i) * duration / double(samples);
+    times[std::size_t(i)] = start + double(i) * duration / double(samples);
   std::vector<double> strain(times.size());
-  evaluate_creep_test(test, parameters, times.data(), times.size(), strain.data());
+  if (history.empty()) {
+    evaluate_creep_test(test, parameters, times.data(), times.size(), strain.data());
+  } else {
+    evaluate_load_history(history, parameters, times.data(), times.size(), 0, strain.data());
+  }
   GaussianNoise gaussian(static_cast<unsigned long long>(seed));
 
   std::ostringstream out;
@@ -121,13 +158,19 @@ int run_synth(const Invocation& invocation) {
       << " alpha=" << format_number(parameters.alpha)
       << " lambda_load_per_s=" << format_number(parameters.lambda_load)
       << " lambda_unload_per_s=" << format_number(parameters.lambda_unload) << "\n"
-      << "# test: tension " << format_number(tension)
-      << " N/m applied at t = 0 s, removed at t = " << format_number(load_duration) << " s\n"
+      << (history.empty() ? "# test: tension " + format_number(tension) +
+                                " N/m applied at t = 0 s, removed at t = " +
+                                format_number(load_duration) + " s\n"
+                          : "# test: load history " + options.text("load-history") + " (" +
+                                std::to_string(history.size()) + " rows, peak " +
+                                format_number(tension) + " N/m; elastic secant at the peak)\n")
       << "# noise: strain + N(0, " << format_number(noise) << "^2), independent, seed " << seed
       << " (Box-Muller on mt19937_64)\n"
       << "time_s,tension_N_per_m,strain\n";
   for (std::size_t i = 0; i < times.size(); ++i) {
-    const double applied = test.phase(times[i]) == TestPhase::loading ? tension : 0.0;
+    const double applied = history.empty()
+                               ? (test.phase(times[i]) == TestPhase::loading ? tension : 0.0)
+                               : tension_at(history, times[i]);
     out << format_number(times[i]) << ',' << format_number(applied) << ','
         << format_number(strain[i] + noise * gaussian.next()) << '\n';
   }

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstddef>
+#include <vector>
 
 namespace sartor {
 
@@ -45,5 +46,43 @@ CreepTestParameters from_fit_variables(const CreepTestVector& q);
 void evaluate_creep_test(const CreepTest& test, const CreepTestParameters& p, const double* times,
                          std::size_t count, double* strain, double* jacobian = nullptr,
                          std::size_t leading_dimension = 0);
+
+// Any load protocol (ramps, several levels, cycles, creep then recovery): the
+// tension is piecewise linear between knots, sorted by time; two knots at one
+// time make a jump. Before the first knot the tension is the first knot's,
+// after the last it is held at the last knot's. The specimen is virgin at the
+// earliest of the first knot and the first sample.
+struct LoadKnot {
+  double time = 0.0;    // s
+  double tension = 0.0; // N/m
+};
+using LoadHistory = std::vector<LoadKnot>;
+
+// Tension at `time`, right-continuous at a jump.
+double tension_at(const LoadHistory& history, double time);
+
+// The creep strains of unit amplitude at the samples from `first_stored` on:
+// with E = 1 N/m the law gives eps_v = (1 - alpha) V and eps_p = alpha P, where
+// V and P depend only on the rates (scaling the law's targets scales its
+// strains and keeps every branch), so eps_v + eps_p = ((1 - alpha) V + alpha P) / E.
+struct UnitCreep {
+  std::vector<double> tension;      // sigma at the samples, N/m
+  std::vector<double> viscoelastic; // V, N/m
+  std::vector<double> permanent;    // P, N/m
+};
+void unit_creep(const LoadHistory& history, double lambda_load, double lambda_unload,
+                const double* times, std::size_t count, std::size_t first_stored, UnitCreep* out);
+
+// Strain of a strip under `history` at `count` sorted times: the immediate
+// elastic stretch (1 + sigma(t)/K) times the creep stretch (1 + eps_v + eps_p),
+// the creep law (creep_law.hpp) stepped exactly through the knots and the
+// samples. Only samples from `first_stored` on are written (at index
+// i - first_stored), so that one rank's block of samples can be evaluated; the
+// earlier times are still integrated. `jacobian` as in evaluate_creep_test,
+// with leading_dimension >= count - first_stored.
+void evaluate_load_history(const LoadHistory& history, const CreepTestParameters& p,
+                           const double* times, std::size_t count, std::size_t first_stored,
+                           double* strain, double* jacobian = nullptr,
+                           std::size_t leading_dimension = 0);
 
 } // namespace sartor

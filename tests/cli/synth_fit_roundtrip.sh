@@ -78,16 +78,18 @@ check(fit["saturation"]["warnings"] == [], f"warnings {fit['saturation']['warnin
 check(fit["correlation"]["order"] == ["elastic_modulus_N_per_m", "E_N_per_m", "alpha",
                                       "lambda_load_per_s", "lambda_unload_per_s"], "correlation order")
 
-# fit.csv: one row per sample, residual = measured - fit, phases 1 then 2.
+# fit.csv: one row per sample, residual = measured - fit, phases 1 then 2, the
+# tension of the test while loaded and 0 after.
 with open(f"{work}/fit/fit.csv") as f:
     rows = f.read().splitlines()
-check(rows[0] == "time_s,strain_measured,strain_fit,residual,phase", f"fit.csv header {rows[0]}")
+check(rows[0] == "time_s,strain_measured,strain_fit,residual,phase,tension_N_per_m",
+      f"fit.csv header {rows[0]}")
 check(len(rows) == 2001, f"fit.csv has {len(rows) - 1} rows")
 for row in rows[1:]:
-    t, measured, model, residual, phase = row.split(",")
-    t, measured, model, residual = map(float, (t, measured, model, residual))
+    t, measured, model, residual, phase, tension = row.split(",")
+    t, measured, model, residual, tension = map(float, (t, measured, model, residual, tension))
     if abs(residual - (measured - model)) > 1e-15 or abs(residual) > 1e-8 or \
-       phase != ("1" if t < 3600 else "2"):
+       phase != ("1" if t < 3600 else "2") or (tension > 0) != (t < 3600):
         failures.append(f"fit.csv row {row}")
         break
 

@@ -204,20 +204,23 @@ TEST(CreepFitData, RejectsDataThatCannotDetermineTheParameters) {
   loading_only << "time_s,strain\n";
   for (int i = 0; i < 20; ++i)
     loading_only << i << "," << 0.03 + 0.001 * (1 - std::exp(-0.1 * i)) << "\n";
-  expect_data_error(loading_only.str(), {2450.0, {}, {}, {}, {}, {}}, "cannot find the unloading");
-  expect_data_error(loading_only.str(), {2450.0, {}, {}, {}, 17.0, {}}, "3 during recovery");
-  expect_data_error("time_s,strain\n0,0.1\n1,0.1\n", {2450.0, {}, {}, {}, {}, {}}, "too few");
+  expect_data_error(loading_only.str(), {2450.0, {}, {}, {}, {}, {}, {}},
+                    "cannot find the unloading");
+  expect_data_error(loading_only.str(), {2450.0, {}, {}, {}, 17.0, {}, {}}, "3 during recovery");
+  expect_data_error("time_s,strain\n0,0.1\n1,0.1\n", {2450.0, {}, {}, {}, {}, {}, {}}, "too few");
   std::ostringstream no_tension;
   no_tension << "time_s,strain\n";
   for (int i = 0; i < 20; ++i)
     no_tension << i << ",0.01\n";
   expect_data_error(no_tension.str(), {}, "no tension");
-  expect_data_error(no_tension.str(), {std::nullopt, 100.0, std::nullopt, {}, {}, {}}, "--width");
+  expect_data_error(no_tension.str(), {std::nullopt, 100.0, std::nullopt, {}, {}, {}, {}},
+                    "--width");
   std::ostringstream varying;
   varying << "time_s,tension_N_per_m,strain\n";
   for (int i = 0; i < 20; ++i)
     varying << i << "," << (i < 10 ? 1000 + 100 * i : 0) << ",0.01\n";
-  expect_data_error(varying.str(), {}, "constant-force test");
+  // A varying column is the load history: a constant tension cannot also be given.
+  expect_data_error(varying.str(), {2450.0, {}, {}, {}, {}, {}, {}}, "do not apply");
 }
 
 TEST(CreepFitData, ReadsColumnHeadersWithUnits) {
@@ -253,7 +256,7 @@ TEST(CreepFitData, ReadsColumnHeadersWithUnits) {
   EXPECT_EQ(read_csv(write_temporary("p.csv", percent)).names[1], "strain (%)");
   expect_data_error("Time (fortnights),strain\n0,0.1\n", {},
                     "unknown unit 'fortnights' for time (known: s, sec, ms, min, h, hr)");
-  expect_data_error("time_s,Extension (mm)\n0,0.1\n", {2450.0, {}, {}, {}, {}, {}},
+  expect_data_error("time_s,Extension (mm)\n0,0.1\n", {2450.0, {}, {}, {}, {}, {}, {}},
                     "give --gauge-length");
 }
 

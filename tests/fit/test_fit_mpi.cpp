@@ -44,5 +44,28 @@ TEST(CreepFitMpi, TwoRanksGiveTheOneRankResult) {
   }
 }
 
+TEST(CreepFitMpi, TwoRanksGiveTheOneRankResultForSeveralTests) {
+  // Two tests in one fit (the load-history path): the ranks' blocks split the
+  // first test in the middle, so rank 1 integrates the law up to its block.
+  const CreepTestData whole =
+      read_creep_test_data(std::string(SARTOR_CASES_DIR) + "/fit/denim_warp.csv", {});
+  CreepTestData shorter = whole;
+  shorter.time.resize(5000);
+  shorter.strain.resize(5000);
+  shorter.line.resize(5000);
+  const CreepTestData data = combine_tests({whole, shorter});
+  const ThesisEstimate start = start_estimate(data);
+  CreepFit parallel, serial;
+  ASSERT_EQ(fit_creep_test(PETSC_COMM_WORLD, data, start.parameters, 0.95, &parallel), 0);
+  ASSERT_EQ(fit_creep_test(PETSC_COMM_SELF, data, start.parameters, 0.95, &serial), 0);
+  ASSERT_TRUE(parallel.converged && serial.converged);
+  for (std::size_t j = 0; j < creep_test_parameter_count; ++j) {
+    EXPECT_NEAR(parallel.estimates[j].value, serial.estimates[j].value,
+                1e-8 * std::abs(serial.estimates[j].value))
+        << creep_test_parameter_names()[j];
+  }
+  EXPECT_NEAR(parallel.rmse, serial.rmse, 1e-10 * serial.rmse);
+}
+
 } // namespace
 } // namespace sartor
