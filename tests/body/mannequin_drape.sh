@@ -10,7 +10,7 @@ set -euo pipefail
 [ $# -eq 3 ] || { echo "usage: $0 SARTOR CASES_DIR WORKDIR" >&2; exit 2; }
 sartor=$1 cases=$2 work=$3
 python=/usr/bin/python3
-[ -x "$python" ] || { echo "skip: $python not found"; exit 77; }
+[ -x "$python" ] || { echo "error: $python not found (./dev deps installs it)" >&2; exit 1; }
 rm -rf "$work" && mkdir -p "$work"
 "$sartor" run "$cases/mannequin.yaml" --output "$work/drape" > "$work/drape.log"
 "$python" - "$work" <<'PY'

@@ -9,7 +9,7 @@ set -euo pipefail
 [ $# -eq 3 ] || { echo "usage: $0 SARTOR FABRIC.yaml WORKDIR" >&2; exit 2; }
 sartor=$1 fabric=$2 work=$3
 python=/usr/bin/python3
-[ -x "$python" ] || { echo "skip: $python not found"; exit 77; }
+[ -x "$python" ] || { echo "error: $python not found (./dev deps installs it)" >&2; exit 1; }
 here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$work" && mkdir -p "$work"
 

@@ -6,7 +6,7 @@ set -euo pipefail
 [ $# -eq 1 ] || { echo "usage: $0 SARTOR" >&2; exit 2; }
 sartor=$1
 python=/usr/bin/python3
-[ -x "$python" ] || { echo "skip: $python not found"; exit 77; }
+[ -x "$python" ] || { echo "error: $python not found (./dev deps installs it)" >&2; exit 1; }
 table=$("$sartor" fabrics)
 json=$("$sartor" fabrics --json)
 echo "$table"

@@ -11,7 +11,7 @@ set -euo pipefail
 [ $# -eq 2 ] || { echo "usage: $0 SARTOR WORKDIR" >&2; exit 2; }
 sartor=$1 work=$2
 python=/usr/bin/python3
-[ -x "$python" ] || { echo "skip: $python not found"; exit 77; }
+[ -x "$python" ] || { echo "error: $python not found (./dev deps installs it)" >&2; exit 1; }
 rm -rf "$work" && mkdir -p "$work"
 "$python" - "$work" <<'PY'
 import math, random, sys

@@ -8,7 +8,7 @@ set -euo pipefail
 [ $# -eq 3 ] || [ $# -eq 4 ] || { echo "usage: $0 SARTOR WORKDIR DATA.csv | FABRIC:DIR SEED" >&2; exit 2; }
 sartor=$1 work=$2
 python=/usr/bin/python3
-[ -x "$python" ] || { echo "skip: $python not found"; exit 77; }
+[ -x "$python" ] || { echo "error: $python not found (./dev deps installs it)" >&2; exit 1; }
 rm -rf "$work" && mkdir -p "$work"
 if [ $# -eq 4 ]; then
   data=$work/synth.csv

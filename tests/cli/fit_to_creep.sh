@@ -10,7 +10,7 @@ set -euo pipefail
 [ $# -eq 3 ] || { echo "usage: $0 SARTOR FITDIR WORKDIR" >&2; exit 2; }
 sartor=$1 fitdir=$2 work=$3
 python=/usr/bin/python3
-[ -x "$python" ] || { echo "skip: $python not found"; exit 77; }
+[ -x "$python" ] || { echo "error: $python not found (./dev deps installs it)" >&2; exit 1; }
 [ -s "$fitdir/fabric.yaml" ] || { echo "fit_to_creep: $fitdir/fabric.yaml is missing" >&2; exit 1; }
 here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$work" && mkdir -p "$work"

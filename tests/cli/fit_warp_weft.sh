@@ -9,8 +9,8 @@ set -euo pipefail
 [ $# -eq 3 ] || { echo "usage: $0 SARTOR WORKDIR FABRIC" >&2; exit 2; }
 sartor=$1 work=$2 fabric=$3
 python=/usr/bin/python3
-[ -x "$python" ] || { echo "skip: $python not found"; exit 77; }
-"$python" -c "import yaml" 2>/dev/null || { echo "skip: python3-yaml missing"; exit 77; }
+[ -x "$python" ] || { echo "error: $python not found (./dev deps installs it)" >&2; exit 1; }
+"$python" -c "import yaml" 2>/dev/null || { echo "error: python3-yaml missing (./dev deps installs it)" >&2; exit 1; }
 rm -rf "$work" && mkdir -p "$work"
 "$sartor" synth --fabric "$fabric:warp" --samples 5000 --seed 21 --output "$work/warp.csv"
 "$sartor" synth --fabric "$fabric:weft" --samples 5000 --seed 22 --output "$work/weft.csv"

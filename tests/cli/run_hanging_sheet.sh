@@ -7,7 +7,7 @@ set -euo pipefail
 sartor=$1 case=$2 work=$3 mpiexec=$4
 shift 4
 python=/usr/bin/python3
-"$python" -c "import h5py, numpy" 2> /dev/null || { echo "skip: $python lacks h5py/numpy"; exit 77; }
+"$python" -c "import h5py, numpy" 2> /dev/null || { echo "error: $python lacks h5py/numpy (./dev deps installs it)" >&2; exit 1; }
 rm -rf "$work" && mkdir -p "$work"
 common=(--mesh-nx 10 --mesh-ny 10)
 "$sartor" run "$case" "${common[@]}" --output "$work/serial" > "$work/serial.log"

@@ -7,7 +7,7 @@ set -euo pipefail
 [ $# -eq 2 ] || { echo "usage: $0 SARTOR OUTDIR" >&2; exit 2; }
 sartor=$1 out=$2
 python=/usr/bin/python3
-[ -x "$python" ] || { echo "skip: $python not found"; exit 77; }
+[ -x "$python" ] || { echo "error: $python not found (./dev deps installs it)" >&2; exit 1; }
 rm -rf "$out"
 "$sartor" creep --fabric polyester:warp --load-duration 300 --recovery-duration 300 --no-plot \
   --output "$out"

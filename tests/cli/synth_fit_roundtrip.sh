@@ -6,13 +6,13 @@
 #
 # LAUNCHER (e.g. mpiexec -n 2) runs the fit; the synthetic file is written
 # serially. Leaves WORKDIR/synth.csv and WORKDIR/fit/ for later tests.
-# Needs /usr/bin/python3 (standard library only); exits 77 (skip) without it.
+# Needs /usr/bin/python3 (standard library only); fails without it (./dev deps installs it).
 set -euo pipefail
 [ $# -ge 3 ] || { echo "usage: $0 SARTOR WORKDIR FABRIC:DIR [LAUNCHER...]" >&2; exit 2; }
 sartor=$1 work=$2 fabric=$3
 shift 3
 python=/usr/bin/python3
-[ -x "$python" ] || { echo "skip: $python not found"; exit 77; }
+[ -x "$python" ] || { echo "error: $python not found (./dev deps installs it)" >&2; exit 1; }
 rm -rf "$work" && mkdir -p "$work"
 
 "$sartor" synth --fabric "$fabric" --samples 2000 --noise 0 --output "$work/synth.csv"

@@ -11,7 +11,7 @@ set -euo pipefail
 [ $# -eq 3 ] || { echo "usage: $0 SARTOR HISTORY.csv WORKDIR" >&2; exit 2; }
 sartor=$1 history=$2 work=$3
 python=/usr/bin/python3
-[ -x "$python" ] || { echo "skip: $python not found"; exit 77; }
+[ -x "$python" ] || { echo "error: $python not found (./dev deps installs it)" >&2; exit 1; }
 rm -rf "$work" && mkdir -p "$work"
 
 "$sartor" creep --fabric cotton_twill:warp --tension-history "$history" --no-plot \

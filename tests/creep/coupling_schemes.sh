@@ -17,7 +17,7 @@ set -euo pipefail
 sartor=$1 cases=$2 study=$3 work=$4 mpiexec=$5
 shift 5
 python=/usr/bin/python3
-"$python" -c "import h5py, numpy" 2> /dev/null || { echo "skip: $python lacks h5py/numpy"; exit 77; }
+"$python" -c "import h5py, numpy" 2> /dev/null || { echo "error: $python lacks h5py/numpy (./dev deps installs it)" >&2; exit 1; }
 rm -rf "$work" && mkdir -p "$work"
 strip=$cases/strip.yaml relaxation=$cases/relaxation.yaml
 

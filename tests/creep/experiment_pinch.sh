@@ -8,7 +8,7 @@
 set -euo pipefail
 sartor=$1 case=$2 postproc=$3 work=$4
 python=/usr/bin/python3
-"$python" -c "import h5py, numpy" 2> /dev/null || { echo "skip: $python lacks h5py/numpy"; exit 77; }
+"$python" -c "import h5py, numpy" 2> /dev/null || { echo "error: $python lacks h5py/numpy (./dev deps installs it)" >&2; exit 1; }
 rm -rf "$work" && mkdir -p "$work"
 "$sartor" run "$case" --output "$work/held_1s" > "$work/held_1s.log"
 "$sartor" run "$case" --pin-release 1:3600.5 --time-end 3660.5 --output-interval 300 \

@@ -7,7 +7,7 @@
 set -euo pipefail
 sartor=$1 case=$2 fabrics=$3 postproc=$4 work=$5
 python=/usr/bin/python3
-"$python" -c "import h5py, numpy" 2> /dev/null || { echo "skip: $python lacks h5py/numpy"; exit 77; }
+"$python" -c "import h5py, numpy" 2> /dev/null || { echo "error: $python lacks h5py/numpy (./dev deps installs it)" >&2; exit 1; }
 rm -rf "$work" && mkdir -p "$work"
 coarse=(--mesh-segments 16 --mesh-rows 4 --output-interval 1)
 names=(cotton_twill silk denim nylon polyester)

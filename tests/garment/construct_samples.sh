@@ -8,7 +8,7 @@ set -euo pipefail
 [ $# -eq 3 ] || { echo "usage: $0 SARTOR SAMPLES_DIR OUT_DIR" >&2; exit 2; }
 sartor=$1 samples=$2 out=$3
 python=/usr/bin/python3
-[ -x "$python" ] || { echo "skip: $python not found"; exit 77; }
+[ -x "$python" ] || { echo "error: $python not found (./dev deps installs it)" >&2; exit 1; }
 for name in tshirt dress; do
   dir="$out/construct_$name"
   rm -rf "$dir"

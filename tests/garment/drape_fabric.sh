@@ -8,7 +8,7 @@ set -euo pipefail
 [ $# -eq 3 ] || { echo "usage: $0 SARTOR PATTERN OUT_DIR" >&2; exit 2; }
 sartor=$1 pattern=$2 dir=$3
 python=/usr/bin/python3
-[ -x "$python" ] || { echo "skip: $python not found"; exit 77; }
+[ -x "$python" ] || { echo "error: $python not found (./dev deps installs it)" >&2; exit 1; }
 rm -rf "$dir"
 grep -q '"fabric": "cotton_twill"' "$pattern"
 "$sartor" drape "$pattern" --fabric silk --edge-length 0.08 --time-end 0.02 --sewing-time 0.01 \

@@ -13,7 +13,7 @@ set -euo pipefail
 [ $# -eq 5 ] || { echo "usage: $0 SARTOR PATTERN CASE OUT_DIR SEAMS" >&2; exit 2; }
 sartor=$1 pattern=$2 case=$3 dir=$4 seams=$5
 python=/usr/bin/python3
-[ -x "$python" ] || { echo "skip: $python not found"; exit 77; }
+[ -x "$python" ] || { echo "error: $python not found (./dev deps installs it)" >&2; exit 1; }
 rm -rf "$dir"
 "$sartor" drape "$pattern" -options_file_yaml "$case" --output "$dir"
 for f in garment.obj seams.json drape_seams.json construct.json placement.svg body.obj final.obj \

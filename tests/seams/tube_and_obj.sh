@@ -6,7 +6,7 @@ set -euo pipefail
 sartor=$1 cases=$2 out=$3
 shift 3
 mpiexec=("$@")
-command -v /usr/bin/python3 > /dev/null || exit 77
+command -v /usr/bin/python3 > /dev/null || exit 1
 rm -rf "$out" && mkdir -p "$out"
 
 # A small tube: back panel 6 x 4 cells (vertices 0..34), front 6 x 4 (35..69).

@@ -14,7 +14,7 @@
 #   tube_on_cylinder.sh SARTOR CASES_DIR OUT_DIR
 set -euo pipefail
 sartor=$1 cases=$2 out=$3
-/usr/bin/python3 -c "import h5py, numpy" 2> /dev/null || { echo "skip: no h5py/numpy"; exit 77; }
+/usr/bin/python3 -c "import h5py, numpy" 2> /dev/null || { echo "error: no h5py/numpy (./dev deps installs it)" >&2; exit 1; }
 rm -rf "$out" && mkdir -p "$out"
 "$sartor" run "$cases/tube_on_cylinder.yaml" --output "$out/tube" > "$out/tube.log"
 "$sartor" run "$cases/tube_on_cylinder.yaml" --sewing-tension 1 --sewing-time 0.5 \

@@ -8,7 +8,7 @@ set -euo pipefail
 sartor=$1 case=$2 work=$3
 shift 3
 python=/usr/bin/python3
-"$python" -c "import json" 2> /dev/null || { echo "skip: no $python"; exit 77; }
+"$python" -c "import json" 2> /dev/null || { echo "error: no $python (./dev deps installs it)" >&2; exit 1; }
 rm -rf "$work" && mkdir -p "$work"
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
