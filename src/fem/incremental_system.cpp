@@ -36,20 +36,13 @@ PetscErrorCode attach_near_null_space(Vec x, Mat J) {
 // factorisation schedules its work dynamically, so its round-off, and with it
 // a drape's path through contact and friction, changed from run to run (the
 // sphere drape of tests/contact ended 1e-9 or 1e-2 m from the one-rank
-// result on two ranks); SuperLU_DIST's is the same at every run.
-PetscErrorCode choose_direct_solver(SNES snes) {
-  PetscBool chosen = PETSC_FALSE;
+// result on two ranks); SuperLU_DIST's is the same at every run. The choice
+// goes into the options database, as the other defaults, so the first system
+// of a process decides for the later ones.
+const char* default_direct_solver(MPI_Comm comm) {
   PetscMPIInt ranks = 1;
-  KSP ksp = nullptr;
-  PC pc = nullptr;
-  PetscFunctionBeginUser;
-  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-pc_factor_mat_solver_type", &chosen));
-  if (chosen) PetscFunctionReturn(0);
-  PetscCallMPI(MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(snes)), &ranks));
-  PetscCall(SNESGetKSP(snes, &ksp));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCFactorSetMatSolverType(pc, ranks > 1 ? MATSOLVERSUPERLU_DIST : MATSOLVERMUMPS));
-  PetscFunctionReturn(0);
+  MPI_Comm_size(comm, &ranks);
+  return ranks > 1 ? "superlu_dist" : "mumps";
 }
 
 } // namespace
@@ -57,6 +50,8 @@ PetscErrorCode choose_direct_solver(SNES snes) {
 IncrementalSystem::IncrementalSystem(ClothProblem& problem, Vec like) : problem_(problem) {
   SartorPetscCall(set_default_option("-ksp_type", "preonly"));
   SartorPetscCall(set_default_option("-pc_type", "lu"));
+  SartorPetscCall(
+      set_default_option("-pc_factor_mat_solver_type", default_direct_solver(problem.comm())));
   SartorPetscCall(problem.create_jacobian(&jacobian_));
   SartorPetscCall(attach_near_null_space(like, jacobian_));
   for (Vec* v : {&residual_, &mass_, &predicted_, &previous_, &work_})
@@ -80,7 +75,6 @@ PetscErrorCode IncrementalSystem::create_snes(bool with_objective, SNES* snes) {
   // of the membrane forces counts as converged.
   PetscCall(SNESSetTolerances(*snes, 1e-12 * problem_.force_scale(), 1e-10, 1e-14, 100, -1));
   PetscCall(SNESSetFromOptions(*snes));
-  PetscCall(choose_direct_solver(*snes));
   PetscCall(SNESSetConvergenceHistory(*snes, norms_.data(), nullptr, PetscInt(norms_.size()),
                                       PETSC_TRUE));
   PetscFunctionReturn(0);

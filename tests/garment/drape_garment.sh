@@ -39,7 +39,11 @@ assert drape["max_penetration_m"] < drape["contact_offset_m"], drape
 # Static equilibrium after the settle: the body carries the whole weight.
 weight = math.hypot(*drape["weight_N"])
 assert abs(weight - 9.80665 * 0.25 * drape["material_area_m2"]) < 1e-9 * weight, drape
-assert drape["relative_imbalance"] < 1e-6, drape
+# The settle stops once the residual's norm is below 1e-6 of the weight
+# (drape's -snes_atol), so the net force may come out at that level or a few
+# times it (the pants: 1.008e-6 on one machine): 1e-5 keeps a margin above
+# the solver's tolerance, and a drape off equilibrium is far above it.
+assert drape["relative_imbalance"] < 1e-5, drape
 assert abs(drape["body_reaction_N"][2] - weight) < 1e-6 * weight, drape
 body = s["contact"]["bodies"][0]
 assert body["contacting_vertices"] > 0
