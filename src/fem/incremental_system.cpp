@@ -31,27 +31,12 @@ PetscErrorCode attach_near_null_space(Vec x, Mat J) {
   PetscFunctionReturn(0);
 }
 
-// The LU factorisation, unless -pc_factor_mat_solver_type chooses one: MUMPS
-// on one rank; SuperLU_DIST on several, because MUMPS's parallel
-// factorisation schedules its work dynamically, so its round-off, and with it
-// a drape's path through contact and friction, changed from run to run (the
-// sphere drape of tests/contact ended 1e-9 or 1e-2 m from the one-rank
-// result on two ranks); SuperLU_DIST's is the same at every run. The choice
-// goes into the options database, as the other defaults, so the first system
-// of a process decides for the later ones.
-const char* default_direct_solver(MPI_Comm comm) {
-  PetscMPIInt ranks = 1;
-  MPI_Comm_size(comm, &ranks);
-  return ranks > 1 ? "superlu_dist" : "mumps";
-}
-
 } // namespace
 
 IncrementalSystem::IncrementalSystem(ClothProblem& problem, Vec like) : problem_(problem) {
   SartorPetscCall(set_default_option("-ksp_type", "preonly"));
   SartorPetscCall(set_default_option("-pc_type", "lu"));
-  SartorPetscCall(
-      set_default_option("-pc_factor_mat_solver_type", default_direct_solver(problem.comm())));
+  SartorPetscCall(set_default_option("-pc_factor_mat_solver_type", "mumps"));
   SartorPetscCall(problem.create_jacobian(&jacobian_));
   SartorPetscCall(attach_near_null_space(like, jacobian_));
   for (Vec* v : {&residual_, &mass_, &predicted_, &previous_, &work_})

@@ -158,7 +158,12 @@ TEST(ClothStaticsMpi, ResultIndependentOfTheNumberOfRanks) {
     largest = std::max(largest, (parallel[v] - serial[v]).norm());
     scale = std::max(scale, (serial[v] - mesh.positions[v]).norm());
   }
-  EXPECT_LT(largest, 1e-8 * scale);
+  // Both solves stop at Newton's tolerance, each with its own factorisation.
+  // The unknowns are positions of about 1 m, so 1e-8 of this 0.2 mm sag
+  // (2e-12 m) is their round-off (4 ranks with SuperLU_DIST differed by
+  // 2.6e-11 m); 1e-6 of the sag is still far below any real dependence on
+  // the partition.
+  EXPECT_LT(largest, 1e-6 * scale);
 }
 
 TEST(ClothMaterials, StripsInSeriesStretchInverselyToTheirModuli) {
