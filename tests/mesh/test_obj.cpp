@@ -8,6 +8,8 @@
 
 #include "mesh_checks.hpp"
 
+#include "tests/support/scratch_folder.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -16,8 +18,6 @@
 #include <sstream>
 #include <string>
 #include <system_error>
-
-#include <unistd.h>
 
 namespace sartor {
 namespace {
@@ -28,19 +28,8 @@ std::string data(const std::string& name) {
   return std::string(SARTOR_MESH_TEST_DATA_DIR) + "/" + name;
 }
 
-// A folder of this process' own under the system temporary folder, removed
-// when the tests end.
 const fs::path& scratch_folder() {
-  struct Folder {
-    fs::path path = fs::temp_directory_path() / ("sartor_mesh_obj_" + std::to_string(::getpid()));
-    Folder() { fs::create_directories(path); }
-    ~Folder() {
-      std::error_code ignored;
-      fs::remove_all(path, ignored);
-    }
-  };
-  static const Folder folder;
-  return folder.path;
+  return test_support::scratch_folder("sartor_mesh_obj");
 }
 
 std::string scratch(const std::string& name) {

@@ -6,6 +6,8 @@
 #include "mesh/generators.hpp"
 #include "mesh/obj.hpp"
 
+#include "tests/support/scratch_folder.hpp"
+
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
@@ -16,25 +18,13 @@
 #include <system_error>
 #include <vector>
 
-#include <unistd.h>
-
 namespace sartor {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A folder of this process' own, removed when the tests end.
 const fs::path& scratch_folder() {
-  struct Folder {
-    fs::path path = fs::temp_directory_path() / ("sartor_output_" + std::to_string(::getpid()));
-    Folder() { fs::create_directories(path); }
-    ~Folder() {
-      std::error_code ignored;
-      fs::remove_all(path, ignored);
-    }
-  };
-  static const Folder folder;
-  return folder.path;
+  return test_support::scratch_folder("sartor_output");
 }
 
 std::vector<std::string> lines_of(const std::string& path) {

@@ -5,6 +5,8 @@
 
 #include "common/error.hpp"
 
+#include "tests/support/scratch_folder.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -20,25 +22,13 @@
 #include <system_error>
 #include <vector>
 
-#include <unistd.h>
-
 namespace sartor {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A folder of this process' own under the system temporary folder, removed
-// when the tests end.
 const fs::path& scratch_folder() {
-  struct Folder {
-    fs::path path = fs::temp_directory_path() / ("sartor_unit_csv_" + std::to_string(::getpid()));
-    ~Folder() {
-      std::error_code ignored;
-      fs::remove_all(path, ignored);
-    }
-  };
-  static const Folder folder;
-  return folder.path;
+  return test_support::scratch_folder("sartor_unit_csv");
 }
 
 // Writes `content` byte for byte to a file of its own for the running test.
