@@ -305,12 +305,12 @@ int run_converge(const Invocation& invocation) {
     }
     if (!done.converged) {
       write_petsc_options(directory);
-      throw InputError("level " + std::to_string(k) + " (mesh_refine " +
-                       std::to_string(done.mesh_refine) + "): the static solve did not converge (" +
-                       done.report.reason + " at load factor " + format_number(done.load_factor) +
-                       "); " + directory +
-                       " holds the levels so far (convergence.json: \"complete\": false). Try more "
-                       "--load-steps or -snes_monitor");
+      throw SolveFailure(
+          "level " + std::to_string(k) + " (mesh_refine " + std::to_string(done.mesh_refine) +
+          "): the static solve did not converge (" + done.report.reason + " at load factor " +
+          format_number(done.load_factor) + "); " + directory +
+          " holds the levels so far (convergence.json: \"complete\": false). Try more "
+          "--load-steps or -snes_monitor");
     }
   }
   write_petsc_options(directory);

@@ -423,17 +423,17 @@ int run_drape(const Invocation& invocation) {
   if (!options.flag("no-plot")) make_plot("plot_drape.py", directory);
   if (!result.converged) {
     const std::string reason = result.dynamics ? result.dynamics->reason : result.report.reason;
-    throw InputError("the drape did not converge (" + reason + "); " + directory +
-                     " holds the last state. Try a longer --time-end, a smaller --time-step, "
-                     "or -snes_monitor");
+    throw SolveFailure("the drape did not converge (" + reason + "); " + directory +
+                       " holds the last state. Try a longer --time-end, a smaller --time-step, "
+                       "or -snes_monitor");
   }
   if (!converged) {
-    throw InputError("the drape is not in equilibrium: the final static solve stopped with a "
-                     "residual force of " +
-                     format_number(residual) + " N for a weight of " +
-                     format_number(weight.norm()) + " N; " + directory +
-                     " holds its state. Look for seams across the body (warnings above) or "
-                     "penetration (summary.json)");
+    throw SolveFailure("the drape is not in equilibrium: the final static solve stopped with a "
+                       "residual force of " +
+                       format_number(residual) + " N for a weight of " +
+                       format_number(weight.norm()) + " N; " + directory +
+                       " holds its state. Look for seams across the body (warnings above) or "
+                       "penetration (summary.json)");
   }
   return 0;
 }

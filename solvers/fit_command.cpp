@@ -302,9 +302,9 @@ CreepFit fit_direction(const Invocation& invocation, const std::string& path,
     write_file_atomically(directory + "/fit.csv", fit_csv(data, fit.parameters));
   }
   if (!fit.converged) {
-    throw InputError("the least-squares refinement did not reach a certified optimum (" +
-                     fit.converged_reason + "; " + fit.certification + "); " + directory +
-                     "/fit.json holds the thesis estimate and the last iterate");
+    throw SolveFailure("the least-squares refinement did not reach a certified optimum (" +
+                       fit.converged_reason + "; " + fit.certification + "); " + directory +
+                       "/fit.json holds the thesis estimate and the last iterate");
   }
   print_fit(data, fit, bootstrap);
   if (settings.plot) make_plot("plot_fit.py", directory);

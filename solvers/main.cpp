@@ -143,6 +143,11 @@ int run_with_petsc(const Command& command, sartor::ParsedCommandLine parsed,
     if (sartor::is_root()) {
       std::fprintf(stderr, "sartor %s: error: %s\n", command.spec().name.c_str(), error.what());
     }
+    status = 2;
+  } catch (const sartor::SolveFailure& error) {
+    if (sartor::is_root()) {
+      std::fprintf(stderr, "sartor %s: error: %s\n", command.spec().name.c_str(), error.what());
+    }
     status = 1;
   } catch (const sartor::PetscFailure& error) {
     if (error.is_user_error()) {
@@ -150,7 +155,7 @@ int run_with_petsc(const Command& command, sartor::ParsedCommandLine parsed,
         std::fprintf(stderr, "sartor %s: error: PETSc rejected an option or input (above)\n",
                      command.spec().name.c_str());
       }
-      status = 1;
+      status = 2;
     } else {
       status = report_internal_error(command, error);
     }

@@ -1020,10 +1020,10 @@ int run_run(const Invocation& invocation) {
         result.mesh.triangle_count(), report.final_time, report.steps.size(), report.rejected_steps,
         int(report.newton_iterations), directory.c_str()));
     if (!report.completed) {
-      throw InputError("the creep run stopped at t = " + format_number(report.final_time) +
-                       " s: " + report.reason + "; " + directory +
-                       " holds the last accepted state. Try a smaller --creep-tolerance or "
-                       "-snes_monitor");
+      throw SolveFailure("the creep run stopped at t = " + format_number(report.final_time) +
+                         " s: " + report.reason + "; " + directory +
+                         " holds the last accepted state. Try a smaller --creep-tolerance or "
+                         "-snes_monitor");
     }
     return 0;
   }
@@ -1037,9 +1037,9 @@ int run_run(const Invocation& invocation) {
         int(report.rejected_steps), int(report.newton_iterations),
         report.at_rest ? ", at rest" : "", directory.c_str()));
     if (!report.completed) {
-      throw InputError(report.reason + "; " + directory +
-                       " holds the last accepted state. Try a smaller --time-step, --damping, "
-                       "or -snes_monitor");
+      throw SolveFailure(report.reason + "; " + directory +
+                         " holds the last accepted state. Try a smaller --time-step, --damping, "
+                         "or -snes_monitor");
     }
     return 0;
   }
@@ -1051,9 +1051,9 @@ int run_run(const Invocation& invocation) {
                   int(result.report.newton_iterations), result.report.steps.size(),
                   result.report.final_residual_norm, directory.c_str()));
   if (!result.converged) {
-    throw InputError("the static solve did not converge (" + result.report.reason +
-                     " at load factor " + format_number(result.load_factor) + "); " + directory +
-                     " holds the last converged state. Try more --load-steps or -snes_monitor");
+    throw SolveFailure("the static solve did not converge (" + result.report.reason +
+                       " at load factor " + format_number(result.load_factor) + "); " + directory +
+                       " holds the last converged state. Try more --load-steps or -snes_monitor");
   }
   return 0;
 }

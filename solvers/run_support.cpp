@@ -78,7 +78,7 @@ void make_plot(const std::string& script, const std::string& directory) {
     }
   }
   MPI_Bcast(&status, 1, MPI_INT, 0, PETSC_COMM_WORLD);
-  if (status != 0) throw InputError(problem.empty() ? "plotting failed on rank 0" : problem);
+  if (status != 0) throw SolveFailure(problem.empty() ? "plotting failed on rank 0" : problem);
 }
 
 } // namespace sartor

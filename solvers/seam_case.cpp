@@ -130,14 +130,14 @@ void sew_and_merge(const Options& options, const ClothMaterial& material,
     SartorPetscCall(VecDestroy(&x));
   }
   if (!report->sewing.converged) {
-    throw InputError("option --seam-merge: the sewing solve did not converge (" +
-                     report->sewing.reason + "); try more --load-steps or -snes_monitor");
+    throw SolveFailure("option --seam-merge: the sewing solve did not converge (" +
+                       report->sewing.reason + "); try more --load-steps or -snes_monitor");
   }
   const double tolerance = options.positive_real("seam-merge-gap");
   if (report->gap_before_merge > tolerance) {
-    throw InputError("option --seam-merge: the seams did not close (largest gap " +
-                     format_number(report->gap_before_merge) + " m > --seam-merge-gap " +
-                     format_number(tolerance) + " m); raise --seam-penalty or --seam-stiffness");
+    throw SolveFailure("option --seam-merge: the seams did not close (largest gap " +
+                       format_number(report->gap_before_merge) + " m > --seam-merge-gap " +
+                       format_number(tolerance) + " m); raise --seam-penalty or --seam-stiffness");
   }
   // Every rank holds the whole mesh: share the sewn placement.
   positions.resize(mesh->vertex_count());

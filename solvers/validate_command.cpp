@@ -155,8 +155,8 @@ int run_validate(const Invocation& invocation) {
   CreepFit fit;
   SartorPetscCall(fit_creep_test(PETSC_COMM_WORLD, fitted, start.parameters, confidence, &fit));
   if (!fit.converged) {
-    throw InputError("the fit of " + fitted.path + " reached no certified optimum (" +
-                     fit.converged_reason + "; " + fit.certification + "): nothing to validate");
+    throw SolveFailure("the fit of " + fitted.path + " reached no certified optimum (" +
+                       fit.converged_reason + "; " + fit.certification + "): nothing to validate");
   }
   const CreepPrediction prediction = predict_creep_test(predicted, fit);
 
