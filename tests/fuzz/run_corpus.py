@@ -2,8 +2,8 @@
 """Malformed and hostile inputs for every reader of `sartor`, each of which
 must be answered as a user's mistake: a clean exit with status 2 (bad input),
 a message naming the file, the option or the key, no signal, no hang, no
-traceback (PETSc's, C++'s), no "internal error".(Valid inputs whose solve fails, status 1, are
-tested in tests/cli.)
+traceback (PETSc's, C++'s), no "internal error". (Valid inputs whose
+solve fails end with status 1; tests/cli checks those.)
 
     run_corpus.py SARTOR SOURCE_DIR WORKDIR [--list]
 
