@@ -8,6 +8,7 @@
 #include "material/creep_recovery_model.hpp"
 #include "material/strip_creep.hpp"
 #include "solvers/creep_fit.hpp"
+#include "tests/support/scratch_folder.hpp"
 
 #include <gtest/gtest.h>
 
@@ -181,7 +182,8 @@ TEST(CreepFit, WarnsWhenTheTestDidNotSaturate) {
 }
 
 std::string write_temporary(const std::string& name, const std::string& content) {
-  const std::string path = ::testing::TempDir() + name;
+  // This process' own folder: ctest runs each test as a process, in parallel.
+  const std::string path = (test_support::scratch_folder("sartor_fit_data") / name).string();
   write_file_atomically(path, content);
   return path;
 }

@@ -6,6 +6,8 @@
 #include "garment/pattern_svg.hpp"
 #include "pattern_fixtures.hpp"
 
+#include <unistd.h>
+
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
@@ -429,7 +431,8 @@ TEST(PatternSvg, WellFormedWithEveryId) {
   EXPECT_EQ(opened, closed);
   // ... and xmllint, where installed, agrees.
   if (std::system("command -v xmllint > /dev/null 2>&1") == 0) {
-    const std::string path = ::testing::TempDir() + "/sartor_pattern_test.svg";
+    const std::string path =
+        ::testing::TempDir() + "/sartor_pattern_test_" + std::to_string(::getpid()) + ".svg";
     write_pattern_svg(path, shirt);
     EXPECT_EQ(std::system(("xmllint --noout " + path).c_str()), 0);
     std::remove(path.c_str());
