@@ -53,7 +53,7 @@ struct MembraneMaterial {
   TensionCurve weft;
   double shear_modulus = 0.0; // G, N/m
   double poisson = 0.0;       // warp-weft coupling of the StVK model, dimensionless
-  std::shared_ptr<const MeasuredStretching> stretching; // the measured model's table
+  std::shared_ptr<const MeasuredStretching> stretching = nullptr; // the measured model's table
 };
 
 // The creep state of the element: non-elastic strain per direction, each

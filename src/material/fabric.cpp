@@ -206,10 +206,12 @@ public:
       MeasuredFileReader(measured).read_into(fabric);
     }
     if (!fabric.warp && !fabric.weft) fail(root, "needs a 'warp', a 'weft' or a 'measured' entry");
-    for (const auto* d : {&fabric.warp, &fabric.weft}) {
-      if (*d && !(*d)->elastic_given && !fabric.stretching)
+    for (auto* d : {&fabric.warp, &fabric.weft}) {
+      if (!*d || (*d)->elastic_given || fabric.stretching) continue;
+      if (!(*d)->has_creep)
         fail(root, "a direction without creep parameters needs elastic_modulus, elastic_curve or "
                    "a 'measured' table");
+      (*d)->elastic_given = true; // the presets' rule, elastic modulus 2E
     }
     if (root["density"]) fabric.areal_density = positive(root["density"], "density (kg/m^2)");
     if (root["shear_modulus"])
@@ -281,14 +283,15 @@ private:
       fail(node, context + ": give elastic_modulus or elastic_curve, not both");
     }
     if (node["elastic_curve"]) return {creep, curve(node["elastic_curve"], where), true, any_creep};
-    if (!node["elastic_modulus"] && !any_creep) {
-      // Elastic curve from the measured table (read after the directions).
-      return {creep, TensionCurve::linear(1.0, where), false, false};
+    if (node["elastic_modulus"]) {
+      return {creep,
+              TensionCurve::linear(number(node["elastic_modulus"], "elastic_modulus"), where), true,
+              any_creep};
     }
-    const double modulus = node["elastic_modulus"]
-                               ? number(node["elastic_modulus"], "elastic_modulus")
-                               : preset_elastic_to_creep_modulus * creep.creep_modulus;
-    return {creep, TensionCurve::linear(modulus, where), true, any_creep};
+    // Not given: the measured table's curve if the file has one (read after
+    // the directions), else the presets' rule from E (placeholder without E).
+    const double modulus = any_creep ? preset_elastic_to_creep_modulus * creep.creep_modulus : 1.0;
+    return {creep, TensionCurve::linear(modulus, where), false, any_creep};
   }
 
   // bending: {warp: CURVE, weft: CURVE, twist: CURVE}, each a rigidity (N m)

@@ -9,8 +9,9 @@
 //   W = 1/2 (k0 G00^2 + 2 k1 G00 G11 + k2 G11^2 + k3 G01^2).
 // k depends on the largest principal stretch w (sqrt of the largest
 // eigenvalue of C = I + 2G) and the angle phi of its direction to the warp,
-// folded into [0, 90] degrees: with s = clamp(6 (w - 1), 0, 1) and t = phi /
-// 22.5 degrees between the angle rows i = floor(t), i + 1,
+// folded into [0, 90] degrees (0 where the principal stretches are equal,
+// as ARCSim's eigensolver gives for a multiple of the identity): with s = clamp(6 (w - 1), 0, 1)
+// and t = phi / 22.5 degrees between the angle rows i = floor(t), i + 1,
 //   k = 2 max(0, (1 - s) row0 + s ((1 - f) row(1 + i) + f row(2 + i))),
 // f = t - i: row 0 is the stiffness at zero strain, rows 1..5 at a principal
 // strain of 1/6 along 0, 22.5, 45, 67.5 and 90 degrees. As ARCSim, k is
@@ -68,7 +69,8 @@ public:
     Eigen::Matrix<double, 4, 3> gradient = Eigen::Matrix<double, 4, 3>::Zero();
     // Mixed second derivatives (the only ones of a trilinear map): d2k/dg_m dg_n
     // for (m, n) = (0, 1), (0, 2), (1, 2).
-    std::array<Eigen::Vector4d, 3> mixed{};
+    std::array<Eigen::Vector4d, 3> mixed{Eigen::Vector4d::Zero(), Eigen::Vector4d::Zero(),
+                                         Eigen::Vector4d::Zero()};
   };
   Stiffness stiffness(double g00, double g11, double g01) const;
   StrainEnergy energy(double g00, double g11, double g01) const;
