@@ -6,8 +6,9 @@ OUTDIR/summary.json): the rim is the boundary of the specimen's mesh (edges
 of one triangle). Hem height: the mean and the lowest z of the rim vertices
 (m). Folds: the rim's distance from the axis r(theta), less its mean,
 smoothed by a circular moving average over --smooth vertices; each fold is
-one outward lobe, so folds = (sign changes around the circle) / 2, counting
-only lobes whose peak exceeds --min-amplitude (m). Prints a table, writes
+one outward lobe: a local maximum standing more than --min-amplitude (m)
+above the valleys on both sides (shallower ones are merged into their
+neighbours). Prints a table, writes
 --json (the numbers) and --output (a PNG: each specimen seen from above,
 coloured by height, with its rim). The drape coefficient comes from the
 summary (contact.drape.coefficient) when the case reports it.
@@ -37,25 +38,42 @@ def rim_vertices(triangles):
 
 
 def count_folds(theta, radius, smooth, min_amplitude):
-    """Outward lobes of r(theta) around the circle."""
+    """Outward lobes of r(theta) around the circle: local maxima whose
+    prominence (height above the higher of the two valleys beside them)
+    exceeds min_amplitude."""
     order = np.argsort(theta)
-    r = radius[order] - radius.mean()
+    r = radius[order]
     if smooth > 1:
         kernel = np.ones(smooth) / smooth
         padded = np.concatenate([r[-smooth:], r, r[:smooth]])
         r = np.convolve(padded, kernel, mode="same")[smooth:-smooth]
-    sign = np.sign(r)
-    sign[sign == 0] = 1
-    changes = np.nonzero(sign != np.roll(sign, 1))[0]
-    if len(changes) < 2:
+    n = len(r)
+    peaks = [i for i in range(n) if r[i] > r[i - 1] and r[i] >= r[(i + 1) % n]]
+    valleys = [i for i in range(n) if r[i] < r[i - 1] and r[i] <= r[(i + 1) % n]]
+    if not peaks or not valleys:
         return 0
-    folds = 0
-    for i, start in enumerate(changes):
-        stop = changes[(i + 1) % len(changes)]
-        lobe = r[start:stop] if stop > start else np.concatenate([r[start:], r[:stop]])
-        if len(lobe) and lobe.max() > min_amplitude:
-            folds += 1
-    return folds
+    # Merge maxima whose valley between them is shallow until all remaining
+    # peaks stand min_amplitude above both neighbouring valleys.
+    extrema = sorted([(i, +1) for i in peaks] + [(i, -1) for i in valleys])
+    values = [r[i] for i, _ in extrema]
+    kinds = [k for _, k in extrema]
+    changed = True
+    while changed and kinds.count(1) > 1:
+        changed = False
+        m = len(kinds)
+        for j in range(m):
+            if kinds[j] != 1:
+                continue
+            left, right = values[j - 1], values[(j + 1) % m]
+            if values[j] - max(left, right) < min_amplitude:
+                # Drop the peak and its higher neighbouring valley.
+                drop = (j - 1) % m if left > right else (j + 1) % m
+                for index in sorted({j, drop}, reverse=True):
+                    del values[index]
+                    del kinds[index]
+                changed = True
+                break
+    return kinds.count(1)
 
 
 def measure(folder, smooth, min_amplitude):
