@@ -207,7 +207,8 @@ const CommandSpec& drape_command() {
             option.help += " [on in drape]";
           if (option.name == "fabric") {
             option.fallback.clear();
-            option.help = "the fabric of every panel, a preset or FILE.yaml [the pattern's]";
+            option.help = "the fabric of every panel, a preset, FILE.yaml or measured FILE.json "
+                          "[the pattern's]";
           }
           if (is_mesh_option(option.name)) {
             option.fallback.clear();

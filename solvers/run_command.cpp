@@ -55,20 +55,24 @@ const std::vector<OptionSpec>& case_option_specs() {
        "at the rim, growing from radius R0 (m) (docs/contact.md)"},
       {"mesh-rotate-x", "DEG", "0", "rotate the placement about the x axis, degrees"},
       {"mesh-translate", "X,Y,Z", "0,0,0", "then translate it, m"},
-      {"fabric", "SPEC", "cotton_twill", "preset or FILE.yaml: elastic curves per direction"},
+      {"fabric", "SPEC", "cotton_twill",
+       "preset, FILE.yaml or measured FILE.json: membrane, bending, density (docs/fabrics.md)"},
       {"warp-modulus", "N/M", "", "linear warp modulus, N/m (replaces the fabric's curve)"},
       {"weft-modulus", "N/M", "", "linear weft modulus, N/m (replaces the fabric's curve)"},
-      {"shear-modulus", "N/M", "", "in-plane shear modulus, N/m [0.1 sqrt(k_warp k_weft)]"},
+      {"shear-modulus", "N/M", "",
+       "in-plane shear modulus, N/m [the fabric's, else 0.1 sqrt(k_warp k_weft)]"},
       {"poisson", "NU", "0", "warp-weft Poisson coupling (stvk model)"},
-      {"membrane-model", "M", "baraff_witkin", "baraff_witkin or stvk"},
+      {"membrane-model", "M", "baraff_witkin",
+       "baraff_witkin, stvk or measured (Wang et al. table) [measured for a fabric with one]"},
       {"membrane-psd", "", "", "project membrane Hessians to PSD (compression stabilisation)"},
       {"bending-model", "M", "discrete_shell",
        "discrete_shell or quadratic (hinges), patch (converges to plate theory)"},
-      {"bending-stiffness", "N*M", "1e-6", "bending stiffness (warp, patch), N m (0: no bending)"},
+      {"bending-stiffness", "N*M", "1e-6",
+       "bending stiffness (warp, patch), N m (0: no bending) [the fabric's curves if any]"},
       {"bending-weft", "N*M", "", "patch model: weft rigidity, N m [--bending-stiffness]"},
       {"bending-twist", "N*M", "", "patch model: twist rigidity, N m [half the warp's]"},
       {"bending-psd", "", "", "project bending Hessians to PSD"},
-      {"density", "KG/M2", "0.2", "areal density, kg/m^2"},
+      {"density", "KG/M2", "0.2", "areal density, kg/m^2 [the fabric's if it has one]"},
       {"gravity", "X,Y,Z", "0,0,-9.80665", "gravitational acceleration, m/s^2"},
       {"pressure", "PA", "0", "follower pressure on the triangles' normal side, Pa"},
       {"point-force", "V,FX,FY,FZ", "", "a force (N) on vertex V"},
@@ -294,40 +298,36 @@ TriangleMesh build_mesh(const Options& options, int extra_refinements, int* refi
 
 // The material of `fabric` (a preset or FILE.yaml) with the options' moduli,
 // models, bending and density.
-ClothMaterial build_material(const Options& options, const std::string& fabric_spec) {
-  const auto choices = resolve_fabrics(fabric_spec);
-  const Fabric& fabric = choices.front().fabric;
-  const auto curve = [&](const char* option, Direction direction) {
-    if (options.is_set(option)) {
-      return TensionCurve::linear(options.positive_real(option), std::string("--") + option);
-    }
-    return fabric.in(direction).elastic;
-  };
-  ClothMaterial material({curve("warp-modulus", Direction::warp),
-                          curve("weft-modulus", Direction::weft), 0.0, options.real("poisson")});
-  material.membrane.shear_modulus = options.is_set("shear-modulus")
-                                        ? options.nonnegative_real("shear-modulus")
-                                        : 0.1 * std::sqrt(material.membrane.warp.initial_modulus() *
-                                                          material.membrane.weft.initial_modulus());
+element::MembraneModel membrane_model(const Options& options, const Fabric& fabric) {
+  if (!options.is_set("membrane-model") && fabric.stretching)
+    return element::MembraneModel::measured;
   const std::string membrane = options.text("membrane-model");
-  if (membrane == "baraff_witkin") {
-    material.membrane_model = element::MembraneModel::baraff_witkin;
-  } else if (membrane == "stvk") {
-    material.membrane_model = element::MembraneModel::saint_venant_kirchhoff;
-  } else {
-    throw InputError("option --membrane-model: unknown model '" + membrane +
-                     "' (baraff_witkin, stvk)");
-  }
+  if (membrane == "baraff_witkin") return element::MembraneModel::baraff_witkin;
+  if (membrane == "stvk") return element::MembraneModel::saint_venant_kirchhoff;
+  if (membrane == "measured") return element::MembraneModel::measured;
+  throw InputError("option --membrane-model: unknown model '" + membrane +
+                   "' (baraff_witkin, stvk, measured)");
+}
+
+element::BendingModel bending_model(const Options& options) {
   const std::string bending = options.text("bending-model");
-  if (bending == "discrete_shell") {
-    material.bending_model = element::BendingModel::discrete_shell;
-  } else if (bending == "quadratic") {
-    material.bending_model = element::BendingModel::quadratic;
-  } else if (bending == "patch") {
-    material.bending_model = element::BendingModel::patch;
-  } else {
-    throw InputError("option --bending-model: unknown model '" + bending +
-                     "' (patch, discrete_shell, quadratic)");
+  if (bending == "discrete_shell") return element::BendingModel::discrete_shell;
+  if (bending == "quadratic") return element::BendingModel::quadratic;
+  if (bending == "patch") return element::BendingModel::patch;
+  throw InputError("option --bending-model: unknown model '" + bending +
+                   "' (patch, discrete_shell, quadratic)");
+}
+
+// Bending from the options, or the fabric's curves when it has them and no
+// rigidity option is given (the hinge models take their initial rigidity).
+void set_bending(const Options& options, const Fabric& fabric, ClothMaterial& material) {
+  const bool options_given = options.is_set("bending-stiffness") ||
+                             options.is_set("bending-weft") || options.is_set("bending-twist");
+  if (fabric.bending && !options_given) {
+    material.bending_curves = std::make_shared<const FabricBending>(*fabric.bending);
+    material.bending_stiffness =
+        0.5 * (fabric.bending->warp.initial_rigidity() + fabric.bending->weft.initial_rigidity());
+    return;
   }
   material.bending_stiffness = options.nonnegative_real("bending-stiffness");
   if (options.is_set("bending-weft") || options.is_set("bending-twist")) {
@@ -339,7 +339,48 @@ ClothMaterial build_material(const Options& options, const std::string& fabric_s
     if (options.is_set("bending-twist")) rigidity.twist = options.nonnegative_real("bending-twist");
     material.bending_rigidity = rigidity;
   }
-  material.areal_density = options.nonnegative_real("density");
+}
+
+// The material of `fabric` (a preset, FILE.yaml or a measured FILE.json)
+// with the options' moduli, models, bending and density; options given
+// explicitly override what the fabric holds (docs/fabrics.md).
+ClothMaterial build_material(const Options& options, const std::string& fabric_spec) {
+  const auto choices = resolve_fabrics(fabric_spec);
+  const Fabric& fabric = choices.front().fabric;
+  const element::MembraneModel model = membrane_model(options, fabric);
+  const auto curve = [&](const char* option, Direction direction) {
+    if (options.is_set(option)) {
+      return TensionCurve::linear(options.positive_real(option), std::string("--") + option);
+    }
+    const DirectionalMaterial& m = fabric.in(direction);
+    // Table curves are stored in the Baraff-Witkin measure; stvk reads Green strain.
+    if (!m.elastic_given && model == element::MembraneModel::saint_venant_kirchhoff) {
+      return table_tension_curve(fabric.stretching->table(), direction == Direction::weft, true,
+                                 fabric.source);
+    }
+    return m.elastic;
+  };
+  ClothMaterial material({curve("warp-modulus", Direction::warp),
+                          curve("weft-modulus", Direction::weft), 0.0, options.real("poisson")});
+  material.membrane_model = model;
+  material.membrane.stretching = fabric.stretching;
+  if (fabric.stretching && !options.is_set("poisson")) {
+    // c12 = k1 at zero strain.
+    material.membrane.poisson = table_stiffness(fabric.stretching->table(), 0.0, 0.0, 0.0)[1] /
+                                std::sqrt(material.membrane.warp.initial_modulus() *
+                                          material.membrane.weft.initial_modulus());
+  }
+  const double automatic_shear = fabric.shear_modulus
+                                     ? *fabric.shear_modulus
+                                     : 0.1 * std::sqrt(material.membrane.warp.initial_modulus() *
+                                                       material.membrane.weft.initial_modulus());
+  material.membrane.shear_modulus =
+      options.is_set("shear-modulus") ? options.nonnegative_real("shear-modulus") : automatic_shear;
+  material.bending_model = bending_model(options);
+  set_bending(options, fabric, material);
+  material.areal_density = !options.is_set("density") && fabric.areal_density
+                               ? *fabric.areal_density
+                               : options.nonnegative_real("density");
   material.project_membrane = options.flag("membrane-psd");
   material.project_bending = options.flag("bending-psd");
   return material;

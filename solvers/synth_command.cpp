@@ -83,6 +83,7 @@ private:
 int run_synth(const Invocation& invocation) {
   const Options& options = invocation.options;
   const auto choices = resolve_fabrics(options.text("fabric"));
+  choices.front().fabric.check_creep();
   if (choices.size() != 1) {
     throw InputError("option --fabric: synth needs one direction, e.g. " + choices.front().label());
   }

@@ -127,9 +127,41 @@ Density saint_venant_kirchhoff(const MembraneMaterial& material, const Vector3d&
   return w;
 }
 
+const MeasuredStretching& table_of(const MembraneMaterial& material) {
+  if (!material.stretching) {
+    throw InputError("the measured membrane model needs a fabric with a stretching table "
+                     "(a measured material, docs/fabrics.md)");
+  }
+  return *material.stretching;
+}
+
+// The measured table's W(E11, E22, E12) with E11 = (a.a - 1)/2,
+// E22 = (b.b - 1)/2, E12 = a.b/2 (chain rule; the Green strain is quadratic).
+Density measured(const MembraneMaterial& material, const Vector3d& a, const Vector3d& b) {
+  const StrainEnergy e = table_of(material).energy(0.5 * (a.squaredNorm() - 1.0),
+                                                   0.5 * (b.squaredNorm() - 1.0), 0.5 * a.dot(b));
+  const Eigen::Vector3d& g = e.gradient;
+  const Eigen::Matrix3d& h = e.hessian;
+  const Matrix3d identity = Matrix3d::Identity();
+  Density w;
+  w.energy = e.energy;
+  w.grad_a = g[0] * a + 0.5 * g[2] * b;
+  w.grad_b = g[1] * b + 0.5 * g[2] * a;
+  w.haa = h(0, 0) * a * a.transpose() + 0.5 * h(0, 2) * (a * b.transpose() + b * a.transpose()) +
+          0.25 * h(2, 2) * b * b.transpose() + g[0] * identity;
+  w.hbb = h(1, 1) * b * b.transpose() + 0.5 * h(1, 2) * (a * b.transpose() + b * a.transpose()) +
+          0.25 * h(2, 2) * a * a.transpose() + g[1] * identity;
+  w.hab = h(0, 1) * a * b.transpose() + 0.5 * h(0, 2) * a * a.transpose() +
+          0.5 * h(1, 2) * b * b.transpose() + 0.25 * h(2, 2) * b * a.transpose() +
+          0.5 * g[2] * identity;
+  return w;
+}
+
 Density density(MembraneModel model, const MembraneMaterial& material, const Vector3d& a,
                 const Vector3d& b) {
   switch (model) {
+  case MembraneModel::measured:
+    return measured(material, a, b);
   case MembraneModel::baraff_witkin:
     return baraff_witkin(material, a, b);
   case MembraneModel::saint_venant_kirchhoff:
@@ -220,6 +252,14 @@ MembraneStrain membrane_strain(MembraneModel model, const MembraneMaterial& mate
     strain.tension_weft = (material.weft.tension(strain.weft) + c12 * strain.warp) * k.b.norm();
     break;
   }
+  case MembraneModel::measured: {
+    strain.warp = 0.5 * (k.a.squaredNorm() - 1.0);
+    strain.weft = 0.5 * (k.b.squaredNorm() - 1.0);
+    const StrainEnergy e = table_of(material).energy(strain.warp, strain.weft, 0.5 * strain.shear);
+    strain.tension_warp = e.gradient[0] * k.a.norm();
+    strain.tension_weft = e.gradient[1] * k.b.norm();
+    break;
+  }
   }
   return strain;
 }
@@ -261,6 +301,23 @@ ColumnTensions column_tensions(MembraneModel model, const MembraneMaterial& mate
     t.per_b.row(0) = (c12 * sa.length * b).transpose();
     t.per_a.row(1) = (c12 * sb.length * a).transpose();
     t.per_b.row(1) = (material.weft.stiffness(e22) * sb.length * b + s22 * sb.unit).transpose();
+    break;
+  }
+  case MembraneModel::measured: {
+    // tension_warp = W_0 |a|, tension_weft = W_1 |b|, W_m = dW/dg_m over
+    // g = (E11, E22, E12); dg/da = (a, 0, b/2), dg/db = (0, b, a/2).
+    const Stretch sa = stretch_of(a);
+    const Stretch sb = stretch_of(b);
+    const StrainEnergy e = table_of(material).energy(0.5 * (a.squaredNorm() - 1.0),
+                                                     0.5 * (b.squaredNorm() - 1.0), 0.5 * a.dot(b));
+    const Eigen::Matrix3d& h = e.hessian;
+    t.tension << e.gradient[0] * sa.length, e.gradient[1] * sb.length;
+    t.per_a.row(0) =
+        ((h(0, 0) * a + 0.5 * h(0, 2) * b) * sa.length + e.gradient[0] * sa.unit).transpose();
+    t.per_b.row(0) = ((h(0, 1) * b + 0.5 * h(0, 2) * a) * sa.length).transpose();
+    t.per_a.row(1) = ((h(0, 1) * a + 0.5 * h(1, 2) * b) * sb.length).transpose();
+    t.per_b.row(1) =
+        ((h(1, 1) * b + 0.5 * h(1, 2) * a) * sb.length + e.gradient[1] * sb.unit).transpose();
     break;
   }
   }

@@ -17,17 +17,22 @@
 // (N/m). Energy = A_ul W. Compression stabilisation (Sensitive Couture §5) is
 // the PSD projection of the Hessian, chosen by the caller.
 //
-// Both models share the shear term: 2 G E12^2 = G g^2 / 2 with g = 2 E12.
+//  * measured: the measured table of Wang et al. 2011 (material/measured_cloth.hpp)
+//    in Green strain, W(E11, E22, E12) = MeasuredStretching::energy; the
+//    curves, shear modulus and poisson are not used.
+// Both of the first two models share the shear term: 2 G E12^2 = G g^2 / 2 with g = 2 E12.
 // In the Baraff-Witkin model a column of F_e shorter than 1e-12 (a triangle
 // collapsed along u or v) has no direction: its stretch then contributes its
 // energy but no gradient and no Hessian, so the results stay finite.
 
 #include "element/element.hpp"
+#include "material/measured_cloth.hpp"
 #include "material/tension_curve.hpp"
 
 #include <Eigen/Core>
 
 #include <array>
+#include <memory>
 
 namespace sartor::element {
 
@@ -41,13 +46,14 @@ struct TriangleRest {
 };
 TriangleRest triangle_rest(const std::array<Eigen::Vector2d, 3>& uv);
 
-enum class MembraneModel { baraff_witkin, saint_venant_kirchhoff };
+enum class MembraneModel { baraff_witkin, saint_venant_kirchhoff, measured };
 
 struct MembraneMaterial {
   TensionCurve warp;
   TensionCurve weft;
   double shear_modulus = 0.0; // G, N/m
   double poisson = 0.0;       // warp-weft coupling of the StVK model, dimensionless
+  std::shared_ptr<const MeasuredStretching> stretching = nullptr; // the measured model's table
 };
 
 // The creep state of the element: non-elastic strain per direction, each
@@ -62,8 +68,9 @@ Result<9> membrane(MembraneModel model, const MembraneMaterial& material, const 
 
 // Elastic strains and tensions of the element, for output and for the creep
 // law: tension_warp = dW/de_u (BW) or S11 |F_e e1| (StVK), N/m per unit
-// unloaded width. The strains are each model's own measure, the argument of
-// its tension-strain curves: e_u, e_v (BW) or E11, E22 (StVK); shear is
+// unloaded width (S11 |F_e e1| with S11 = dW/dE11 for the measured model).
+// The strains are each model's own measure, the argument of its
+// tension-strain curves: e_u, e_v (BW) or E11, E22 (StVK, measured); shear is
 // g = (F_e e1).(F_e e2) = 2 E12 in both (the engineering shear strain for
 // small strains).
 struct MembraneStrain {

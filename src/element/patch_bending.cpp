@@ -248,6 +248,41 @@ PatchRest patch_rest(const std::array<Vector2d, 3>& triangle,
   return rest;
 }
 
+namespace {
+
+// Energy density (J/m^2), moments (dW/ds) and tangent (d2W/ds2) at the
+// bending strain s = k - k_rest: the quadratic form of the rigidity matrix,
+// or the curves' energies with its Poisson coupling.
+struct Response {
+  double energy_density = 0.0;
+  Vector3d moment = Vector3d::Zero();
+  Matrix3d tangent = Matrix3d::Zero();
+};
+
+Response respond(const PatchRest& rest, const Vector3d& strain) {
+  Response r;
+  if (!rest.curves) {
+    r.tangent = rest.rigidity;
+    r.moment = rest.rigidity * strain;
+    r.energy_density = 0.5 * strain.dot(r.moment);
+    return r;
+  }
+  const std::array<const MomentCurve*, 3> curves{&rest.curves->warp, &rest.curves->weft,
+                                                 &rest.curves->twist};
+  const double coupling = rest.rigidity(0, 1);
+  r.energy_density = coupling * strain[0] * strain[1];
+  r.tangent(0, 1) = r.tangent(1, 0) = coupling;
+  r.moment << coupling * strain[1], coupling * strain[0], 0.0;
+  for (int i = 0; i < 3; ++i) {
+    r.energy_density += curves[std::size_t(i)]->energy_density(strain[i]);
+    r.moment[i] += curves[std::size_t(i)]->moment(strain[i]);
+    r.tangent(i, i) = curves[std::size_t(i)]->stiffness(strain[i]);
+  }
+  return r;
+}
+
+} // namespace
+
 Result<36> patch_bending(const PatchRest& rest, const Vector36& x, Want want) {
   Result<36> result;
   result.energy = 0.0;
@@ -270,8 +305,9 @@ Result<36> patch_bending(const PatchRest& rest, const Vector36& x, Want want) {
   for (int i = 1; i < nodes; ++i)
     h += (x.segment<3>(3 * i) - x0) * rest.weights.col(i).transpose();
   const Vector3d strain = voigt.cwiseProduct(h.transpose() * n) - rest.rest_curvature;
-  const Vector3d moment = rest.rigidity * strain;
-  result.energy = 0.5 * rest.area * strain.dot(moment);
+  const Response response = respond(rest, strain);
+  const Vector3d& moment = response.moment;
+  result.energy = rest.area * response.energy_density;
   if (want == Want::energy) return result;
 
   // dm/dx over (x0, x1, x2); dn = P dm / |m|.
@@ -317,7 +353,7 @@ Result<36> patch_bending(const PatchRest& rest, const Vector36& x, Want want) {
   triple.block<3, 3>(0, 6) = -bilinear;
   triple.block<3, 3>(6, 0) = -bilinear.transpose();
   cross_terms.topLeftCorner<9, 9>() += dm.transpose() * g_mm * dm + triple;
-  result.hessian = rest.area * (b.transpose() * rest.rigidity * b + cross_terms);
+  result.hessian = rest.area * (b.transpose() * response.tangent * b + cross_terms);
   result.hessian = 0.5 * (result.hessian + result.hessian.transpose()).eval();
   return result;
 }

@@ -32,7 +32,11 @@
 // Energy per triangle, A its material area:
 //   E = A/2 (k - k_rest)^T D (k - k_rest),  k = (kappa_uu, kappa_vv, 2 kappa_uv),
 //   D = [[D_warp, D_coupling, 0], [D_coupling, D_weft, 0], [0, 0, D_twist]],
-// the rigidities in N m (moment per unit width per curvature). An isotropic
+// the rigidities in N m (moment per unit width per curvature). With
+// moment-curvature curves (measured fabrics) the diagonal terms become the
+// curves' energies, E = A [W_warp(s0) + W_weft(s1) + W_twist(s2) +
+// D_coupling s0 s1], s = k - k_rest, W the integral of each curve; the
+// free-edge condition keeps the curves' initial rigidities. An isotropic
 // plate with Poisson ratio nu has D_warp = D_weft = D, D_coupling = nu D,
 // D_twist = (1 - nu) D / 2; the hinge models' k_b corresponds to nu = 0.
 //
@@ -53,10 +57,12 @@
 // it is solved in the least-squares sense with a small Tikhonov term.
 
 #include "element/element.hpp"
+#include "material/fabric.hpp"
 
 #include <Eigen/Core>
 
 #include <array>
+#include <memory>
 
 namespace sartor::element {
 
@@ -83,6 +89,8 @@ struct PatchRest {
   Eigen::Matrix<double, 3, 12> weights; // H_uu, H_vv, H_uv = sum_i w(., i) x_i, 1/m^2
   Eigen::Matrix3d rigidity;             // D, N m
   Eigen::Vector3d rest_curvature;       // (kappa_uu, kappa_vv, 2 kappa_uv), 1/m
+  // Moment-curvature curves replacing the diagonal of `rigidity`; none: linear.
+  std::shared_ptr<const FabricBending> curves;
 };
 
 // Conditioning (smallest over largest singular value of the patch's edge

@@ -196,6 +196,7 @@ void ClothProblem::set_up_patches(const std::vector<bool>& triangle_owned,
         material.rest_curvature.empty() ? Eigen::Vector3d::Zero() : material.rest_curvature[t];
     local.rest = element::patch_rest(mesh_.material_uv[t], slopes, material.patch_rigidity(),
                                      rest_curvature);
+    local.rest.curves = material.bending_curves;
     patches_.push_back(local);
   }
 }

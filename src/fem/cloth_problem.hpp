@@ -55,7 +55,15 @@ struct ClothMaterial {
   // Rest curvature of the patch model, per mesh triangle (kappa_uu, kappa_vv,
   // 2 kappa_uv in 1/m); empty: flat panels.
   std::vector<Eigen::Vector3d> rest_curvature;
+  // Moment-curvature curves of the patch model (a measured fabric); they
+  // replace the rigidities' diagonal, whose initial values they give.
+  std::shared_ptr<const FabricBending> bending_curves;
   element::BendingRigidity patch_rigidity() const {
+    if (bending_curves) {
+      const double coupling = bending_rigidity ? bending_rigidity->coupling : 0.0;
+      return {bending_curves->warp.initial_rigidity(), bending_curves->weft.initial_rigidity(),
+              coupling, bending_curves->twist.initial_rigidity()};
+    }
     return bending_rigidity ? *bending_rigidity
                             : element::BendingRigidity::isotropic(bending_stiffness);
   }

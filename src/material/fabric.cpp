@@ -3,9 +3,12 @@
 #include "common/error.hpp"
 #include "common/yaml_input.hpp"
 
+#include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <set>
 
 namespace sartor {
@@ -29,6 +32,16 @@ const DirectionalMaterial& Fabric::in(Direction direction) const {
   return *material;
 }
 
+void Fabric::check_creep() const {
+  for (Direction d : {Direction::warp, Direction::weft}) {
+    if (has(d) && !in(d).has_creep) {
+      throw InputError("fabric '" + name + "' (" + source + ") has no creep parameters for " +
+                       name_of(d) +
+                       " (give E, alpha, lambda_load, lambda_unload in a fabric file)");
+    }
+  }
+}
+
 const std::vector<FabricPreset>& fabric_presets() {
   // {E (N/m), alpha, lambda_load (1/s), lambda_unload (1/s)}, thesis Table 5.1.
   static const std::vector<FabricPreset> presets = {
@@ -49,6 +62,119 @@ DirectionalMaterial preset_direction(const CreepParameters& creep, const std::st
           TensionCurve::linear(preset_elastic_to_creep_modulus * creep.creep_modulus, context)};
 }
 
+// --- Measured materials in ARCSim's JSON layout ------------------------------
+
+class MeasuredFileReader {
+public:
+  explicit MeasuredFileReader(std::string path) : path_(std::move(path)) {}
+
+  // The file's density and tables; `fabric` gets them and the curves
+  // converted from them (docs/fabrics.md).
+  void read_into(Fabric& fabric) const {
+    const nlohmann::json root = parse();
+    if (!root.is_object())
+      fail("a measured material is a JSON object with density, stretching, bending");
+    for (const auto& entry : root.items()) {
+      if (entry.key() != "density" && entry.key() != "stretching" && entry.key() != "bending")
+        fail("unknown key '" + entry.key() + "' (expected density, stretching, bending)");
+    }
+    if (!root.contains("density")) fail("missing 'density' (kg/m^2)");
+    const double density = number(root.at("density"), "density");
+    if (!(density > 0.0)) fail("'density' must be > 0 (kg/m^2)");
+    const auto stretching = matrix<6, 4>(root, "stretching");
+    const auto bending = matrix<3, 5>(root, "bending");
+    StretchingTable stretch;
+    stretch.rows = stretching;
+    BendingTable bend;
+    bend.rows = bending;
+    fabric.areal_density = density;
+    fabric.stretching = std::make_shared<const MeasuredStretching>(stretch);
+    for (Direction d : {Direction::warp, Direction::weft}) {
+      auto& direction = d == Direction::warp ? fabric.warp : fabric.weft;
+      const std::string context = path_ + ": " + fabric.name + ":" + name_of(d);
+      DirectionalMaterial converted{
+          {}, table_tension_curve(stretch, d == Direction::weft, false, context), false, false};
+      if (!direction) {
+        direction = converted;
+      } else if (!direction->elastic_given) {
+        direction->elastic = converted.elastic;
+      }
+    }
+    // Shear: W = k3 G01^2 / 2 at zero strain is G g^2 / 2 with g = 2 G01.
+    fabric.shear_modulus = table_stiffness(stretch, 0.0, 0.0, 0.0)[3] / 4.0;
+    fabric.bending = table_bending_curves(bend);
+  }
+
+private:
+  [[noreturn]] void fail(const std::string& what) const {
+    throw InputError(path_ + ": measured material: " + what);
+  }
+
+  nlohmann::json parse() const {
+    std::ifstream in(path_);
+    if (!in) throw InputError(path_ + ": cannot open the measured material file");
+    try {
+      return nlohmann::json::parse(in);
+    } catch (const nlohmann::json::parse_error& e) {
+      fail(std::string("not valid JSON: ") + e.what());
+    }
+  }
+
+  double number(const nlohmann::json& value, const std::string& what) const {
+    if (!value.is_number() || !std::isfinite(value.get<double>()))
+      fail("'" + what + "' must be a finite number");
+    return value.get<double>();
+  }
+
+  template <std::size_t Rows, std::size_t Columns>
+  std::array<std::array<double, Columns>, Rows> matrix(const nlohmann::json& root,
+                                                       const std::string& key) const {
+    const auto shape = std::to_string(Rows) + " rows of " + std::to_string(Columns) + " numbers";
+    if (!root.contains(key) || !root.at(key).is_array() || root.at(key).size() != Rows)
+      fail("'" + key + "' must be " + shape);
+    std::array<std::array<double, Columns>, Rows> values{};
+    for (std::size_t r = 0; r < Rows; ++r) {
+      const nlohmann::json& row = root.at(key)[r];
+      if (!row.is_array() || row.size() != Columns) fail("'" + key + "' must be " + shape);
+      for (std::size_t c = 0; c < Columns; ++c)
+        values[r][c] =
+            number(row[c], key + "[" + std::to_string(r) + "][" + std::to_string(c) + "]");
+    }
+    return values;
+  }
+
+  // Warp curvature bends along the warp: fold lines across it (90 degrees);
+  // weft curvature: fold lines along the warp (0). Twist from the bias row by
+  // cylindrical bending at 45 degrees, D_45 = (D_warp + D_weft)/4 + D_twist.
+  FabricBending table_bending_curves(const BendingTable& table) const {
+    constexpr double quarter = 0.78539816339744831;
+    const std::string where = path_ + ": bending";
+    FabricBending curves{table_moment_curve(table, 2.0 * quarter, where + " (warp, 90 degree row)"),
+                         table_moment_curve(table, 0.0, where + " (weft, 0 degree row)"),
+                         MomentCurve::linear(1.0, where)};
+    std::vector<CurvePoint> twist;
+    for (const CurvePoint& p : curves.warp.points()) {
+      if (p.strain == 0.0) continue;
+      const double kappa = p.strain;
+      const double rigidity =
+          table_bending_rigidity(table, kappa, quarter) -
+          0.25 * (curves.warp.moment(kappa) + curves.weft.moment(kappa)) / kappa;
+      twist.push_back({kappa, rigidity * kappa});
+    }
+    curves.twist = MomentCurve::piecewise(
+        twist,
+        where + " (twist: the 45 degree row must exceed a quarter of the warp's and weft's sum)");
+    return curves;
+  }
+
+  std::string path_;
+};
+
+std::filesystem::path beside(const std::string& file, const std::string& relative) {
+  const std::filesystem::path p(relative);
+  return p.is_absolute() ? p : std::filesystem::path(file).parent_path() / p;
+}
+
 std::string preset_names() {
   std::string names;
   for (const auto& preset : fabric_presets()) {
@@ -67,14 +193,30 @@ public:
   Fabric read() {
     const YAML::Node root = load_yaml_input(path_, "fabric file");
     if (!root.IsMap()) fail(root, "a fabric file is a mapping with keys name, warp, weft");
-    check_keys(root, {"name", "source", "warp", "weft"});
+    check_keys(root, {"name", "source", "warp", "weft", "density", "shear_modulus", "bending",
+                      "measured"});
     Fabric fabric;
     fabric.name =
         root["name"] ? scalar(root["name"], "name") : std::filesystem::path(path_).stem().string();
     fabric.source = root["source"] ? scalar(root["source"], "source") : path_;
     if (root["warp"]) fabric.warp = direction(root["warp"], fabric.name + ":warp");
     if (root["weft"]) fabric.weft = direction(root["weft"], fabric.name + ":weft");
-    if (!fabric.warp && !fabric.weft) fail(root, "needs a 'warp' or a 'weft' section");
+    if (root["measured"]) {
+      const std::string measured = beside(path_, scalar(root["measured"], "measured")).string();
+      MeasuredFileReader(measured).read_into(fabric);
+    }
+    if (!fabric.warp && !fabric.weft) fail(root, "needs a 'warp', a 'weft' or a 'measured' entry");
+    for (auto* d : {&fabric.warp, &fabric.weft}) {
+      if (!*d || (*d)->elastic_given || fabric.stretching) continue;
+      if (!(*d)->has_creep)
+        fail(root, "a direction without creep parameters needs elastic_modulus, elastic_curve or "
+                   "a 'measured' table");
+      (*d)->elastic_given = true; // the presets' rule, elastic modulus 2E
+    }
+    if (root["density"]) fabric.areal_density = positive(root["density"], "density (kg/m^2)");
+    if (root["shear_modulus"])
+      fabric.shear_modulus = positive(root["shear_modulus"], "shear_modulus (N/m)");
+    if (root["bending"]) fabric.bending = bending(root["bending"], fabric);
     return fabric;
   }
 
@@ -111,28 +253,76 @@ private:
     fail(node, "'" + key + "' must be a number, got '" + text + "'");
   }
 
+  double positive(const YAML::Node& node, const std::string& key) const {
+    const double value = number(node, key);
+    if (!(value > 0.0) || !std::isfinite(value)) fail(node, "'" + key + "' must be > 0");
+    return value;
+  }
+
+  // Creep parameters: all four or none (a fabric that does not creep).
   DirectionalMaterial direction(const YAML::Node& node, const std::string& context) const {
     if (!node.IsMap()) fail(node, context + " must be a mapping of parameters");
     check_keys(node,
                {"E", "alpha", "lambda_load", "lambda_unload", "elastic_modulus", "elastic_curve"});
-    for (const char* key : {"E", "alpha", "lambda_load", "lambda_unload"}) {
-      if (!node[key]) fail(node, context + ": missing '" + key + "'");
-    }
+    bool any_creep = false;
+    for (const char* key : {"E", "alpha", "lambda_load", "lambda_unload"})
+      any_creep = any_creep || node[key];
     CreepParameters creep;
-    creep.creep_modulus = number(node["E"], "E");
-    creep.alpha = number(node["alpha"], "alpha");
-    creep.lambda_load = number(node["lambda_load"], "lambda_load");
-    creep.lambda_unload = number(node["lambda_unload"], "lambda_unload");
     const std::string where = path_ + ":" + std::to_string(node.Mark().line + 1) + ": " + context;
-    validate(creep, where);
+    if (any_creep) {
+      for (const char* key : {"E", "alpha", "lambda_load", "lambda_unload"}) {
+        if (!node[key]) fail(node, context + ": missing '" + key + "'");
+      }
+      creep.creep_modulus = number(node["E"], "E");
+      creep.alpha = number(node["alpha"], "alpha");
+      creep.lambda_load = number(node["lambda_load"], "lambda_load");
+      creep.lambda_unload = number(node["lambda_unload"], "lambda_unload");
+      validate(creep, where);
+    }
     if (node["elastic_modulus"] && node["elastic_curve"]) {
       fail(node, context + ": give elastic_modulus or elastic_curve, not both");
     }
-    if (node["elastic_curve"]) return {creep, curve(node["elastic_curve"], where)};
-    const double modulus = node["elastic_modulus"]
-                               ? number(node["elastic_modulus"], "elastic_modulus")
-                               : preset_elastic_to_creep_modulus * creep.creep_modulus;
-    return {creep, TensionCurve::linear(modulus, where)};
+    if (node["elastic_curve"]) return {creep, curve(node["elastic_curve"], where), true, any_creep};
+    if (node["elastic_modulus"]) {
+      return {creep,
+              TensionCurve::linear(number(node["elastic_modulus"], "elastic_modulus"), where), true,
+              any_creep};
+    }
+    // Not given: the measured table's curve if the file has one (read after
+    // the directions), else the presets' rule from E (placeholder without E).
+    const double modulus = any_creep ? preset_elastic_to_creep_modulus * creep.creep_modulus : 1.0;
+    return {creep, TensionCurve::linear(modulus, where), false, any_creep};
+  }
+
+  // bending: {warp: CURVE, weft: CURVE, twist: CURVE}, each a rigidity (N m)
+  // or a list of [curvature (1/m), moment (N)] pairs; twist defaults to half
+  // the mean of warp and weft's initial rigidities. Replaces the measured one.
+  FabricBending bending(const YAML::Node& node, const Fabric& fabric) const {
+    if (!node.IsMap()) fail(node, "'bending' must be a mapping with warp, weft, twist");
+    check_keys(node, {"warp", "weft", "twist"});
+    for (const char* key : {"warp", "weft"})
+      if (!node[key]) fail(node, fabric.name + ": bending: missing '" + key + "'");
+    const auto one = [&](const YAML::Node& entry, const std::string& key) {
+      const std::string where = path_ + ":" + std::to_string(entry.Mark().line + 1) + ": " +
+                                fabric.name + ": bending " + key;
+      if (entry.IsScalar()) return MomentCurve::linear(number(entry, key), where);
+      if (!entry.IsSequence())
+        fail(entry, "bending " + key + ": a rigidity (N m) or [curvature, moment] pairs");
+      std::vector<CurvePoint> points;
+      for (const auto& pair : entry) {
+        if (!pair.IsSequence() || pair.size() != 2)
+          fail(pair, "bending " + key + " entries must be [curvature (1/m), moment (N)] pairs");
+        points.push_back({number(pair[0], "curvature"), number(pair[1], "moment")});
+      }
+      return MomentCurve::piecewise(points, where);
+    };
+    FabricBending curves{one(node["warp"], "warp"), one(node["weft"], "weft"),
+                         MomentCurve::linear(1.0, path_)};
+    curves.twist = node["twist"] ? one(node["twist"], "twist")
+                                 : MomentCurve::linear(0.25 * (curves.warp.initial_rigidity() +
+                                                               curves.weft.initial_rigidity()),
+                                                       path_ + ": bending twist");
+    return curves;
   }
 
   TensionCurve curve(const YAML::Node& node, const std::string& where) const {
@@ -172,6 +362,14 @@ Fabric load_fabric_file(const std::string& path) {
   return FabricFileReader(path).read();
 }
 
+Fabric load_measured_fabric(const std::string& path) {
+  Fabric fabric;
+  fabric.name = std::filesystem::path(path).stem().string();
+  fabric.source = path + " (measured, Wang et al. 2011 layout)";
+  MeasuredFileReader(path).read_into(fabric);
+  return fabric;
+}
+
 std::vector<MaterialChoice> resolve_fabrics(const std::string& spec) {
   std::vector<MaterialChoice> choices;
   const auto add_both = [&choices](const Fabric& fabric) {
@@ -196,7 +394,9 @@ std::vector<MaterialChoice> resolve_fabrics(const std::string& spec) {
            name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
   };
   const bool is_file = ends_with(".yaml") || ends_with(".yml");
-  const Fabric fabric = is_file ? load_fabric_file(name) : preset_fabric(name);
+  const Fabric fabric = ends_with(".json") ? load_measured_fabric(name)
+                        : is_file          ? load_fabric_file(name)
+                                           : preset_fabric(name);
   if (direction.empty()) {
     add_both(fabric);
   } else {

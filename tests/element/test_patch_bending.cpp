@@ -200,3 +200,52 @@ TEST(PatchBending, NodesOnAConicAreRegularised) {
 
 } // namespace
 } // namespace sartor::element
+
+namespace sartor::element {
+namespace {
+
+// Moment-curvature curves (measured fabrics): energy the integral of the
+// curves, derivatives by finite differences, and the moment of a cylinder.
+TEST(PatchBending, MomentCurvatureCurves) {
+  const auto uv = irregular_patch();
+  PatchRest rest = rest_of(uv, orthotropic(), {true, false, true}, Vector3d(0.05, -0.02, 0.01));
+  // Bilinear curves: kinks at 0.1, 0.2 and 0.15 1/m.
+  rest.curves = std::make_shared<const FabricBending>(
+      FabricBending{MomentCurve::piecewise({{0.1, 0.2}, {1.0, 0.5}}, "warp"),
+                    MomentCurve::piecewise({{0.2, 0.14}, {1.0, 0.3}}, "weft"),
+                    MomentCurve::piecewise({{0.15, 0.06}, {1.0, 0.1}}, "twist")});
+  Vector36 x = lift(uv, [](const Vector2d& p) {
+    return Vector3d(p.x(), p.y(), 0.4 * p.x() * p.x() - 0.3 * p.x() * p.y() + 0.2 * p.y() * p.y());
+  });
+  x(17) += 0.05;
+  x(29) += 0.04;
+  const auto energy = [&](const Vector36& y) {
+    return patch_bending(rest, y, Want::energy).energy;
+  };
+  const auto gradient = [&](const Vector36& y) {
+    return Vector36(patch_bending(rest, y, Want::gradient).gradient);
+  };
+  const Result<36> r = patch_bending(rest, x, Want::hessian);
+  EXPECT_LT(relative_error(numeric_gradient<36>(energy, x, 1e-7), r.gradient), 1e-6);
+  EXPECT_LT(relative_error(numeric_jacobian<36, 36>(gradient, x, 1e-7), r.hessian), 1e-5);
+
+  // A shallow cylinder z = c u^2 / 2 (curvature c along the warp, on the
+  // second piece of a warp curve with its kink at 0.01 1/m) from flat: energy
+  // A W_warp(c), W the integral of the curve,
+  // 0.01 * 0.2 / 2 + (c - 0.01)(0.2 + M(c)) / 2.
+  PatchRest flat = rest_of(uv, orthotropic());
+  flat.rigidity(0, 1) = flat.rigidity(1, 0) = 0.0;
+  flat.curves = std::make_shared<const FabricBending>(
+      FabricBending{MomentCurve::piecewise({{0.01, 0.2}, {0.1, 0.5}}, "warp"),
+                    MomentCurve::linear(1.0, "weft"), MomentCurve::linear(1.0, "twist")});
+  const double c = 0.06;
+  const Vector36 cylinder =
+      lift(uv, [c](const Vector2d& p) { return Vector3d(p.x(), p.y(), 0.5 * c * p.x() * p.x()); });
+  const double moment = 0.2 + (c - 0.01) * (0.3 / 0.09);
+  const double expected = flat.area * (0.5 * 0.01 * 0.2 + 0.5 * (c - 0.01) * (0.2 + moment));
+  // The lift is isometric to O(c^2 u^2): 1 %.
+  EXPECT_NEAR(patch_bending(flat, cylinder, Want::energy).energy, expected, 0.01 * expected);
+}
+
+} // namespace
+} // namespace sartor::element

@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <random>
 
 namespace sartor {
@@ -274,6 +275,82 @@ TEST(BendingVerification, HeavyCantileverConvergesToTheElastica) {
     EXPECT_LT(std::abs(errors[2]), 0.01) << "gamma " << gamma;
     // At least first order over the three meshes (2 measured).
     EXPECT_GT(observed_order(errors[0], errors[2]) / 2.0, 1.0) << "gamma " << gamma;
+  }
+}
+
+// --- Heavy cantilever with a bilinear moment-curvature curve ----------------
+
+// M = D1 k up to k1, then slope D2 (measured fabrics soften or stiffen);
+// its inverse k(M).
+struct Bilinear {
+  double d1, d2, k1;
+  double curvature(double moment) const {
+    return moment <= d1 * k1 ? moment / d1 : k1 + (moment - d1 * k1) / d2;
+  }
+};
+
+// The elastica of a heavy cantilever (length 1, weight w per length) with
+// that curve: theta' = k(M), M' = -w (1 - s) cos theta, theta(0) = 0,
+// M(1) = 0; RK4, shooting on M(0) in [0, w / 2]. Returns the tip droop.
+double bilinear_elastica_droop(const Bilinear& curve, double w) {
+  const auto shoot = [&](double start_moment, double* droop) {
+    constexpr int steps = 8000;
+    const double h = 1.0 / steps;
+    double theta = 0.0, moment = start_moment, z = 0.0;
+    const auto f = [&](double s, double th, double m) {
+      return Eigen::Vector3d(curve.curvature(m), -w * (1.0 - s) * std::cos(th), std::sin(th));
+    };
+    for (int i = 0; i < steps; ++i) {
+      const double s = i * h;
+      const Eigen::Vector3d k1 = f(s, theta, moment);
+      const Eigen::Vector3d k2 = f(s + h / 2, theta + h / 2 * k1[0], moment + h / 2 * k1[1]);
+      const Eigen::Vector3d k3 = f(s + h / 2, theta + h / 2 * k2[0], moment + h / 2 * k2[1]);
+      const Eigen::Vector3d k4 = f(s + h, theta + h * k3[0], moment + h * k3[1]);
+      const Eigen::Vector3d step = h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+      theta += step[0];
+      moment += step[1];
+      z += step[2];
+    }
+    if (droop) *droop = z;
+    return moment; // M(1), increasing with M(0)
+  };
+  double low = 0.0, high = w / 2.0;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (low + high);
+    (shoot(mid, nullptr) < 0.0 ? low : high) = mid;
+  }
+  double droop = 0.0;
+  shoot(0.5 * (low + high), &droop);
+  return droop;
+}
+
+TEST(BendingVerification, HeavyCantileverWithBilinearMomentCurve) {
+  // Rigidity 1e-3 N m up to 1 1/m, a quarter of it beyond (softening), and
+  // twice it (stiffening); the weight puts the root well past the kink.
+  const double gravity_load = 8e-3; // w = gamma D1 / L^3 with gamma = 8
+  const Refinement fine = cantilever_meshes[2];
+  const Cantilever c = cantilever(1.0, 2.0 * fine.ny / fine.nx, fine.nx, fine.ny);
+  for (const double ratio : {0.25, 2.0}) {
+    const Bilinear curve{1e-3, ratio * 1e-3, 1.0};
+    const double reference = bilinear_elastica_droop(curve, gravity_load);
+    // Linear: the elastica at gamma = 8 (droop 0.56 L); the kink changes it.
+    const double linear = elastica(8.0, 0.0).droop;
+    ClothMaterial material =
+        strip_material(1e3, 1e-3, gravity_load / gravity, element::BendingModel::patch);
+    const MomentCurve moment = MomentCurve::piecewise(
+        {{curve.k1, curve.d1 * curve.k1}, {curve.k1 + 10.0, curve.d1 * curve.k1 + 10.0 * curve.d2}},
+        "test");
+    material.bending_curves = std::make_shared<const FabricBending>(
+        FabricBending{moment, moment, MomentCurve::linear(0.5e-3, "test")});
+    ClothLoads loads;
+    loads.gravity = {0.0, 0.0, -gravity};
+    const Eigen::Vector3d tip = tip_displacement(c.mesh, material, c.clamp, loads, c.tip_x, 8);
+    const double error = -tip.z() / reference - 1.0;
+    std::printf("heavy cantilever, bilinear curve (slope ratio %g beyond 1 1/m): elastica droop "
+                "%.4f L (linear %.4f L), patch on %dx%d %+.3f %%\n",
+                ratio, reference, linear, fine.nx, fine.ny, 100 * error);
+    EXPECT_GT(std::abs(reference / linear - 1.0), 0.05); // the kink matters
+    EXPECT_LT(std::abs(error), 0.02);
   }
 }
 
