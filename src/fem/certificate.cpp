@@ -388,6 +388,7 @@ PetscErrorCode factor_shifted(Mat hessian, Vec mass, double shift, Mat* factor, 
   PetscCall(VecAXPY(diagonal, -shift, mass));
   PetscCall(MatDiagonalSet(shifted, diagonal, ADD_VALUES));
   PetscCall(MatGetFactor(shifted, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, factor));
+  PetscCall(MatSetOptionsPrefix(*factor, "certificate_"));
   PetscCall(MatFactorInfoInitialize(&info));
   PetscCall(MatCholeskyFactorSymbolic(*factor, shifted, nullptr, &info));
   PetscCall(MatCholeskyFactorNumeric(*factor, shifted, &info));
@@ -649,7 +650,7 @@ nlohmann::json certificate_json(const Certificate& c) {
     json["edges"] = {{"passed", c.edges_clear()},
                      {"tested", c.edges},
                      {"inside_a_body", c.edges_inside},
-                     {"through_a_thin_part", c.edges_through},
+                     {"both_ends_outside", c.edges_through},
                      {"deepest_point_m", c.deepest_edge_point}};
     const CoulombCheck& k = c.coulomb;
     json["coulomb"] = {{"passed", k.passed()},

@@ -100,7 +100,7 @@ struct Certificate {
   long deepest_vertex = -1;
   long edges = 0;                  // cloth edges tested
   long edges_inside = 0;           // with a point inside a body
-  long edges_through = 0;          // of these, both ends outside: through a thin part
+  long edges_through = 0;          // of these, both ends outside (a chord or a thin part)
   double deepest_edge_point = 0.0; // m: most negative distance along an edge (0: none inside)
   bool has_bodies = false;
   CoulombCheck coulomb;
