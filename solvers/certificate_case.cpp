@@ -14,7 +14,7 @@ const std::vector<OptionSpec>& certificate_option_specs() {
       {"escape-saddles", "N", "3",
        "static: when the certificate finds directions of descent (a saddle), push the state "
        "along the lowest mode and solve again, up to N times (0: report the saddle)"},
-      {"saddle-push", "R", "0.05",
+      {"saddle-push", "R", "0.01",
        "static: the push's largest vertex displacement, relative to the diagonal of the "
        "cloth's starting bounding box"},
   };
@@ -82,19 +82,32 @@ CertifiedState certify_case(const Options& options, ClothProblem& problem, Vec x
   state.push_size =
       solve ? options.nonnegative_real("saddle-push") * cloth_size(problem.mesh()) : 0.0;
   SartorPetscCall(certify(problem, x, settings, &state.certificate));
-  while (solve && state.certificate.saddle() && state.escapes < escapes && state.push_size > 0.0) {
+  if (!solve || !report->converged || state.push_size <= 0.0) return state;
+  Vec saddle = nullptr;
+  SartorPetscCall(VecDuplicate(x, &saddle));
+  while (state.certificate.saddle() && state.escapes < escapes) {
+    SartorPetscCall(VecCopy(x, saddle));
     if (!push_off_saddle(problem, x, settings, state.push_size)) break;
     ++state.escapes;
-    // Re-solve at the load reached: no ramp.
+    // Re-solve at the load reached: no ramp, and no cutbacks (the load stays).
     StaticOptions again = *solve;
     again.start_load_factor = problem.load_factor;
     again.load_steps = 1;
+    again.max_cutbacks = 0;
     StaticReport resolved;
     SartorPetscCall(solve_static(problem, x, again, &resolved));
     add_solve(resolved, report);
+    if (!resolved.converged) {
+      // Back to the saddle, which stays the answer (not converged).
+      SartorPetscCall(VecCopy(saddle, x));
+      report->converged = false;
+      report->final_residual_norm = state.certificate.residual_norm;
+      report->reason = "the solve after a push off the saddle failed (" + resolved.reason + ")";
+      break;
+    }
     SartorPetscCall(certify(problem, x, settings, &state.certificate));
-    if (!resolved.converged) break;
   }
+  SartorPetscCall(VecDestroy(&saddle));
   return state;
 }
 

@@ -754,6 +754,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
     result.creep = std::move(run);
   } else {
     SartorPetscCall(solve_static(problem, x, solve, &result.report));
+    reject_unmet_residual(problem.force_scale(), &result.report);
   }
   // The final state of statics, or of a settle, is certified (a saddle is not converged).
   const bool settled = result.dynamics && result.dynamics->settled;
@@ -1069,7 +1070,7 @@ int run_run(const Invocation& invocation) {
                   result.mesh.triangle_count(), result.report.reason.c_str(),
                   int(result.report.newton_iterations), result.report.steps.size(),
                   result.report.final_residual_norm, verdict.c_str(), directory.c_str()));
-  if (result.certified && result.certified->certificate.saddle()) {
+  if (result.report.converged && result.certified && result.certified->certificate.saddle()) {
     throw InputError("the static solve ended on a saddle, not a minimum: the true Hessian has " +
                      std::to_string(result.certified->certificate.stability.negative) +
                      " direction(s) of descent (summary.json: certificate); " + directory +
