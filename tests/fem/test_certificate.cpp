@@ -10,6 +10,7 @@
 #include "mesh/generators.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <memory>
@@ -114,6 +115,23 @@ TEST(Certificate, SheetRestingOnASpherePasses) {
   EXPECT_TRUE(c.certified()) << c.verdict();
 }
 
+// Without friction nothing holds the sheet on the sphere's top: turned
+// rigidly about the sphere's centre by phi, its centre of mass (a distance
+// r > 0 above the centre) drops by r (1 - cos phi): two directions of
+// descent (the two horizontal axes), turning about the vertical costs nothing.
+TEST(Certificate, SheetOnAFrictionlessSphereIsASaddle) {
+  SheetOnSphere sheet;
+  sheet.problem->bodies.front().friction = {0.0, 0.0};
+  sheet.solve();
+  Certificate c;
+  ASSERT_EQ(certify(*sheet.problem, sheet.x, {}, &c), 0);
+  EXPECT_LT(c.relative_residual, 1e-6);
+  ASSERT_TRUE(c.stability.assessed);
+  EXPECT_EQ(c.stability.negative, 2);
+  EXPECT_EQ(c.stability.zero_modes, 1);
+  EXPECT_TRUE(c.saddle());
+}
+
 TEST(Certificate, StatePushedIntoTheBodyFailsTheDepthCheck) {
   SheetOnSphere sheet;
   sheet.solve();
@@ -167,6 +185,9 @@ TEST(Certificate, EdgesThroughAThinBodyAreCounted) {
   EXPECT_LT(c.deepest_edge_point, -0.5 * thickness + 0.5e-3);
   EXPECT_GE(c.deepest_edge_point, -0.5 * thickness - 1e-12);
   EXPECT_FALSE(c.certified());
+  const nlohmann::json json = certificate_json(c);
+  EXPECT_EQ(json["edges"]["inside_a_body"], 3);
+  EXPECT_EQ(json["certified"], false);
   VecDestroy(&x);
 }
 
