@@ -104,8 +104,8 @@ CaseResult solve_case(const Options& options, int extra_refinements = 0,
 
 // The parts of `sartor run`'s summary.json that describe the solve: "mesh",
 // "converged", "solver", "load_steps" (statics) or "dynamics" (time stepping),
-// "energy_J", "pin_reaction_N", "max_displacement_m", "probe" (when given) and
-// "timing_s".
+// "energy_J", "pin_reaction_N", "max_displacement_m", "probe" (when given),
+// "certificate" (when certified: docs/certificate.md) and "timing_s".
 void add_case_summary(const CaseResult& result, nlohmann::json& summary);
 
 // Rank 0: result.h5, result.xmf, final.obj and summary.json in `directory`;

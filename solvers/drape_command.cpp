@@ -372,8 +372,9 @@ int run_drape(const Invocation& invocation) {
   const double total_seconds = std::chrono::duration<double>(Clock::now() - started).count();
 
   // The settled state's certificate (summary.json: certificate).
-  const std::string verdict =
-      result.certified ? result.certified->certificate.verdict() : "not certified";
+  const std::string verdict = result.certified ? result.certified->certificate.verdict()
+                              : options.flag("no-certificate") ? "skipped"
+                                                               : "not certified";
   nlohmann::json summary = run_metadata(invocation, "drape");
   summary["pattern"] = path;
   summary["fabrics"] = cloth.fabrics;

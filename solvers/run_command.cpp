@@ -1050,10 +1050,12 @@ int run_run(const Invocation& invocation) {
     SartorPetscCall(PetscPrintf(
         PETSC_COMM_WORLD,
         "sartor run: %zu triangles, dynamic to t = %g s in %zu steps (%d rejected), %d Newton "
-        "iterations%s; wrote %s\n",
+        "iterations%s%s%s; wrote %s\n",
         result.mesh.triangle_count(), report.final_time, report.steps.size() - 1,
         int(report.rejected_steps), int(report.newton_iterations),
-        report.at_rest ? ", at rest" : "", directory.c_str()));
+        report.at_rest ? ", at rest" : "", result.certified ? "; certificate of the settle: " : "",
+        result.certified ? result.certified->certificate.verdict().c_str() : "",
+        directory.c_str()));
     if (!report.completed) {
       throw InputError(report.reason + "; " + directory +
                        " holds the last accepted state. Try a smaller --time-step, --damping, "
@@ -1061,8 +1063,9 @@ int run_run(const Invocation& invocation) {
     }
     return 0;
   }
-  const std::string verdict =
-      result.certified ? result.certified->certificate.verdict() : "not certified";
+  const std::string verdict = result.certified ? result.certified->certificate.verdict()
+                              : options.flag("no-certificate") ? "skipped"
+                                                               : "not certified";
   SartorPetscCall(
       PetscPrintf(PETSC_COMM_WORLD,
                   "sartor run: %zu triangles, %s after %d Newton iterations in %zu load "

@@ -160,11 +160,15 @@ def run_one(row, ranks, arguments, runs_folder):
         "cpu_s": usage.ru_utime + usage.ru_stime, "peak_rss_mb": usage.ru_maxrss / 1024.0,
         "command": " ".join(shlex.quote(word) for word in command),
     })
-    if status != "timeout":
+    if status == "timeout":
+        # The killed ranks were never waited for: their CPU time is unknown.
+        record.update({"cpu_s": None, "peak_rss_mb": None})
+    else:
         record.update(summary_figures(summary))
     if record.get("vertices"):
         record["bytes_per_vertex"] = usage.ru_maxrss * 1024.0 * ranks / record["vertices"]
-    print(f"{name}: {status}, wall {wall:.1f} s, CPU {record['cpu_s']:.1f} s, "
+    cpu = "unknown" if record["cpu_s"] is None else f"{record['cpu_s']:.1f} s"
+    print(f"{name}: {status}, wall {wall:.1f} s, CPU {cpu}, "
           f"{record.get('vertices')} vertices, Newton {record.get('newton_iterations')}, "
           f"certificate: {record.get('certificate')}", flush=True)
     return record
