@@ -11,6 +11,7 @@
 #include "fem/dynamics.hpp"
 #include "fem/statics.hpp"
 #include "mesh/triangle_mesh.hpp"
+#include "solvers/certificate_case.hpp"
 #include "solvers/cli.hpp"
 #include "solvers/contact_case.hpp"
 #include "solvers/creep_case.hpp"
@@ -58,6 +59,9 @@ struct CaseResult {
   std::optional<CaseProbe> probe;  // when --probe is given
   CaseContact contact;             // bodies, reactions, drape (solvers/contact_case.hpp)
   std::optional<SeamReport> seams; // when the case has seams
+  // The final state's certificate (statics, or a settle; not with
+  // --no-certificate) and the saddle escapes taken.
+  std::optional<CertifiedState> certified;
   // Dynamic runs with --probe: its displacement at every state of
   // dynamics->steps, m.
   std::vector<Eigen::Vector3d> probe_history;
@@ -100,8 +104,8 @@ CaseResult solve_case(const Options& options, int extra_refinements = 0,
 
 // The parts of `sartor run`'s summary.json that describe the solve: "mesh",
 // "converged", "solver", "load_steps" (statics) or "dynamics" (time stepping),
-// "energy_J", "pin_reaction_N", "max_displacement_m", "probe" (when given) and
-// "timing_s".
+// "energy_J", "pin_reaction_N", "max_displacement_m", "probe" (when given),
+// "certificate" (when certified: docs/certificate.md) and "timing_s".
 void add_case_summary(const CaseResult& result, nlohmann::json& summary);
 
 // Rank 0: result.h5, result.xmf, final.obj and summary.json in `directory`;

@@ -372,6 +372,10 @@ int run_drape(const Invocation& invocation) {
       constructed.construction.placement_seconds + constructed.construction.seam_seconds;
   const double total_seconds = std::chrono::duration<double>(Clock::now() - started).count();
 
+  // The settled state's certificate (summary.json: certificate).
+  const std::string verdict = result.certified ? result.certified->certificate.verdict()
+                              : options.flag("no-certificate") ? "skipped"
+                                                               : "not certified";
   nlohmann::json summary = run_metadata(invocation, "drape");
   summary["pattern"] = path;
   summary["fabrics"] = cloth.fabrics;
@@ -396,6 +400,7 @@ int run_drape(const Invocation& invocation) {
       {"largest_seam_gap_m", seam_gap},
       {"max_penetration_m", penetration},
       {"contact_offset_m", options.real("contact-offset")},
+      {"certificate", verdict},
       {"timing_s",
        {{"construction", construction_seconds},
         {"meshing", constructed.mesh_seconds},
@@ -413,13 +418,13 @@ int run_drape(const Invocation& invocation) {
       PETSC_COMM_WORLD,
       "sartor drape: %zu triangles, %zu seams sewn; construction %.3f s, drape %.1f s (%s); "
       "seam gap %.2e m, penetration %.2e m, body reaction %.6g N for a weight of %.6g N; "
-      "wrote %s\n",
+      "certificate: %s; wrote %s\n",
       result.mesh.triangle_count(), constructed.garment.seams.size(), construction_seconds,
       result.solve_seconds,
       !converged       ? "not converged"
       : residual < 0.0 ? "dynamics completed; equilibrium not checked without --settle"
                        : "converged",
-      seam_gap, penetration, reaction.norm(), weight.norm(), directory.c_str()));
+      seam_gap, penetration, reaction.norm(), weight.norm(), verdict.c_str(), directory.c_str()));
   // The picture helps most when the drape failed.
   if (!options.flag("no-plot")) make_plot("plot_drape.py", directory);
   if (!result.converged) {

@@ -12,6 +12,7 @@
 #include "mesh/generators.hpp"
 #include "mesh/obj.hpp"
 #include "solvers/case_checks.hpp"
+#include "solvers/certificate_case.hpp"
 #include "solvers/cloth_case.hpp"
 #include "solvers/commands.hpp"
 
@@ -135,6 +136,8 @@ const std::vector<OptionSpec>& case_option_specs() {
   static const std::vector<OptionSpec> all = [] {
     std::vector<OptionSpec> options = specs;
     options.insert(options.end(), creep_option_specs().begin(), creep_option_specs().end());
+    options.insert(options.end(), certificate_option_specs().begin(),
+                   certificate_option_specs().end());
     return options;
   }();
   return all;
@@ -793,7 +796,17 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   } else {
     SartorPetscCall(solve_static(problem, x, solve, &result.report));
     reject_unmet_residual(problem.force_scale(), &result.report);
-    result.converged = result.report.converged;
+  }
+  // The final state of statics, or of a settle, is certified (a saddle is not converged).
+  const bool settled = result.dynamics && result.dynamics->settled;
+  if (!creep && (!dynamic || settled) && !options.flag("no-certificate")) {
+    result.certified =
+        certify_case(options, problem, x, dynamic ? nullptr : &solve, &result.report);
+  }
+  if (!dynamic && !creep) {
+    reject_unmet_residual(problem.force_scale(), &result.report);
+    result.converged =
+        result.report.converged && !(result.certified && result.certified->certificate.saddle());
     result.solve_seconds = result.report.solve_seconds;
   }
   result.load_factor = problem.load_factor;
@@ -960,6 +973,11 @@ void add_case_summary(const CaseResult& result, nlohmann::json& summary) {
                         {"displacement_m", vector_json(result.probe->displacement)}};
   }
   if (!result.contact.bodies.empty()) summary["contact"] = contact_summary(result.contact);
+  if (result.certified) {
+    summary["certificate"] = certificate_json(result.certified->certificate);
+    summary["certificate"]["saddle_escapes"] = result.certified->escapes;
+    summary["certificate"]["saddle_push_m"] = result.certified->push_size;
+  }
   summary["timing_s"] = {{"setup", result.setup_seconds},
                          {"solve", result.solve_seconds},
                          {"total", result.total_seconds}};
@@ -1073,10 +1091,12 @@ int run_run(const Invocation& invocation) {
     SartorPetscCall(PetscPrintf(
         PETSC_COMM_WORLD,
         "sartor run: %zu triangles, dynamic to t = %g s in %zu steps (%d rejected), %d Newton "
-        "iterations%s; wrote %s\n",
+        "iterations%s%s%s; wrote %s\n",
         result.mesh.triangle_count(), report.final_time, report.steps.size() - 1,
         int(report.rejected_steps), int(report.newton_iterations),
-        report.at_rest ? ", at rest" : "", directory.c_str()));
+        report.at_rest ? ", at rest" : "", result.certified ? "; certificate of the settle: " : "",
+        result.certified ? result.certified->certificate.verdict().c_str() : "",
+        directory.c_str()));
     if (!report.completed) {
       throw SolveFailure(report.reason + "; " + directory +
                          " holds the last accepted state. Try a smaller --time-step, --damping, "
@@ -1084,13 +1104,22 @@ int run_run(const Invocation& invocation) {
     }
     return 0;
   }
+  const std::string verdict = result.certified ? result.certified->certificate.verdict()
+                              : options.flag("no-certificate") ? "skipped"
+                                                               : "not certified";
   SartorPetscCall(
       PetscPrintf(PETSC_COMM_WORLD,
                   "sartor run: %zu triangles, %s after %d Newton iterations in %zu load "
-                  "step(s), residual %.3e; wrote %s\n",
+                  "step(s), residual %.3e; certificate: %s; wrote %s\n",
                   result.mesh.triangle_count(), result.report.reason.c_str(),
                   int(result.report.newton_iterations), result.report.steps.size(),
-                  result.report.final_residual_norm, directory.c_str()));
+                  result.report.final_residual_norm, verdict.c_str(), directory.c_str()));
+  if (result.report.converged && result.certified && result.certified->certificate.saddle()) {
+    throw InputError("the static solve ended on a saddle, not a minimum: the true Hessian has " +
+                     std::to_string(result.certified->certificate.stability.negative) +
+                     " direction(s) of descent (summary.json: certificate); " + directory +
+                     " holds it. Try --escape-saddles N or another start");
+  }
   if (!result.converged) {
     throw SolveFailure("the static solve did not converge (" + result.report.reason +
                        " at load factor " + format_number(result.load_factor) + "); " + directory +

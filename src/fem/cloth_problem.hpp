@@ -239,6 +239,10 @@ public:
 
   PetscErrorCode residual(Vec x, Vec f);
   PetscErrorCode jacobian(Vec x, Mat J);
+  // When set, jacobian() projects no element Hessian to PSD whatever the
+  // materials ask: the true Hessian, whose inertia certifies stability
+  // (fem/certificate.hpp).
+  bool true_hessian = false;
   PetscErrorCode energy(Vec x, ClothEnergy* energy);
   // Preallocated exactly for the element couplings (membrane and hinges).
   PetscErrorCode create_jacobian(Mat* J);

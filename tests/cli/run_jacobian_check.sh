@@ -35,8 +35,10 @@ check stvk_poisson hanging_sheet.yaml --membrane-model stvk --poisson 0.3 --bend
 check follower_pressure square_membrane_pressure.yaml --load-steps 1
 check dynamic_step hanging_sheet_dynamic.yaml --time-end 0.02 --damping 2
 
-"$sartor" run "$cases/hanging_sheet.yaml" --mesh-nx 10 --mesh-ny 10 --output "$work/newtontr" \
-  -snes_type newtontr > "$work/newtontr.log" 2>&1 || { cat "$work/newtontr.log" >&2; exit 1; }
+# (--no-certificate: the flat sheet both Newtons reach is a saddle, which
+# the certificate reports and pushes off; here only the solver is tested.)
+"$sartor" run "$cases/hanging_sheet.yaml" --mesh-nx 10 --mesh-ny 10 --no-certificate \
+  --output "$work/newtontr" -snes_type newtontr > "$work/newtontr.log" 2>&1 || { cat "$work/newtontr.log" >&2; exit 1; }
 /usr/bin/python3 - "$work" <<'PY' || exit 1
 import json, sys
 s = json.load(open(f"{sys.argv[1]}/newtontr/summary.json"))
