@@ -1115,10 +1115,10 @@ int run_run(const Invocation& invocation) {
                   int(result.report.newton_iterations), result.report.steps.size(),
                   result.report.final_residual_norm, verdict.c_str(), directory.c_str()));
   if (result.report.converged && result.certified && result.certified->certificate.saddle()) {
-    throw InputError("the static solve ended on a saddle, not a minimum: the true Hessian has " +
-                     std::to_string(result.certified->certificate.stability.negative) +
-                     " direction(s) of descent (summary.json: certificate); " + directory +
-                     " holds it. Try --escape-saddles N or another start");
+    throw SolveFailure("the static solve ended on a saddle, not a minimum: the true Hessian has " +
+                       std::to_string(result.certified->certificate.stability.negative) +
+                       " direction(s) of descent (summary.json: certificate); " + directory +
+                       " holds it. Try --escape-saddles N or another start");
   }
   if (!result.converged) {
     throw SolveFailure("the static solve did not converge (" + result.report.reason +
