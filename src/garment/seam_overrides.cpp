@@ -31,7 +31,9 @@ void only_keys(const json& object, const std::string& where,
   }
 }
 
-PanelTag read_tag(const json& value, const std::string& where) {
+} // namespace
+
+PanelTag read_panel_tag(const json& value, const std::string& where) {
   if (!value.is_object()) fail(where, "expected a tag {\"cylinder\", \"side\", \"layer\"}");
   only_keys(value, where, {"cylinder", "side", "layer"});
   PanelTag tag;
@@ -60,6 +62,8 @@ PanelTag read_tag(const json& value, const std::string& where) {
   }
   return tag;
 }
+
+namespace {
 
 std::string line_id(const json& value, const std::string& where) {
   if (value.is_array())
@@ -110,7 +114,7 @@ SeamOverrides parse_seam_overrides(const std::string& text, const std::string& s
     if (!tags.is_object()) fail(source + ": tags", "expected an object {PANEL_OR_PACK: TAG}");
     for (const auto& item : tags.items())
       overrides.tags.emplace_back(item.key(),
-                                  read_tag(item.value(), source + ": tags." + item.key()));
+                                  read_panel_tag(item.value(), source + ": tags." + item.key()));
   }
   if (document.contains("unseam")) {
     const json& unseam = document["unseam"];

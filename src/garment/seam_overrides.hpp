@@ -10,6 +10,8 @@
 #include "garment/pattern.hpp"
 #include "garment/tagcon.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <optional>
 #include <string>
 #include <utility>
@@ -31,6 +33,10 @@ struct SeamOverrides {
   std::vector<UserSeam> seams;
   bool replace_tagcon = false;
 };
+
+// A tag {"cylinder", "side", "layer"} as the pattern format writes it;
+// throws InputError "WHERE: what is wrong".
+PanelTag read_panel_tag(const nlohmann::json& value, const std::string& where);
 
 // Throws InputError "FILE: PATH: what is wrong" for bad JSON, unknown keys,
 // wrong types, vertex lists where line ids are expected, unknown tag names.
