@@ -1,8 +1,8 @@
 #include "solvers/drape_outcome.hpp"
 
-#include "common/csv.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
@@ -22,16 +22,25 @@ const char* name_of(DrapeEnd end) {
   return "?";
 }
 
+namespace {
+// Millimetres are what a reader compares.
+std::string metres(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f m", value);
+  return text;
+}
+} // namespace
+
 std::string DrapeOutcome::description() const {
   switch (end) {
   case DrapeEnd::on_body:
     return "on the body";
   case DrapeEnd::slid_down:
-    return "slid down " + format_number(centroid_drop) + " m";
+    return "slid down " + metres(centroid_drop);
   case DrapeEnd::on_floor:
-    return "on the floor (lowest point " + format_number(lowest - floor) + " m above it)";
+    return "on the floor (lowest point " + metres(lowest - floor) + " above it)";
   case DrapeEnd::off_body:
-    return "off the body (nearest point " + format_number(nearest_body_distance) + " m from it)";
+    return "off the body (nearest point " + metres(nearest_body_distance) + " from it)";
   }
   return "?";
 }

@@ -76,12 +76,16 @@ std::string line_id(const json& value, const std::string& where) {
 
 UserSeam read_seam(const json& value, const std::string& where) {
   if (!value.is_object()) fail(where, "expected an object {\"a\": LINE, \"b\": LINE}");
-  only_keys(value, where, {"a", "b", "reverse", "certainty"});
-  if (!value.contains("a") || !value.contains("b")) fail(where, "needs both lines 'a' and 'b'");
+  only_keys(value, where, {"name", "a", "b", "reverse", "certainty"});
   UserSeam seam;
   seam.where = where;
-  seam.a = line_id(value["a"], where + ".a");
-  seam.b = line_id(value["b"], where + ".b");
+  if (value.contains("name")) {
+    if (!value["name"].is_string()) fail(where + ".name", "expected a string");
+    seam.where += " ('" + value["name"].get<std::string>() + "')";
+  }
+  if (!value.contains("a") || !value.contains("b")) fail(seam.where, "needs both lines 'a' and 'b'");
+  seam.a = line_id(value["a"], seam.where + ".a");
+  seam.b = line_id(value["b"], seam.where + ".b");
   if (value.contains("reverse")) {
     if (!value["reverse"].is_boolean()) fail(where + ".reverse", "must be true or false");
     seam.reverse = value["reverse"].get<bool>();

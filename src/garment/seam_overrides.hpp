@@ -23,7 +23,7 @@ struct UserSeam {
   std::string a, b;            // line ids; an interior line makes it a T-seam
   std::optional<bool> reverse; // unset: the orientation TAGCON would choose
   double certainty = 1.0;      // in (0, 1]
-  std::string where;           // "FILE: seams[I]", for messages
+  std::string where;           // "FILE: seams[I] ('NAME')", for messages
 };
 
 struct SeamOverrides {

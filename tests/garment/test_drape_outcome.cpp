@@ -46,7 +46,7 @@ TEST(DrapeOutcome, SlidDown) {
   EXPECT_NEAR(o.centroid_drop, 0.2, 1e-12);
   EXPECT_FALSE(o.on_floor);
   EXPECT_FALSE(o.off_body);
-  EXPECT_EQ(o.description().rfind("slid down 0.2", 0), 0u) << o.description();
+  EXPECT_EQ(o.description().rfind("slid down 0.200 m", 0), 0u) << o.description();
   // A wider tolerance accepts the same drop.
   DrapeEndLimits loose;
   loose.drop_tolerance = 0.25;

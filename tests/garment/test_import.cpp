@@ -258,9 +258,11 @@ TEST(ImportSvg, FreeSewingStylePencilSkirt) {
   // Each back dart's legs: 15 mm across and 130 mm down.
   const Panel& back = pattern.panels[1];
   ASSERT_EQ(back.darts.size(), 1u);
-  for (const OutlineLine& line : back.outline)
-    if (line.id == back.darts[0].first_leg || line.id == back.darts[0].second_leg)
+  for (const OutlineLine& line : back.outline) {
+    if (line.id == back.darts[0].first_leg || line.id == back.darts[0].second_leg) {
       EXPECT_NEAR(line.curve.length(), std::hypot(0.015, 0.13), 1e-12) << line.id;
+    }
+  }
 
   const Construction construction = build(pattern);
   int darts = 0, back_seam = 0;
