@@ -473,8 +473,12 @@ int run_drape(const Invocation& invocation) {
   // The seams file is drape's own (the pattern's seams, written above): the
   // echoed options re-run the job, and drape refuses a --seams-file given to it.
   SartorPetscCall(PetscOptionsClearValue(nullptr, "-seams_file"));
-  if (!user_seams.empty())
+  if (!user_seams.empty()) {
+    // The user's seams file, echoed (and queried, so as not to be reported unused).
     SartorPetscCall(PetscOptionsSetValue(nullptr, "-seams_file", user_seams.c_str()));
+    PetscBool echoed = PETSC_FALSE;
+    SartorPetscCall(PetscOptionsHasName(nullptr, nullptr, "-seams_file", &echoed));
+  }
   write_petsc_options(directory);
 
   SartorPetscCall(PetscPrintf(

@@ -1,6 +1,5 @@
 #include "solvers/drape_outcome.hpp"
 
-
 #include <algorithm>
 #include <cstdio>
 #include <limits>

@@ -83,7 +83,8 @@ UserSeam read_seam(const json& value, const std::string& where) {
     if (!value["name"].is_string()) fail(where + ".name", "expected a string");
     seam.where += " ('" + value["name"].get<std::string>() + "')";
   }
-  if (!value.contains("a") || !value.contains("b")) fail(seam.where, "needs both lines 'a' and 'b'");
+  if (!value.contains("a") || !value.contains("b"))
+    fail(seam.where, "needs both lines 'a' and 'b'");
   seam.a = line_id(value["a"], seam.where + ".a");
   seam.b = line_id(value["b"], seam.where + ".b");
   if (value.contains("reverse")) {
