@@ -43,6 +43,8 @@ const CommandSpec& construct_command();
 int run_construct(const Invocation&);
 const CommandSpec& drape_command();
 int run_drape(const Invocation&);
+const CommandSpec& import_command();
+int run_import(const Invocation&);
 
 // Metadata every output JSON carries: version, command line, options used.
 nlohmann::json run_metadata(const Invocation& invocation, const std::string& command);

@@ -16,7 +16,7 @@ const CommandSpec& construct_command() {
       "construct",
       "TAGCON: place a tagged, packed pattern around the body and find its seams",
       "sartor construct PATTERN.json [--body default] [--output DIR] [--edge-length M] "
-      "[--min-angle DEG]",
+      "[--min-angle DEG] [--seams-file FILE]",
       "Constructs a garment from a pattern (docs/pattern-format.md) as the thesis'\n"
       "TAGCON does (ch. 3; docs/tagcon.md): cylinders fitted to the body's skeleton\n"
       "(torso, arms, legs, neck, head); each pack's bounding box wrapped onto its\n"
@@ -27,7 +27,9 @@ const CommandSpec& construct_command() {
       "penetrates the body are deleted. Each seam carries its certainty M.\n"
       "A garment TAGCON cannot construct (a panel spanning two cylinders, thesis\n"
       "Fig. 3.9; a pack none of whose lines can be seamed) is an error that names\n"
-      "the lines and the reason.\n\n"
+      "the lines and the reason. A --seams-file retags panels and overrides or\n"
+      "completes the seams (docs/pattern-format.md#user-seams-and-tags); a\n"
+      "pattern's darts are always sewn leg to leg.\n\n"
       "Output in DIR: garment.obj (all panels meshed and placed; vt = material uv\n"
       "in m; g/usemtl per panel), seams.json (seam file for `sartor run\n"
       "--seams-file`, vertex numbers of garment.obj), construct.json (cylinders,\n"
@@ -46,6 +48,7 @@ const CommandSpec& construct_command() {
              "output folder (created; files in it are replaced)"}};
         options.insert(options.end(), panel_mesh_option_specs().begin(),
                        panel_mesh_option_specs().end());
+        options.push_back(seams_file_option_spec());
         return options;
       }(),
       1};
@@ -59,7 +62,9 @@ int run_construct(const Invocation& invocation) {
   if (options.text("body") != "default")
     throw InputError("option --body: unknown body '" + options.text("body") +
                      "' (expected: default, the built-in mannequin)");
-  const ConstructedGarment constructed = construct_garment(path, panel_mesh_options(options));
+  const ConstructedGarment constructed =
+      construct_garment(path, panel_mesh_options(options),
+                        options.is_set("seams-file") ? options.text("seams-file") : "");
   print_construction(constructed);
   write_construction(directory, constructed,
                      construction_summary(invocation, "construct", path, constructed));

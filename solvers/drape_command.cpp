@@ -16,6 +16,7 @@
 #include "mesh/seams.hpp"
 #include "solvers/cloth_case.hpp"
 #include "solvers/commands.hpp"
+#include "solvers/drape_outcome.hpp"
 #include "solvers/garment_construction.hpp"
 
 #include <nlohmann/json.hpp>
@@ -25,6 +26,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 
@@ -68,11 +70,11 @@ const std::vector<std::string>& drape_flags() {
   return flags;
 }
 
-// Options of `sartor run` that describe the mesh or its seams: the pattern does.
+// Options of `sartor run` that describe the mesh: the pattern does (its
+// seams too, which --seams-file overrides by line ids, not vertices).
 bool is_mesh_option(const std::string& name) {
-  return (name.rfind("mesh", 0) == 0 && name != "mesh-refine" && name != "mesh-rotate-x" &&
-          name != "mesh-translate") ||
-         name == "seams-file";
+  return name.rfind("mesh", 0) == 0 && name != "mesh-refine" && name != "mesh-rotate-x" &&
+         name != "mesh-translate";
 }
 
 // The garment without the panels that no seam attaches (a pattern's panel
@@ -161,6 +163,56 @@ std::map<std::string, BodyCrossing> seams_crossing_body(const SewableGarment& ga
   return crossing;
 }
 
+// How the drape ended (solvers/drape_outcome.hpp), on the mannequin whose
+// feet stand on the floor; classified on rank 0, which has the final
+// positions, and broadcast.
+DrapeOutcome drape_outcome(const CaseResult& result, const DrapeEndLimits& limits) {
+  std::array<double, 8> packed{};
+  if (is_root()) {
+    const auto body = contact::make_mannequin_shape();
+    double floor = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& v : default_mannequin().mesh.vertices)
+      floor = std::min(floor, v.z());
+    const DrapeOutcome o = classify_drape_end(
+        result.mesh.positions, result.positions, floor,
+        [&body](const Eigen::Vector3d& p) { return body->query(p).distance; }, limits);
+    packed = {double(o.end),
+              double(o.slid_down),
+              double(o.on_floor),
+              double(o.off_body),
+              o.centroid_drop,
+              o.lowest,
+              o.floor,
+              o.nearest_body_distance};
+  }
+  SartorPetscCall(MPI_Bcast(packed.data(), int(packed.size()), MPI_DOUBLE, 0, PETSC_COMM_WORLD));
+  DrapeOutcome outcome;
+  outcome.end = DrapeEnd(int(packed[0]));
+  outcome.slid_down = packed[1] != 0.0;
+  outcome.on_floor = packed[2] != 0.0;
+  outcome.off_body = packed[3] != 0.0;
+  outcome.centroid_drop = packed[4];
+  outcome.lowest = packed[5];
+  outcome.floor = packed[6];
+  outcome.nearest_body_distance = packed[7];
+  return outcome;
+}
+
+nlohmann::json drape_outcome_json(const DrapeOutcome& outcome, const DrapeEndLimits& limits) {
+  return {{"end", name_of(outcome.end)},
+          {"description", outcome.description()},
+          {"slid_down", outcome.slid_down},
+          {"on_floor", outcome.on_floor},
+          {"off_body", outcome.off_body},
+          {"centroid_drop_m", outcome.centroid_drop},
+          {"lowest_point_m", outcome.lowest},
+          {"floor_m", outcome.floor},
+          {"nearest_body_distance_m", outcome.nearest_body_distance},
+          {"drop_tolerance_m", limits.drop_tolerance},
+          {"floor_clearance_m", limits.floor_clearance},
+          {"touch_distance_m", limits.touch_distance}};
+}
+
 } // namespace
 
 const CommandSpec& drape_command() {
@@ -168,7 +220,7 @@ const CommandSpec& drape_command() {
       "drape",
       "construct a garment from its pattern and drape it on the mannequin",
       "sartor drape PATTERN.json [--fabric SPEC] [--output DIR] [--edge-length M] "
-      "[--no-plot] [any option of sartor run]",
+      "[--seams-file FILE] [--drop-tolerance M] [--no-plot] [any option of sartor run]",
       "Constructs the garment as `sartor construct` does (TAGCON around the built-in\n"
       "mannequin: docs/tagcon.md), then sews and drapes it as `sartor run` would a\n"
       "case with --mesh obj and --seams-file: the seam springs pull the panels\n"
@@ -179,6 +231,10 @@ const CommandSpec& drape_command() {
       "`sartor run` applies, except those describing the mesh and its seams; drape\n"
       "changes some defaults (shown below) and turns on --kinetic-damping,\n"
       "--settle, --membrane-psd and --bending-psd (`-settle false` turns one off).\n"
+      "--seams-file retags panels and overrides or completes TAGCON's seams by line\n"
+      "ids (docs/pattern-format.md#user-seams-and-tags). A drape whose garment ends\n"
+      "off the body, on the floor, or with its centroid more than --drop-tolerance\n"
+      "below its start is reported as such, not as converged (exit status 1).\n"
       "docs/drape.md has the details and measured runs.\n\n"
       "Output in DIR: what `sartor construct` writes (garment.obj = the placed\n"
       "panels, seams.json, construct.json, pattern_seams.svg, placement.svg);\n"
@@ -210,6 +266,7 @@ const CommandSpec& drape_command() {
             option.help = "the fabric of every panel, a preset, FILE.yaml or measured FILE.json "
                           "[the pattern's]";
           }
+          if (option.name == "seams-file") option = seams_file_option_spec();
           if (is_mesh_option(option.name)) {
             option.fallback.clear();
             option.help = "sartor run only: the pattern gives the mesh and seams";
@@ -224,6 +281,9 @@ const CommandSpec& drape_command() {
         options.push_back(
             {"output", "DIR", "out/drape", "output folder (created; files in it are replaced)"});
         options.push_back({"no-plot", "", "", "write data only, no PNG"});
+        options.push_back({"drop-tolerance", "M", "0.1",
+                           "m the garment's centroid may end below its start: a larger drop is "
+                           "reported as slid down"});
         return options;
       }(),
       1};
@@ -251,7 +311,9 @@ int run_drape(const Invocation& invocation) {
   }
 
   // 1. The garment, constructed and written as `sartor construct` writes it.
-  const ConstructedGarment constructed = construct_garment(path, panel_mesh_options(options));
+  const std::string user_seams = options.is_set("seams-file") ? options.text("seams-file") : "";
+  const ConstructedGarment constructed =
+      construct_garment(path, panel_mesh_options(options), user_seams);
   print_construction(constructed);
   const auto constructed_at = Clock::now();
   write_construction(directory, constructed,
@@ -367,7 +429,11 @@ int run_drape(const Invocation& invocation) {
     residual = result.report.final_residual_norm;
   }
   const bool equilibrium = residual >= 0.0 && residual <= 1e-3 * weight.norm();
-  const bool converged = result.converged && (residual < 0.0 || equilibrium);
+  DrapeEndLimits end_limits;
+  end_limits.drop_tolerance = options.nonnegative_real("drop-tolerance");
+  const DrapeOutcome outcome = drape_outcome(result, end_limits);
+  const bool converged =
+      result.converged && (residual < 0.0 || equilibrium) && outcome.end == DrapeEnd::on_body;
   const double construction_seconds =
       constructed.construction.placement_seconds + constructed.construction.seam_seconds;
   const double total_seconds = std::chrono::duration<double>(Clock::now() - started).count();
@@ -390,6 +456,7 @@ int run_drape(const Invocation& invocation) {
   const auto to_json = [](const Eigen::Vector3d& v) { return nlohmann::json{v.x(), v.y(), v.z()}; };
   summary["drape"] = {
       {"converged", converged},
+      {"outcome", drape_outcome_json(outcome, end_limits)},
       {"equilibrium_checked", residual >= 0.0},
       {"residual_force_N", residual >= 0.0 ? nlohmann::json(residual) : nlohmann::json(nullptr)},
       {"material_area_m2", area},
@@ -412,6 +479,12 @@ int run_drape(const Invocation& invocation) {
   // The seams file is drape's own (the pattern's seams, written above): the
   // echoed options re-run the job, and drape refuses a --seams-file given to it.
   SartorPetscCall(PetscOptionsClearValue(nullptr, "-seams_file"));
+  if (!user_seams.empty()) {
+    // The user's seams file, echoed (and queried, so as not to be reported unused).
+    SartorPetscCall(PetscOptionsSetValue(nullptr, "-seams_file", user_seams.c_str()));
+    PetscBool echoed = PETSC_FALSE;
+    SartorPetscCall(PetscOptionsHasName(nullptr, nullptr, "-seams_file", &echoed));
+  }
   write_petsc_options(directory);
 
   SartorPetscCall(PetscPrintf(
@@ -421,7 +494,8 @@ int run_drape(const Invocation& invocation) {
       "certificate: %s; wrote %s\n",
       result.mesh.triangle_count(), constructed.garment.seams.size(), construction_seconds,
       result.solve_seconds,
-      !converged       ? "not converged"
+      outcome.end != DrapeEnd::on_body ? ("garment " + outcome.description()).c_str()
+      : !converged                     ? "not converged"
       : residual < 0.0 ? "dynamics completed; equilibrium not checked without --settle"
                        : "converged",
       seam_gap, penetration, reaction.norm(), weight.norm(), verdict.c_str(), directory.c_str()));
@@ -432,6 +506,10 @@ int run_drape(const Invocation& invocation) {
     throw SolveFailure("the drape did not converge (" + reason + "); " + directory +
                        " holds the last state. Try a longer --time-end, a smaller --time-step, "
                        "or -snes_monitor");
+  }
+  if (outcome.end != DrapeEnd::on_body) {
+    throw InputError("the drape did not drape the garment: it ended " + outcome.description() +
+                     "; " + directory + " holds its state (summary.json: drape.outcome)");
   }
   if (!converged) {
     throw SolveFailure("the drape is not in equilibrium: the final static solve stopped with a "

@@ -8,6 +8,7 @@
 #include "contact/mesh_shape.hpp"
 #include "fem/petsc_call.hpp"
 #include "garment/pattern_svg.hpp"
+#include "garment/seam_overrides.hpp"
 #include "garment/tagcon_svg.hpp"
 #include "mesh/mannequin.hpp"
 #include "solvers/case_checks.hpp"
@@ -17,6 +18,7 @@
 #include <petscsys.h>
 
 #include <chrono>
+#include <optional>
 
 namespace sartor {
 
@@ -51,12 +53,24 @@ PanelMeshOptions panel_mesh_options(const Options& options) {
   return mesh_options;
 }
 
-ConstructedGarment construct_garment(const std::string& path,
-                                     const PanelMeshOptions& mesh_options) {
+OptionSpec seams_file_option_spec() {
+  return {"seams-file", "FILE", "",
+          "seams and tags that override or complete TAGCON's: JSON naming pattern lines "
+          "(docs/pattern-format.md#user-seams-and-tags)"};
+}
+
+ConstructedGarment construct_garment(const std::string& path, const PanelMeshOptions& mesh_options,
+                                     const std::string& seams_file) {
   ConstructedGarment constructed;
   constructed.path = path;
+  constructed.seams_file = seams_file;
   constructed.mesh_options = mesh_options;
   constructed.pattern = garment::read_pattern(path);
+  std::optional<garment::SeamOverrides> overrides;
+  if (!seams_file.empty()) {
+    overrides = garment::read_seam_overrides(seams_file);
+    garment::apply_tag_overrides(constructed.pattern, *overrides);
+  }
   check_panel_mesh_size(constructed.pattern, mesh_options.edge_length);
   using Clock = std::chrono::steady_clock;
   const auto body_start = Clock::now();
@@ -71,6 +85,7 @@ ConstructedGarment construct_garment(const std::string& path,
   };
   constructed.construction =
       garment::construct(constructed.pattern, body, distance, constructed.tagcon);
+  if (overrides) garment::apply_seam_overrides(constructed.construction, *overrides);
   const auto mesh_start = Clock::now();
   constructed.garment = garment::build_garment_mesh(constructed.construction, mesh_options);
   constructed.mesh_seconds = std::chrono::duration<double>(Clock::now() - mesh_start).count();
@@ -102,6 +117,7 @@ nlohmann::json construction_summary(const Invocation& invocation, const std::str
                                     const ConstructedGarment& constructed) {
   nlohmann::json summary = run_metadata(invocation, command);
   summary["pattern"] = pattern_path;
+  if (!constructed.seams_file.empty()) summary["seams_file"] = constructed.seams_file;
   summary["body"] = "default";
   summary["units"] = "m";
   const garment::Pattern& pattern = constructed.pattern;

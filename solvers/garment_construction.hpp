@@ -19,7 +19,8 @@
 namespace sartor {
 
 struct ConstructedGarment {
-  std::string path; // the pattern file
+  std::string path;       // the pattern file
+  std::string seams_file; // user seams and tags (garment/seam_overrides.hpp); empty: none
   garment::Pattern pattern;
   garment::TagconOptions tagcon;
   PanelMeshOptions mesh_options;
@@ -34,9 +35,15 @@ const std::vector<OptionSpec>& panel_mesh_option_specs();
 // Throws InputError for a value out of range.
 PanelMeshOptions panel_mesh_options(const Options& options);
 
-// Reads PATTERN.json and constructs it around the built-in mannequin. Throws
-// InputError for a bad pattern or one TAGCON cannot construct.
-ConstructedGarment construct_garment(const std::string& path, const PanelMeshOptions& mesh_options);
+// Reads PATTERN.json and constructs it around the built-in mannequin; a
+// `seams_file` (not empty) retags panels before TAGCON and overrides or
+// completes its seams after. Throws InputError for a bad pattern or seams
+// file, or a pattern TAGCON cannot construct.
+ConstructedGarment construct_garment(const std::string& path, const PanelMeshOptions& mesh_options,
+                                     const std::string& seams_file = "");
+
+// --seams-file of construct and drape.
+OptionSpec seams_file_option_spec();
 
 // Prints the one-line summary and the seam table (PetscPrintf, rank 0).
 void print_construction(const ConstructedGarment& garment);

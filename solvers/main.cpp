@@ -33,6 +33,7 @@ const std::vector<Command>& commands() {
       {sartor::body_command, sartor::run_body},
       {sartor::construct_command, sartor::run_construct},
       {sartor::drape_command, sartor::run_drape},
+      {sartor::import_command, sartor::run_import},
   };
   return all;
 }

@@ -654,7 +654,7 @@ void check_interior(const Node& node, const Panel& panel, double tolerance, doub
 Panel read_panel(const Node& node, double scale, double tolerance, double flattening,
                  std::set<std::string>& line_ids) {
   node.object();
-  node.only_keys({"id", "fabric", "tag", "grain", "outline", "interior"});
+  node.only_keys({"id", "fabric", "tag", "grain", "outline", "interior", "darts"});
   Panel panel;
   panel.json_path = node.path;
   panel.id = node.require("id").id();
@@ -727,6 +727,8 @@ Panel read_panel(const Node& node, double scale, double tolerance, double flatte
     }
     check_interior(interior, panel, tolerance, flattening);
   }
+  if (node.has("darts"))
+    panel.darts = read_darts(node.value.at("darts"), node.path + ".darts", node.source, panel);
   return panel;
 }
 

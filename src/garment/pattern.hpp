@@ -7,6 +7,7 @@
 // counter-clockwise. Serial; knows nothing of PETSc.
 
 #include <Eigen/Core>
+#include <nlohmann/json_fwd.hpp>
 
 #include <optional>
 #include <string>
@@ -95,12 +96,23 @@ struct GrainLine {
   }
 };
 
+// A dart (a V cut into the outline, sewn shut): two consecutive outline
+// lines, the first ending at the apex inside the panel where the second
+// starts; seam creation sews them to each other (docs/pattern-format.md#darts).
+struct Dart {
+  std::string id;
+  std::string first_leg;  // the line that ends at the apex (counter-clockwise order)
+  std::string second_leg; // the line that starts there
+  std::string json_path;
+};
+
 struct Panel {
   std::string id;
   std::string fabric; // a fabric preset name, or a fabric YAML file path
   PanelTag tag;
   std::vector<OutlineLine> outline; // closed, counter-clockwise, not self-intersecting
   std::vector<InteriorLine> interior;
+  std::vector<Dart> darts;
   GrainLine grain;
   bool reversed = false; // the outline was given clockwise
   std::string json_path;
@@ -157,6 +169,13 @@ constexpr int pattern_format_version = 1;
 Pattern read_pattern(const std::string& path);
 // The same from text already read; `source` names it in messages.
 Pattern parse_pattern(const std::string& text, const std::string& source);
+
+// The panel's "darts" (JSON array at `path` of `source`), validated against
+// its counter-clockwise outline: each names two consecutive lines of it that
+// meet at a reflex corner (the apex) and whose lengths differ by at most 5%.
+// Throws InputError naming the dart's JSON path. pattern_darts.cpp.
+std::vector<Dart> read_darts(const nlohmann::json& darts, const std::string& path,
+                             const std::string& source, const Panel& panel);
 
 // Each panel's placement on the flat sheet where the pattern is drawn: packs
 // as the file places them, packs side by side left to right in file order,

@@ -284,6 +284,8 @@ Vector3d at_fraction(const std::vector<Vector3d>& samples, double t) {
   return (1 - f) * samples[k] + f * samples[k + 1];
 }
 
+} // namespace
+
 // The orientation whose seam springs (point to point at equal arc length)
 // start with the least energy. Comparing only the end points' distances can
 // twist a ring's seam: the hood's neck edge, placed round the back of the
@@ -300,8 +302,6 @@ bool should_reverse(const LineGeometry& a, const LineGeometry& b) {
   return crossed < direct;
 }
 
-} // namespace
-
 const char* name_of(SeamKind kind) {
   switch (kind) {
   case SeamKind::intra_pack:
@@ -314,6 +314,10 @@ const char* name_of(SeamKind kind) {
     return "t_seam";
   case SeamKind::y_seam:
     return "y_seam";
+  case SeamKind::dart:
+    return "dart";
+  case SeamKind::user:
+    return "user";
   }
   return "?";
 }
@@ -724,6 +728,21 @@ Construction construct(const Pattern& pattern, const Mannequin& body,
     seam.reverse = should_reverse(result.lines[std::size_t(a)], result.lines[std::size_t(b)]);
     result.seams.push_back(seam);
   };
+  // Step 1b: every dart's legs are sewn to each other, leg start to leg end
+  // (apex to apex), before TAGCON matches the other lines, so that no leg is
+  // left unseamed nor sewn to another panel.
+  for (const Panel& panel : pattern.panels) {
+    for (const Dart& dart : panel.darts) {
+      const int a = result.line_index(dart.first_leg), b = result.line_index(dart.second_leg);
+      MatchScore certain;
+      certain.distance = certain.orientation = certain.length = certain.curvature =
+          certain.seamable = 1;
+      add_seam(SeamKind::dart, a, b, certain);
+      result.seams.back().reverse = true;
+      done[std::size_t(a)] = done[std::size_t(b)] = true;
+    }
+  }
+
   // M_sa (eq. 3.6) for inter-pack lines: inherently unseamable unless on
   // two adjacent cylinders or the two halves of one; conventionally
   // unseamable: a limb's medial (inner) line with a lateral (outer) one.
@@ -1058,7 +1077,7 @@ Construction construct(const Pattern& pattern, const Mannequin& body,
       if (c == Cylinder::leg_l || c == Cylinder::leg_r)
         parts.insert({"pelvis", "torso", "hip_l", "hip_r"});
     }
-    if (seam.kind != SeamKind::intra_pack && body_distance) {
+    if (seam.kind != SeamKind::intra_pack && seam.kind != SeamKind::dart && body_distance) {
       for (int q = 0; q < options.sweep_pairs; ++q) {
         const double t = (q + 0.5) / options.sweep_pairs;
         const Vector3d pa = at_fraction(a.samples, t);

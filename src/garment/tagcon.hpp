@@ -72,7 +72,9 @@ struct PackPlacement {
   double radius = 0; // the cylinder's radius plus the layers
 };
 
-enum class SeamKind { intra_pack, inter_cylinder, inter_half_cylinder, t_seam, y_seam };
+// dart: a dart's legs, sewn before any other seam; user: from a seams file
+// (garment/seam_overrides.hpp).
+enum class SeamKind { intra_pack, inter_cylinder, inter_half_cylinder, t_seam, y_seam, dart, user };
 const char* name_of(SeamKind kind);
 
 // A line as seam creation sees it, in 3D.
@@ -159,6 +161,10 @@ Construction construct(const Pattern& pattern, const Mannequin& body,
 // Eq. 3.1-3.6 for lines i and j; seamable is M_sa (0 or 1).
 MatchScore match_score(const LineGeometry& i, const LineGeometry& j, bool seamable,
                        const TagconOptions& options);
+// The orientation of a seam of lines a and b (true: a's start meets b's
+// end) whose springs, point to point at equal arc length along the placed
+// lines, start with the smaller sum of squared lengths.
+bool should_reverse(const LineGeometry& a, const LineGeometry& b);
 // M_sa's inherent part: whether two cylinders are ever sewn together.
 bool cylinders_adjacent(Cylinder a, Cylinder b);
 
