@@ -508,8 +508,8 @@ int run_drape(const Invocation& invocation) {
                        "or -snes_monitor");
   }
   if (outcome.end != DrapeEnd::on_body) {
-    throw InputError("the drape did not drape the garment: it ended " + outcome.description() +
-                     "; " + directory + " holds its state (summary.json: drape.outcome)");
+    throw SolveFailure("the drape did not drape the garment: it ended " + outcome.description() +
+                       "; " + directory + " holds its state (summary.json: drape.outcome)");
   }
   if (!converged) {
     throw SolveFailure("the drape is not in equilibrium: the final static solve stopped with a "
