@@ -33,7 +33,7 @@ namespace sartor {
 namespace {
 
 // What drape changes in the options of `sartor run`: defaults for a garment
-// falling onto the mannequin (as cases/seams/tube_on_cylinder.yaml drapes).
+// on the mannequin (as cases/seams/tube_on_cylinder.yaml drapes).
 const std::map<std::string, std::string>& drape_defaults() {
   static const std::map<std::string, std::string> defaults{
       {"body", "mannequin mu=0.3 name=mannequin"},
@@ -42,30 +42,39 @@ const std::map<std::string, std::string>& drape_defaults() {
       // Tight garments press on the body (~100 N on the skirt): a stiffer
       // penalty keeps the vertices within the contact offset.
       {"contact-stiffness-factor", "5"},
-      {"analysis", "dynamic"},
-      {"time-step", "0.01"},
-      {"time-end", "1.5"},
-      {"output-interval", "0.1"},
   };
   return defaults;
 }
 
-// Gradual sewing (docs/seams.md), for a garment with seams: each seam starts
-// pulling with 10 N/m (a 2 N T-shirt's seams, about 3 m, pull with 30 N in
-// all) and stiffens to its own stiffness over the first second, without
-// friction. Sewn at once, the T-shirt's shoulder seams dragged the upper
-// panels into the shoulders; sewn like this it hangs on them.
-const std::map<std::string, std::string>& drape_sewing_defaults() {
-  static const std::map<std::string, std::string> defaults{{"sewing-tension", "10"},
-                                                           {"sewing-time", "1"}};
+// With --analysis dynamic (the fall in time, on request): the time grid.
+const std::map<std::string, std::string>& drape_dynamic_defaults() {
+  static const std::map<std::string, std::string> defaults{
+      {"time-step", "0.01"}, {"time-end", "1.5"}, {"output-interval", "0.1"}};
   return defaults;
 }
 
-// Flags drape turns on (a flag's default is off): `-settle false` turns one off.
-const std::vector<std::string>& drape_flags() {
-  static const std::vector<std::string> flags{"kinetic-damping", "settle", "membrane-psd",
-                                              "bending-psd"};
-  return flags;
+// Sewing, for a garment with seams. Statics (the default): the seams close
+// in four continuation stages of their stiffness, from a pull of 10 N/m of
+// seam (a 2 N T-shirt's seams, about 3 m, pull with 30 N in all) to their
+// own stiffness, without friction until the last (docs/drape.md). Dynamics:
+// gradual sewing over the first second (docs/seams.md). Sewn at once, the
+// T-shirt's shoulder seams dragged the upper panels into the shoulders;
+// sewn like this it hangs on them.
+const std::map<std::string, std::string>& drape_sewing_defaults(bool dynamic) {
+  static const std::map<std::string, std::string> statics{{"sewing-stages", "4"},
+                                                          {"sewing-start-tension", "10"}};
+  static const std::map<std::string, std::string> dynamics{{"sewing-tension", "10"},
+                                                           {"sewing-time", "1"}};
+  return dynamic ? dynamics : statics;
+}
+
+// Flags drape turns on (a flag's default is off): `-membrane_psd false`
+// turns one off. Dynamics also get kinetic damping and the settle.
+const std::vector<std::string>& drape_flags(bool dynamic) {
+  static const std::vector<std::string> statics{"membrane-psd", "bending-psd"};
+  static const std::vector<std::string> dynamics{"kinetic-damping", "settle", "membrane-psd",
+                                                 "bending-psd"};
+  return dynamic ? dynamics : statics;
 }
 
 // Options of `sartor run` that describe the mesh or its seams: the pattern does.
@@ -196,15 +205,19 @@ const CommandSpec& drape_command() {
       [] {
         std::vector<OptionSpec> options;
         for (OptionSpec option : case_option_specs()) {
-          const auto changed = drape_defaults().find(option.name);
-          if (changed != drape_defaults().end()) option.fallback = changed->second;
-          const auto sewing = drape_sewing_defaults().find(option.name);
-          if (sewing != drape_sewing_defaults().end()) {
-            option.fallback = sewing->second;
-            if (option.name == "sewing-time") option.help = "the end of the sewing stage, s";
+          for (const auto* defaults : {&drape_defaults(), &drape_dynamic_defaults(),
+                                       &drape_sewing_defaults(false),
+                                       &drape_sewing_defaults(true)}) {
+            const auto changed = defaults->find(option.name);
+            if (changed != defaults->end()) option.fallback = changed->second;
           }
-          if (std::count(drape_flags().begin(), drape_flags().end(), option.name))
-            option.help += " [on in drape]";
+          if (option.name == "sewing-time") option.help = "dynamic: the end of the sewing stage, s";
+          const auto& flags = drape_flags(true);
+          if (std::count(flags.begin(), flags.end(), option.name)) {
+            const bool always = std::count(drape_flags(false).begin(), drape_flags(false).end(),
+                                           option.name) > 0;
+            option.help += always ? " [on in drape]" : " [on in drape's dynamics]";
+          }
           if (option.name == "fabric") {
             option.fallback.clear();
             option.help = "the fabric of every panel, a preset or FILE.yaml [the pattern's]";
@@ -320,11 +333,16 @@ int run_drape(const Invocation& invocation) {
   };
   for (const auto& [name, value] : drape_defaults())
     set_default(name, value);
-  if (!sewable.seams.empty()) {
-    for (const auto& [name, value] : drape_sewing_defaults())
+  const bool dynamic = options.text("analysis") == "dynamic";
+  if (dynamic) {
+    for (const auto& [name, value] : drape_dynamic_defaults())
       set_default(name, value);
   }
-  for (const std::string& flag : drape_flags())
+  if (!sewable.seams.empty()) {
+    for (const auto& [name, value] : drape_sewing_defaults(dynamic))
+      set_default(name, value);
+  }
+  for (const std::string& flag : drape_flags(dynamic))
     set_default(flag, "true");
   // The time steps of the relaxation are solved loosely; the settle solves
   // fully: to 1e-6 of the garment's weight (1.4e-6 N for the skirt), above
@@ -337,7 +355,7 @@ int run_drape(const Invocation& invocation) {
   const double mass = options.nonnegative_real("density") * area;
   const std::vector<double> gravity = option_numbers(options, "gravity", 3);
   const Eigen::Vector3d weight = mass * Eigen::Vector3d(gravity[0], gravity[1], gravity[2]);
-  SartorPetscCall(set_default_option("-snes_rtol", "1e-4"));
+  if (dynamic) SartorPetscCall(set_default_option("-snes_rtol", "1e-4"));
   if (weight.norm() > 0.0)
     SartorPetscCall(set_default_option("-snes_atol", format_number(1e-6 * weight.norm()).c_str()));
   labels.fabrics = cloth.fabrics;
