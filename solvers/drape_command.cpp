@@ -25,6 +25,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 
@@ -54,14 +55,14 @@ const std::map<std::string, std::string>& drape_dynamic_defaults() {
 }
 
 // Sewing, for a garment with seams. Statics (the default): the seams close
-// in four continuation stages of their stiffness, from a pull of 10 N/m of
+// in eight continuation stages of their stiffness, from a pull of 10 N/m of
 // seam (a 2 N T-shirt's seams, about 3 m, pull with 30 N in all) to their
 // own stiffness, without friction until the last (docs/drape.md). Dynamics:
 // gradual sewing over the first second (docs/seams.md). Sewn at once, the
 // T-shirt's shoulder seams dragged the upper panels into the shoulders;
 // sewn like this it hangs on them.
 const std::map<std::string, std::string>& drape_sewing_defaults(bool dynamic) {
-  static const std::map<std::string, std::string> statics{{"sewing-stages", "4"},
+  static const std::map<std::string, std::string> statics{{"sewing-stages", "8"},
                                                           {"sewing-start-tension", "10"}};
   static const std::map<std::string, std::string> dynamics{{"sewing-tension", "10"},
                                                            {"sewing-time", "1"}};
@@ -75,6 +76,14 @@ const std::vector<std::string>& drape_flags(bool dynamic) {
   static const std::vector<std::string> dynamics{"kinetic-damping", "settle", "membrane-psd",
                                                  "bending-psd"};
   return dynamic ? dynamics : statics;
+}
+
+// Options that only time stepping reads: giving one asks for --analysis dynamic.
+const std::vector<std::string>& time_stepping_options() {
+  static const std::vector<std::string> names{
+      "time-end",        "time-step", "damping",        "kinetic-damping", "rest-tolerance",
+      "output-interval", "settle",    "sewing-tension", "sewing-time"};
+  return names;
 }
 
 // Options of `sartor run` that describe the mesh or its seams: the pattern does.
@@ -333,6 +342,13 @@ int run_drape(const Invocation& invocation) {
   };
   for (const auto& [name, value] : drape_defaults())
     set_default(name, value);
+  // A time-stepping option asks for dynamics (drape's default before the
+  // static minimiser; such command lines keep their meaning).
+  if (!options.is_set("analysis")) {
+    for (const std::string& name : time_stepping_options()) {
+      if (options.is_set(name)) set_default("analysis", "dynamic");
+    }
+  }
   const bool dynamic = options.text("analysis") == "dynamic";
   if (dynamic) {
     for (const auto& [name, value] : drape_dynamic_defaults())
@@ -363,11 +379,13 @@ int run_drape(const Invocation& invocation) {
 
   // 4. What the drape achieved.
   Eigen::Vector3d reaction = Eigen::Vector3d::Zero();
-  double penetration = 0.0;
+  double penetration = 0.0, closest = std::numeric_limits<double>::max();
   for (const BodyContact& report : result.contact.reports) {
     reaction += report.normal_force + report.friction_force;
     penetration = std::max(penetration, report.max_penetration);
+    closest = std::min(closest, report.min_distance);
   }
+  const double offset = options.real("contact-offset");
   // At rest the body's reaction on the garment cancels its weight (pins, when
   // a user adds some, take their share: pin_reaction_N).
   const Eigen::Vector3d imbalance = reaction + result.pin_reaction + weight;
@@ -412,7 +430,18 @@ int run_drape(const Invocation& invocation) {
       {"relative_imbalance", weight.norm() > 0 ? imbalance.norm() / weight.norm() : 0.0},
       {"largest_seam_gap_m", seam_gap},
       {"max_penetration_m", penetration},
-      {"contact_offset_m", options.real("contact-offset")},
+      {"contact_offset_m", offset},
+      {"residual_relative_to_weight",
+       residual >= 0.0 && weight.norm() > 0.0 ? nlohmann::json(residual / weight.norm())
+                                              : nlohmann::json(nullptr)},
+      // The deepest vertex in the offset layer as a fraction of the offset
+      // (1: on the body's surface), and whether any vertex is inside the body.
+      {"deepest_vertex_relative_to_offset", penetration / offset},
+      {"vertex_inside_body", closest < 0.0},
+      {"method", result.dynamics ? "dynamics" : result.report.minimised ? "minimise" : "snes"},
+      // Filled by the certification (inertia of the Hessian, edge-body
+      // intersections, Coulomb's condition): not computed yet.
+      {"certificate", nullptr},
       {"timing_s",
        {{"construction", construction_seconds},
         {"meshing", constructed.mesh_seconds},
@@ -428,22 +457,26 @@ int run_drape(const Invocation& invocation) {
 
   SartorPetscCall(PetscPrintf(
       PETSC_COMM_WORLD,
-      "sartor drape: %zu triangles, %zu seams sewn; construction %.3f s, drape %.1f s (%s); "
-      "seam gap %.2e m, penetration %.2e m, body reaction %.6g N for a weight of %.6g N; "
-      "wrote %s\n",
+      "sartor drape: %zu triangles, %zu seams sewn; construction %.3f s, drape %.1f s (%s, "
+      "%s); residual force %s of the weight; seam gap %.2e m, deepest vertex %.2e m into the "
+      "%.2g m offset (%s); body reaction %.6g N for a weight of %.6g N; not certified "
+      "(no stability check); wrote %s\n",
       result.mesh.triangle_count(), constructed.garment.seams.size(), construction_seconds,
-      result.solve_seconds,
+      result.solve_seconds, result.dynamics ? "dynamics" : "static minimiser",
       !converged       ? "not converged"
       : residual < 0.0 ? "dynamics completed; equilibrium not checked without --settle"
                        : "converged",
-      seam_gap, penetration, reaction.norm(), weight.norm(), directory.c_str()));
+      residual >= 0.0 && weight.norm() > 0.0 ? format_number(residual / weight.norm()).c_str()
+                                             : "unknown",
+      seam_gap, penetration, offset, closest < 0.0 ? "a vertex inside the body" : "outside the body",
+      reaction.norm(), weight.norm(), directory.c_str()));
   // The picture helps most when the drape failed.
   if (!options.flag("no-plot")) make_plot("plot_drape.py", directory);
   if (!result.converged) {
     const std::string reason = result.dynamics ? result.dynamics->reason : result.report.reason;
     throw InputError("the drape did not converge (" + reason + "); " + directory +
-                     " holds the last state. Try a longer --time-end, a smaller --time-step, "
-                     "or -snes_monitor");
+                     " holds the last state. Try -snes_monitor" +
+                     (result.dynamics ? ", a longer --time-end or a smaller --time-step" : ""));
   }
   if (!converged) {
     throw InputError("the drape is not in equilibrium: the final static solve stopped with a "

@@ -593,8 +593,8 @@ void add_edge_force(const Options& options, const TriangleMesh& mesh, ClothLoads
     loads->point_forces.push_back({vertex, f});
 }
 
-// The static solver's options; sewing stages set the problem's sewing tension.
-StaticOptions static_options(const Options& options, ClothProblem& problem) {
+// The static solver's options.
+StaticOptions static_options(const Options& options, const ClothProblem& problem) {
   StaticOptions solve;
   solve.load_steps = count_option(options, "load-steps", 1);
   const std::string solver = options.text("static-solver");
@@ -603,11 +603,8 @@ StaticOptions static_options(const Options& options, ClothProblem& problem) {
   }
   solve.minimise = solver == "minimise";
   solve.sewing_stages = count_option(options, "sewing-stages", 1);
-  if (solve.sewing_stages > 1 && options.text("analysis") == "static") {
-    if (!problem.seam_coupling()) {
-      throw InputError("option --sewing-stages: the case has no seams to sew (or they are merged)");
-    }
-    problem.sewing_tension = options.positive_real("sewing-start-tension");
+  if (solve.sewing_stages > 1 && !problem.seam_coupling()) {
+    throw InputError("option --sewing-stages: the case has no seams to sew (or they are merged)");
   }
   solve.max_offset_depth = options.nonnegative_real("contact-max-depth");
   if (solve.max_offset_depth == 0.0) solve.max_contact_rounds = 0;
@@ -705,6 +702,9 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   set_up_contact(options, problem);
   problem.contact.project_hessian = options.flag("membrane-psd");
   if (result.seams && !result.seams->merged) {
+    // Static sewing stages start from this pull (before the springs are made).
+    if (options.text("analysis") == "static" && count_option(options, "sewing-stages", 1) > 1)
+      problem.sewing_tension = options.positive_real("sewing-start-tension");
     attach_seams(options, seams, material, problem, &*result.seams);
   }
   const std::string analysis = options.text("analysis");
@@ -830,7 +830,20 @@ void add_statics_summary(const StaticReport& report, nlohmann::json& summary) {
                        {"newton_iterations", report.newton_iterations},
                        {"linear_iterations", report.linear_iterations},
                        {"initial_residual_norm", report.initial_residual_norm},
-                       {"final_residual_norm", report.final_residual_norm}};
+                       {"final_residual_norm", report.final_residual_norm},
+                       {"method", report.minimised ? "minimise" : "snes"}};
+  if (report.minimised) {
+    summary["solver"]["minimiser"] = {
+        {"step_bound_cuts", report.minimiser.step_bound_cuts},
+        {"regularised_steps", report.minimiser.regularised_steps},
+        {"residual_rule_trials", report.minimiser.residual_rule_trials},
+        {"failed_factorisations", report.minimiser.failed_factorisations},
+        {"exact_steps", report.minimiser.exact_steps},
+        {"sewing_stages", report.sewing_stages},
+        {"contact_rounds", report.contact_rounds},
+        {"contact_stiffness_scale", report.contact_stiffness_scale},
+        {"sliding_vertices", report.sliding_vertices}};
+  }
   summary["load_steps"] = nlohmann::json::array();
   for (const auto& step : report.steps) {
     summary["load_steps"].push_back({{"load_factor", step.load_factor},

@@ -112,7 +112,7 @@ PetscErrorCode ClothProblem::add_contact_jacobian(const PetscScalar* x, Mat J) c
       if (result.hessian.isZero(0.0)) continue; // out of contact and unanchored
       const PetscInt dofs[3] = {offset, offset + 1, offset + 2};
       Eigen::Matrix<double, 3, 3, Eigen::RowMajor> block = result.hessian;
-      if (contact.project_hessian) {
+      if (contact.project_hessian && !exact_hessian) {
         Eigen::Matrix3d projected = result.hessian;
         element::project_to_psd<3>(projected);
         block = projected;
@@ -131,7 +131,10 @@ double ClothProblem::vertex_step_bound(std::size_t body, const Eigen::Vector3d& 
   if (length == 0.0) return 1.0;
   double distance = b.query(p, contact_clock()).distance;
   if (distance <= 0.0) return 1.0; // inside: the penalty pushes it out
-  const double level = 0.5 * std::min(distance, contact.offset);
+  // Never closer than a tenth of the offset in one step (nor than half its
+  // distance when it is closer already): the penalty, which acts within the
+  // offset, has the room to hold it.
+  const double level = std::min(0.5 * distance, 0.1 * contact.offset);
   // Conservative advancement: the distance falls by at most slope * |motion|
   // per unit of t, so t may advance by (distance - level) / (slope |motion|)
   // at a time without crossing the level.

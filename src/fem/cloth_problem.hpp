@@ -213,8 +213,8 @@ public:
   // friction forces from the anchors the solve used (before the last update).
   PetscErrorCode contact_report(Vec x, std::vector<BodyContact>* report);
   // Collective. The largest t in (0, 1] such that no vertex moving from x
-  // towards x + t d comes closer to a body than half of the smaller of its
-  // distance at x and the contact offset, found by conservative advancement
+  // towards x + t d comes closer to a body than the smaller of half its
+  // distance at x and a tenth of the contact offset, found by conservative advancement
   // on the signed distance and the shape's slope bound (IPC's CCD filter,
   // with the body's distance in place of CCD). Vertices already inside a
   // body (d <= 0) do not bound the step: the penalty pushes them out.
@@ -249,6 +249,16 @@ public:
 
   PetscErrorCode residual(Vec x, Vec f);
   PetscErrorCode jacobian(Vec x, Mat J);
+  // The Jacobian without the PSD projections the materials and contact ask
+  // for: the static minimiser tries it near a solution, where the projected
+  // one converges only linearly.
+  bool exact_hessian = false;
+  bool projects_hessians() const {
+    for (const ClothMaterial& m : materials_) {
+      if (m.project_membrane || m.project_bending) return true;
+    }
+    return contact.project_hessian;
+  }
   PetscErrorCode energy(Vec x, ClothEnergy* energy);
   // Preallocated exactly for the element couplings (membrane and hinges).
   PetscErrorCode create_jacobian(Mat* J);

@@ -65,11 +65,13 @@ public:
   // stages of sewing, fem/statics.hpp).
   bool minimise_statics = true;
   double loose_rtol = 0.0;
+  PetscInt loose_max_iterations = 0; // with loose_rtol: at most this many (0: max_it)
   struct MinimiserStatistics {
     PetscInt step_bound_cuts = 0;      // Newton steps shortened by the contact step bound
     PetscInt regularised_steps = 0;    // steps with mu > 0
     PetscInt residual_rule_trials = 0; // line-search trials decided on |F| (Phi in round-off)
     PetscInt failed_factorisations = 0;
+    PetscInt exact_steps = 0; // with the unprojected Hessian
   };
   MinimiserStatistics minimiser_statistics;
   // Whether solve() uses the minimiser for the system as it is now.

@@ -150,6 +150,8 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
   PetscCall(SNESGetTolerances(snes_, &atol, &rtol, &stol, &max_iterations, &max_evaluations));
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-snes_monitor", &monitor));
   rtol = std::max(rtol, PetscReal(loose_rtol));
+  if (loose_rtol > 0.0 && loose_max_iterations > 0)
+    max_iterations = std::min(max_iterations, loose_max_iterations);
   *result = Solve{};
   PetscCall(problem_.hold(x));
   PetscCall(residual(x, residual_));
@@ -165,7 +167,7 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
   }
   const PetscReal tolerance = std::max(atol, rtol * initial_norm);
   double mu = 0.0, mu_floor = -1.0, bound = 1.0;
-  int failed_searches = 0;
+  int failed_searches = 0, exact_pause = 0;
   PetscInt iteration = 0;
   result->reason = SNESConvergedReasons[SNES_DIVERGED_MAX_IT];
   for (;; ++iteration) {
@@ -183,7 +185,20 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
       break;
     }
     if (iteration >= max_iterations) break;
-    bool solved = false;
+    // Near a solution the unprojected Hessian gives Newton's quadratic
+    // convergence where the projected one converges linearly: tried while
+    // it gives descent directions that the line search takes at least half
+    // of, then left for five iterations.
+    bool solved = false, exact = false;
+    if (problem_.projects_hessians() && mu == 0.0 && exact_pause == 0 && iteration > 0) {
+      problem_.exact_hessian = true;
+      PetscCall(newton_direction(x, residual_, 0.0, direction_, &exact,
+                                 &result->linear_iterations));
+      problem_.exact_hessian = false;
+      solved = exact;
+      if (!exact) exact_pause = 5;
+    }
+    exact_pause = std::max(0, exact_pause - 1);
     for (int attempt = 0; attempt < 12 && !solved; ++attempt) {
       PetscCall(
           newton_direction(x, residual_, mu, direction_, &solved, &result->linear_iterations));
@@ -200,6 +215,8 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
     if (bound < 1.0) ++minimiser_statistics.step_bound_cuts;
     Trial next = current;
     PetscCall(line_search(x, residual_, direction_, bound, &next));
+    if (exact && next.length < 0.5 * bound) exact_pause = 5;
+    if (next.length == 0.0 && exact) continue; // the projected Hessian next
     if (next.length == 0.0) {
       if (++failed_searches > 8) {
         result->reason = SNESConvergedReasons[SNES_DIVERGED_LINE_SEARCH];
@@ -210,6 +227,7 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
     }
     failed_searches = 0;
     if (mu > 0.0) ++minimiser_statistics.regularised_steps;
+    if (exact) ++minimiser_statistics.exact_steps;
     PetscCall(VecCopy(trial_x_, x));
     PetscCall(VecCopy(trial_f_, residual_));
     current = next;

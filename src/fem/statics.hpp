@@ -16,9 +16,11 @@
 // Sewing by continuation: with problem.sewing_tension > 0 and seams, the
 // seams close in `sewing_stages` stages of their stiffness (the geometric
 // ramp of gradual sewing, fem/seam_coupling.hpp, at progress 0, 1/(n-1),
-// ..., 1), the bodies without friction until the last; every stage but the
-// last is solved to `stage_rtol` of its first residual, the last to the
-// full tolerance. The friction anchors are lagged: set for what touches a
+// ..., 1), the loads growing from start_load_factor to the target with the
+// same progress, the bodies without friction until the last; every stage but the
+// last is solved to `stage_rtol` of its first residual or for at most
+// `stage_max_iterations` Newton iterations (it only starts the next), the
+// last to the full tolerance. The friction anchors are lagged: set for what touches a
 // body at the start of a stage, and updated (Coulomb's law) between solves.
 //
 // Contact rounds (minimiser, bodies): after the last stage, while anchors
@@ -51,6 +53,7 @@ struct StaticOptions {
   bool minimise = true;              // the static minimiser for a potential
   int sewing_stages = 1;             // with problem.sewing_tension > 0
   double stage_rtol = 1e-3;          // of the stages before the last
+  int stage_max_iterations = 30;     // of the stages before the last
   int max_contact_rounds = 4;
   double max_offset_depth = 0.5; // fraction of the contact offset
 };
