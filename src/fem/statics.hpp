@@ -50,7 +50,9 @@ struct StaticOptions {
   int max_cutbacks = 8;
   double initial_pseudo_step = 1e-2; // dt of the first continuation step, s
   int max_pseudo_steps = 200;        // per load step
-  bool minimise = true;              // the static minimiser for a potential
+  // The static minimiser for a potential (`sartor run` and drape: on by
+  // --static-solver's default; off here, for callers of the SNES path).
+  bool minimise = false;
   int sewing_stages = 1;             // with problem.sewing_tension > 0
   double stage_rtol = 1e-3;          // of the stages before the last
   int stage_max_iterations = 30;     // of the stages before the last
