@@ -161,6 +161,17 @@ PetscErrorCode measure_contact(ClothProblem& problem, Vec x, StaticReport* repor
   PetscFunctionReturn(0);
 }
 
+// The adaptive penalty: stiffer contact where a vertex ended deeper than
+// allowed in the offset layer (by the ratio of depths, twice over, at most
+// tenfold). Whether it stiffened.
+bool stiffen_contact(ClothProblem& problem, const StaticOptions& options,
+                     const StaticReport& report) {
+  const double allowed = options.max_offset_depth * problem.contact.offset;
+  if (allowed <= 0.0 || report.deepest_offset_depth <= allowed) return false;
+  problem.contact.stiffness_scale *= std::min(10.0, 2.0 * report.deepest_offset_depth / allowed);
+  return true;
+}
+
 // Solves the last stage again while the contact rounds of the header ask for it.
 PetscErrorCode contact_rounds(IncrementalSystem& system, Vec x, const StaticOptions& options,
                               Vec last, StaticReport* report) {
@@ -169,13 +180,8 @@ PetscErrorCode contact_rounds(IncrementalSystem& system, Vec x, const StaticOpti
   if (problem.bodies.empty()) PetscFunctionReturn(0);
   PetscCall(measure_contact(problem, x, report));
   if (!system.minimises()) PetscFunctionReturn(0);
-  const double allowed = options.max_offset_depth * problem.contact.offset;
   while (report->converged && report->contact_rounds < options.max_contact_rounds) {
-    const bool too_deep = report->deepest_offset_depth > allowed;
-    if (!too_deep && report->sliding_vertices == 0) break;
-    if (too_deep) {
-      problem.contact.stiffness_scale *= std::min(10.0, 2.0 * report->deepest_offset_depth / allowed);
-    }
+    if (!stiffen_contact(problem, options, *report) && report->sliding_vertices == 0) break;
     ++report->contact_rounds;
     PetscCall(solve_again(system, x, last, report, &report->converged));
     PetscCall(measure_contact(problem, x, report));
@@ -232,6 +238,12 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
       // A stage before the last only starts the next: its iterate is kept
       // even where it did not reach the loose tolerance in its budget.
       PetscCall(sewing_stage(system, x, report));
+      // Seams pulling cloth against a body: the next stage's stiffer
+      // springs need a stiffer penalty to hold it outside.
+      if (system.minimises() && !problem.bodies.empty() && options.max_contact_rounds > 0) {
+        PetscCall(measure_contact(problem, x, report));
+        stiffen_contact(problem, options, *report);
+      }
     } else if (stage == 0) {
       PetscCall(ramp_load(system, x, options, stage_load, last, report, &report->converged));
     } else {
