@@ -214,17 +214,17 @@ const CommandSpec& drape_command() {
       [] {
         std::vector<OptionSpec> options;
         for (OptionSpec option : case_option_specs()) {
-          for (const auto* defaults : {&drape_defaults(), &drape_dynamic_defaults(),
-                                       &drape_sewing_defaults(false),
-                                       &drape_sewing_defaults(true)}) {
+          for (const auto* defaults :
+               {&drape_defaults(), &drape_dynamic_defaults(), &drape_sewing_defaults(false),
+                &drape_sewing_defaults(true)}) {
             const auto changed = defaults->find(option.name);
             if (changed != defaults->end()) option.fallback = changed->second;
           }
           if (option.name == "sewing-time") option.help = "dynamic: the end of the sewing stage, s";
           const auto& flags = drape_flags(true);
           if (std::count(flags.begin(), flags.end(), option.name)) {
-            const bool always = std::count(drape_flags(false).begin(), drape_flags(false).end(),
-                                           option.name) > 0;
+            const bool always =
+                std::count(drape_flags(false).begin(), drape_flags(false).end(), option.name) > 0;
             option.help += always ? " [on in drape]" : " [on in drape's dynamics]";
           }
           if (option.name == "fabric") {
@@ -431,14 +431,16 @@ int run_drape(const Invocation& invocation) {
       {"largest_seam_gap_m", seam_gap},
       {"max_penetration_m", penetration},
       {"contact_offset_m", offset},
-      {"residual_relative_to_weight",
-       residual >= 0.0 && weight.norm() > 0.0 ? nlohmann::json(residual / weight.norm())
-                                              : nlohmann::json(nullptr)},
+      {"residual_relative_to_weight", residual >= 0.0 && weight.norm() > 0.0
+                                          ? nlohmann::json(residual / weight.norm())
+                                          : nlohmann::json(nullptr)},
       // The deepest vertex in the offset layer as a fraction of the offset
       // (1: on the body's surface), and whether any vertex is inside the body.
       {"deepest_vertex_relative_to_offset", penetration / offset},
       {"vertex_inside_body", closest < 0.0},
-      {"method", result.dynamics ? "dynamics" : result.report.minimised ? "minimise" : "snes"},
+      {"method", result.dynamics           ? "dynamics"
+                 : result.report.minimised ? "minimise"
+                                           : "snes"},
       // Filled by the certification (inertia of the Hessian, edge-body
       // intersections, Coulomb's condition): not computed yet.
       {"certificate", nullptr},
@@ -468,8 +470,9 @@ int run_drape(const Invocation& invocation) {
                        : "converged",
       residual >= 0.0 && weight.norm() > 0.0 ? format_number(residual / weight.norm()).c_str()
                                              : "unknown",
-      seam_gap, penetration, offset, closest < 0.0 ? "a vertex inside the body" : "outside the body",
-      reaction.norm(), weight.norm(), directory.c_str()));
+      seam_gap, penetration, offset,
+      closest < 0.0 ? "a vertex inside the body" : "outside the body", reaction.norm(),
+      weight.norm(), directory.c_str()));
   // The picture helps most when the drape failed.
   if (!options.flag("no-plot")) make_plot("plot_drape.py", directory);
   if (!result.converged) {

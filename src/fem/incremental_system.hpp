@@ -90,8 +90,7 @@ private:
   struct Trial;
   PetscErrorCode newton_direction(Vec x, Vec gradient, double mu, Vec direction, bool* solved,
                                   PetscInt* linear_iterations);
-  PetscErrorCode line_search(Vec x, Vec gradient, Vec direction, double first_length,
-                             Trial* trial);
+  PetscErrorCode line_search(Vec x, Vec gradient, Vec direction, double first_length, Trial* trial);
   PetscErrorCode regularisation_scale(double* scale);
   Vec direction_ = nullptr;
   Vec trial_x_ = nullptr;

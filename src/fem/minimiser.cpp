@@ -31,8 +31,8 @@ constexpr double mu_growth = 10.0;
 constexpr double full_step_fraction = 0.25;
 
 double magnitude(const ClothEnergy& e) {
-  return std::abs(e.membrane) + std::abs(e.bending) + std::abs(e.external) +
-         std::abs(e.contact) + std::abs(e.seam);
+  return std::abs(e.membrane) + std::abs(e.bending) + std::abs(e.external) + std::abs(e.contact) +
+         std::abs(e.seam);
 }
 
 } // namespace
@@ -175,13 +175,14 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
       PetscCall(PetscPrintf(problem_.comm(),
                             "  %3" PetscInt_FMT " Minimiser |F| %14.12e  Phi %.10e  mu %.3e  "
                             "step bound %.3e\n",
-                            iteration, double(current.residual_norm), current.potential, mu, bound));
+                            iteration, double(current.residual_norm), current.potential, mu,
+                            bound));
     }
     if (current.residual_norm <= tolerance) {
       result->converged = true;
-      result->reason = SNESConvergedReasons[current.residual_norm <= atol
-                                                ? SNES_CONVERGED_FNORM_ABS
-                                                : SNES_CONVERGED_FNORM_RELATIVE];
+      result->reason =
+          SNESConvergedReasons[current.residual_norm <= atol ? SNES_CONVERGED_FNORM_ABS
+                                                             : SNES_CONVERGED_FNORM_RELATIVE];
       break;
     }
     if (iteration >= max_iterations) break;
@@ -192,8 +193,8 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
     bool solved = false, exact = false;
     if (problem_.projects_hessians() && mu == 0.0 && exact_pause == 0 && iteration > 0) {
       problem_.exact_hessian = true;
-      PetscCall(newton_direction(x, residual_, 0.0, direction_, &exact,
-                                 &result->linear_iterations));
+      PetscCall(
+          newton_direction(x, residual_, 0.0, direction_, &exact, &result->linear_iterations));
       problem_.exact_hessian = false;
       solved = exact;
       if (!exact) exact_pause = 5;

@@ -64,7 +64,6 @@ PetscErrorCode continuation(IncrementalSystem& system, Vec x, const StaticOption
   PetscFunctionReturn(0);
 }
 
-
 // Ramps the load from options.start_load_factor to `target` in load steps,
 // halving an increment that fails, as the header says.
 PetscErrorCode ramp_load(IncrementalSystem& system, Vec x, const StaticOptions& options,
@@ -181,9 +180,21 @@ PetscErrorCode contact_rounds(IncrementalSystem& system, Vec x, const StaticOpti
   PetscCall(measure_contact(problem, x, report));
   if (!system.minimises()) PetscFunctionReturn(0);
   while (report->converged && report->contact_rounds < options.max_contact_rounds) {
+    const double scale = problem.contact.stiffness_scale;
     if (!stiffen_contact(problem, options, *report) && report->sliding_vertices == 0) break;
     ++report->contact_rounds;
-    PetscCall(solve_again(system, x, last, report, &report->converged));
+    const double solved_residual = report->steps.back().residual_norm;
+    bool solved = false;
+    PetscCall(solve_again(system, x, last, report, &solved));
+    if (!solved) {
+      // The state before the round is an equilibrium with the anchors and
+      // penalty it was solved with: it stays, with its residual; the
+      // round's failure is reported (and the anchors that slid).
+      problem.contact.stiffness_scale = scale;
+      report->contact_round_failed = true;
+      report->kept_residual_norm = solved_residual;
+      break;
+    }
     PetscCall(measure_contact(problem, x, report));
   }
   report->contact_stiffness_scale = problem.contact.stiffness_scale;
@@ -256,7 +267,9 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
   report->minimiser = system.minimiser_statistics;
   // The minimiser's last residual is that of the friction anchors it solved
   // with; the update after it (sliding_vertices) changes them.
-  if (report->minimised && report->converged && !report->steps.empty()) {
+  if (report->contact_round_failed) {
+    report->final_residual_norm = report->kept_residual_norm;
+  } else if (report->minimised && report->converged && !report->steps.empty()) {
     report->final_residual_norm = report->steps.back().residual_norm;
   } else {
     PetscCall(problem.residual(x, f));

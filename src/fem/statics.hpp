@@ -53,9 +53,9 @@ struct StaticOptions {
   // The static minimiser for a potential (`sartor run` and drape: on by
   // --static-solver's default; off here, for callers of the SNES path).
   bool minimise = false;
-  int sewing_stages = 1;             // with problem.sewing_tension > 0
-  double stage_rtol = 1e-3;          // of the stages before the last
-  int stage_max_iterations = 30;     // of the stages before the last
+  int sewing_stages = 1;         // with problem.sewing_tension > 0
+  double stage_rtol = 1e-3;      // of the stages before the last
+  int stage_max_iterations = 30; // of the stages before the last
   int max_contact_rounds = 4;
   double max_offset_depth = 0.5; // fraction of the contact offset
 };
@@ -86,12 +86,17 @@ struct StaticReport {
   int contact_rounds = 0;               // solves after the last stage
   double contact_stiffness_scale = 1.0; // of the adaptive penalty at the end
   long sliding_vertices = 0;            // anchors that slid at the last update
-  double deepest_offset_depth = 0.0;    // m: largest depth of a vertex into the offset layer
-  double smallest_distance = 0.0;       // m: smallest signed distance to a body (< 0: inside)
+  // A contact round that did not converge: the state before it is kept
+  // (with its residual), and sliding_vertices says what it left undone.
+  bool contact_round_failed = false;
+  double kept_residual_norm = 0.0;
+  double deepest_offset_depth = 0.0; // m: largest depth of a vertex into the offset layer
+  double smallest_distance = 0.0;    // m: smallest signed distance to a body (< 0: inside)
 };
 
 // Solves in place (the seam springs of a sewing stage do not change the
-// problem: problem.sewing_stage is back at 1 on return): `x` holds the start and, on return, the last converged state.
+// problem: problem.sewing_stage is back at 1 on return): `x` holds the start and, on return, the
+// last converged state.
 PetscErrorCode solve_static(ClothProblem& problem, Vec x, const StaticOptions& options,
                             StaticReport* report);
 // The same with a system kept from solve to solve (its SNES and Jacobian),

@@ -270,7 +270,7 @@ TEST(ContactProblem, StepBoundKeepsEveryVertexOutsideABall) {
       }
     }
   };
-  check(Vector3d(0, 0, -1.0), true);  // straight through the ball
+  check(Vector3d(0, 0, -1.0), true);   // straight through the ball
   check(Vector3d(0.6, 0, -0.2), true); // across its top and down into it
   check(Vector3d(0, 0, 0.3), false);   // away from it
   VecDestroy(&d);
