@@ -1,9 +1,9 @@
 // sartor drape: a garment from its pattern to its drape on the mannequin.
 // TAGCON constructs it (solvers/garment_construction.hpp), and the case
-// pipeline of `sartor run` (solvers/cloth_case.hpp) sews and drapes it: the
-// seams pull the panels together while gravity drops them onto the body, in
-// implicit dynamics with kinetic damping, and a final static solve balances
-// the garment's weight by the body's reaction.
+// pipeline of `sartor run` (solvers/cloth_case.hpp) sews and drapes it: by
+// default statically, minimising the total potential with the seams closing
+// in continuation stages (fem/statics.hpp); on request in implicit dynamics
+// with kinetic damping and a final static solve.
 
 #include "common/csv.hpp"
 #include "common/error.hpp"
@@ -189,21 +189,25 @@ const CommandSpec& drape_command() {
       "[--no-plot] [any option of sartor run]",
       "Constructs the garment as `sartor construct` does (TAGCON around the built-in\n"
       "mannequin: docs/tagcon.md), then sews and drapes it as `sartor run` would a\n"
-      "case with --mesh obj and --seams-file: the seam springs pull the panels\n"
-      "together while gravity drops them onto the mannequin (friction mu = 0.3), in\n"
-      "implicit dynamics with kinetic damping, and a final static Newton solve\n"
-      "(--settle) balances the garment's weight by the body's reaction. Each panel\n"
+      "case with --mesh obj and --seams-file: by minimising the total potential\n"
+      "(the static minimiser, no time stepping), the seams closing in\n"
+      "--sewing-stages continuation stages of their stiffness while the garment's\n"
+      "weight grows, on the mannequin (friction mu = 0.3 in the last stage).\n"
+      "--analysis dynamic (or any time-stepping option, e.g. --time-end) drops it\n"
+      "in implicit dynamics with kinetic damping and gradual sewing instead, then\n"
+      "settles it (--kinetic-damping and --settle are on then). Each panel\n"
       "gets the pattern's fabric (--fabric gives every panel one). Every option of\n"
       "`sartor run` applies, except those describing the mesh and its seams; drape\n"
-      "changes some defaults (shown below) and turns on --kinetic-damping,\n"
-      "--settle, --membrane-psd and --bending-psd (`-settle false` turns one off).\n"
+      "changes some defaults (shown below) and turns on --membrane-psd and\n"
+      "--bending-psd (`-membrane_psd false` turns one off).\n"
       "docs/drape.md has the details and measured runs.\n\n"
       "Output in DIR: what `sartor construct` writes (garment.obj = the placed\n"
       "panels, seams.json, construct.json, pattern_seams.svg, placement.svg);\n"
       "drape_seams.json (the seams sewn: a panel that no seam attaches is left out\n"
       "of the drape); what\n"
-      "`sartor run` writes (result.h5 + result.xmf, series.h5 + series.xmf,\n"
-      "dynamics.csv, final.obj = the draped garment, petsc_options.txt); body.obj\n"
+      "`sartor run` writes (result.h5 + result.xmf, final.obj = the draped\n"
+      "garment, petsc_options.txt; dynamics: series.h5 + series.xmf, dynamics.csv);\n"
+      "body.obj\n"
       "(the mannequin); summary.json (the run's summary and \"drape\": timings,\n"
       "seam gap, penetration, body reaction against the garment's weight); and\n"
       "drape.png (front, side and back views coloured by strain, with a colour bar,\n"
