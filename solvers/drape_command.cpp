@@ -1,9 +1,9 @@
 // sartor drape: a garment from its pattern to its drape on the mannequin.
 // TAGCON constructs it (solvers/garment_construction.hpp), and the case
-// pipeline of `sartor run` (solvers/cloth_case.hpp) sews and drapes it: the
-// seams pull the panels together while gravity drops them onto the body, in
-// implicit dynamics with kinetic damping, and a final static solve balances
-// the garment's weight by the body's reaction.
+// pipeline of `sartor run` (solvers/cloth_case.hpp) sews and drapes it: by
+// default statically, minimising the total potential with the seams closing
+// in continuation stages (fem/statics.hpp); on request in implicit dynamics
+// with kinetic damping and a final static solve.
 
 #include "common/csv.hpp"
 #include "common/error.hpp"
@@ -35,7 +35,7 @@ namespace sartor {
 namespace {
 
 // What drape changes in the options of `sartor run`: defaults for a garment
-// falling onto the mannequin (as cases/seams/tube_on_cylinder.yaml drapes).
+// on the mannequin (as cases/seams/tube_on_cylinder.yaml drapes).
 const std::map<std::string, std::string>& drape_defaults() {
   static const std::map<std::string, std::string> defaults{
       {"body", "mannequin mu=0.3 name=mannequin"},
@@ -44,30 +44,47 @@ const std::map<std::string, std::string>& drape_defaults() {
       // Tight garments press on the body (~100 N on the skirt): a stiffer
       // penalty keeps the vertices within the contact offset.
       {"contact-stiffness-factor", "5"},
-      {"analysis", "dynamic"},
-      {"time-step", "0.01"},
-      {"time-end", "1.5"},
-      {"output-interval", "0.1"},
   };
   return defaults;
 }
 
-// Gradual sewing (docs/seams.md), for a garment with seams: each seam starts
-// pulling with 10 N/m (a 2 N T-shirt's seams, about 3 m, pull with 30 N in
-// all) and stiffens to its own stiffness over the first second, without
-// friction. Sewn at once, the T-shirt's shoulder seams dragged the upper
-// panels into the shoulders; sewn like this it hangs on them.
-const std::map<std::string, std::string>& drape_sewing_defaults() {
-  static const std::map<std::string, std::string> defaults{{"sewing-tension", "10"},
-                                                           {"sewing-time", "1"}};
+// With --analysis dynamic (the fall in time, on request): the time grid.
+const std::map<std::string, std::string>& drape_dynamic_defaults() {
+  static const std::map<std::string, std::string> defaults{
+      {"time-step", "0.01"}, {"time-end", "1.5"}, {"output-interval", "0.1"}};
   return defaults;
 }
 
-// Flags drape turns on (a flag's default is off): `-settle false` turns one off.
-const std::vector<std::string>& drape_flags() {
-  static const std::vector<std::string> flags{"kinetic-damping", "settle", "membrane-psd",
-                                              "bending-psd"};
-  return flags;
+// Sewing, for a garment with seams. Statics (the default): the seams close
+// in eight continuation stages of their stiffness, from a pull of 10 N/m of
+// seam (a 2 N T-shirt's seams, about 3 m, pull with 30 N in all) to their
+// own stiffness, without friction until the last (docs/drape.md). Dynamics:
+// gradual sewing over the first second (docs/seams.md). Sewn at once, the
+// T-shirt's shoulder seams dragged the upper panels into the shoulders;
+// sewn like this it hangs on them.
+const std::map<std::string, std::string>& drape_sewing_defaults(bool dynamic) {
+  static const std::map<std::string, std::string> statics{{"sewing-stages", "8"},
+                                                          {"sewing-start-tension", "10"}};
+  static const std::map<std::string, std::string> dynamics{{"sewing-tension", "10"},
+                                                           {"sewing-time", "1"}};
+  return dynamic ? dynamics : statics;
+}
+
+// Flags drape turns on (a flag's default is off): `-membrane_psd false`
+// turns one off. Dynamics also get kinetic damping and the settle.
+const std::vector<std::string>& drape_flags(bool dynamic) {
+  static const std::vector<std::string> statics{"membrane-psd", "bending-psd"};
+  static const std::vector<std::string> dynamics{"kinetic-damping", "settle", "membrane-psd",
+                                                 "bending-psd"};
+  return dynamic ? dynamics : statics;
+}
+
+// Options that only time stepping reads: giving one asks for --analysis dynamic.
+const std::vector<std::string>& time_stepping_options() {
+  static const std::vector<std::string> names{
+      "time-end",        "time-step", "damping",        "kinetic-damping", "rest-tolerance",
+      "output-interval", "settle",    "sewing-tension", "sewing-time"};
+  return names;
 }
 
 // Options of `sartor run` that describe the mesh: the pattern does (its
@@ -223,14 +240,17 @@ const CommandSpec& drape_command() {
       "[--seams-file FILE] [--drop-tolerance M] [--no-plot] [any option of sartor run]",
       "Constructs the garment as `sartor construct` does (TAGCON around the built-in\n"
       "mannequin: docs/tagcon.md), then sews and drapes it as `sartor run` would a\n"
-      "case with --mesh obj and --seams-file: the seam springs pull the panels\n"
-      "together while gravity drops them onto the mannequin (friction mu = 0.3), in\n"
-      "implicit dynamics with kinetic damping, and a final static Newton solve\n"
-      "(--settle) balances the garment's weight by the body's reaction. Each panel\n"
+      "case with --mesh obj and --seams-file: by minimising the total potential\n"
+      "(the static minimiser, no time stepping), the seams closing in\n"
+      "--sewing-stages continuation stages of their stiffness while the garment's\n"
+      "weight grows, on the mannequin (friction mu = 0.3 in the last stage).\n"
+      "--analysis dynamic (or any time-stepping option, e.g. --time-end) drops it\n"
+      "in implicit dynamics with kinetic damping and gradual sewing instead, then\n"
+      "settles it (--kinetic-damping and --settle are on then). Each panel\n"
       "gets the pattern's fabric (--fabric gives every panel one). Every option of\n"
       "`sartor run` applies, except those describing the mesh and its seams; drape\n"
-      "changes some defaults (shown below) and turns on --kinetic-damping,\n"
-      "--settle, --membrane-psd and --bending-psd (`-settle false` turns one off).\n"
+      "changes some defaults (shown below) and turns on --membrane-psd and\n"
+      "--bending-psd (`-membrane_psd false` turns one off).\n"
       "--seams-file retags panels and overrides or completes TAGCON's seams by line\n"
       "ids (docs/pattern-format.md#user-seams-and-tags). A drape whose garment ends\n"
       "off the body, on the floor, or with its centroid more than --drop-tolerance\n"
@@ -240,8 +260,9 @@ const CommandSpec& drape_command() {
       "panels, seams.json, construct.json, pattern_seams.svg, placement.svg);\n"
       "drape_seams.json (the seams sewn: a panel that no seam attaches is left out\n"
       "of the drape); what\n"
-      "`sartor run` writes (result.h5 + result.xmf, series.h5 + series.xmf,\n"
-      "dynamics.csv, final.obj = the draped garment, petsc_options.txt); body.obj\n"
+      "`sartor run` writes (result.h5 + result.xmf, final.obj = the draped\n"
+      "garment, petsc_options.txt; dynamics: series.h5 + series.xmf, dynamics.csv);\n"
+      "body.obj\n"
       "(the mannequin); summary.json (the run's summary and \"drape\": timings,\n"
       "seam gap, penetration, body reaction against the garment's weight); and\n"
       "drape.png (front, side and back views coloured by strain, with a colour bar,\n"
@@ -252,15 +273,19 @@ const CommandSpec& drape_command() {
       [] {
         std::vector<OptionSpec> options;
         for (OptionSpec option : case_option_specs()) {
-          const auto changed = drape_defaults().find(option.name);
-          if (changed != drape_defaults().end()) option.fallback = changed->second;
-          const auto sewing = drape_sewing_defaults().find(option.name);
-          if (sewing != drape_sewing_defaults().end()) {
-            option.fallback = sewing->second;
-            if (option.name == "sewing-time") option.help = "the end of the sewing stage, s";
+          for (const auto* defaults :
+               {&drape_defaults(), &drape_dynamic_defaults(), &drape_sewing_defaults(false),
+                &drape_sewing_defaults(true)}) {
+            const auto changed = defaults->find(option.name);
+            if (changed != defaults->end()) option.fallback = changed->second;
           }
-          if (std::count(drape_flags().begin(), drape_flags().end(), option.name))
-            option.help += " [on in drape]";
+          if (option.name == "sewing-time") option.help = "dynamic: the end of the sewing stage, s";
+          const auto& flags = drape_flags(true);
+          if (std::count(flags.begin(), flags.end(), option.name)) {
+            const bool always =
+                std::count(drape_flags(false).begin(), drape_flags(false).end(), option.name) > 0;
+            option.help += always ? " [on in drape]" : " [on in drape's dynamics]";
+          }
           if (option.name == "fabric") {
             option.fallback.clear();
             option.help = "the fabric of every panel, a preset, FILE.yaml or measured FILE.json "
@@ -383,11 +408,23 @@ int run_drape(const Invocation& invocation) {
   };
   for (const auto& [name, value] : drape_defaults())
     set_default(name, value);
-  if (!sewable.seams.empty()) {
-    for (const auto& [name, value] : drape_sewing_defaults())
+  // A time-stepping option asks for dynamics (drape's default before the
+  // static minimiser; such command lines keep their meaning).
+  if (!options.is_set("analysis")) {
+    for (const std::string& name : time_stepping_options()) {
+      if (options.is_set(name)) set_default("analysis", "dynamic");
+    }
+  }
+  const bool dynamic = options.text("analysis") == "dynamic";
+  if (dynamic) {
+    for (const auto& [name, value] : drape_dynamic_defaults())
       set_default(name, value);
   }
-  for (const std::string& flag : drape_flags())
+  if (!sewable.seams.empty()) {
+    for (const auto& [name, value] : drape_sewing_defaults(dynamic))
+      set_default(name, value);
+  }
+  for (const std::string& flag : drape_flags(dynamic))
     set_default(flag, "true");
   // The time steps of the relaxation are solved loosely; the settle solves
   // fully: to 1e-6 of the garment's weight (1.4e-6 N for the skirt), above
@@ -400,7 +437,7 @@ int run_drape(const Invocation& invocation) {
   const double mass = options.nonnegative_real("density") * area;
   const std::vector<double> gravity = option_numbers(options, "gravity", 3);
   const Eigen::Vector3d weight = mass * Eigen::Vector3d(gravity[0], gravity[1], gravity[2]);
-  SartorPetscCall(set_default_option("-snes_rtol", "1e-4"));
+  if (dynamic) SartorPetscCall(set_default_option("-snes_rtol", "1e-4"));
   if (weight.norm() > 0.0)
     SartorPetscCall(set_default_option("-snes_atol", format_number(1e-6 * weight.norm()).c_str()));
   labels.fabrics = cloth.fabrics;
@@ -408,11 +445,13 @@ int run_drape(const Invocation& invocation) {
 
   // 4. What the drape achieved.
   Eigen::Vector3d reaction = Eigen::Vector3d::Zero();
-  double penetration = 0.0;
+  double penetration = 0.0, closest = std::numeric_limits<double>::max();
   for (const BodyContact& report : result.contact.reports) {
     reaction += report.normal_force + report.friction_force;
     penetration = std::max(penetration, report.max_penetration);
+    closest = std::min(closest, report.min_distance);
   }
+  const double offset = options.real("contact-offset");
   // At rest the body's reaction on the garment cancels its weight (pins, when
   // a user adds some, take their share: pin_reaction_N).
   const Eigen::Vector3d imbalance = reaction + result.pin_reaction + weight;
@@ -466,7 +505,18 @@ int run_drape(const Invocation& invocation) {
       {"relative_imbalance", weight.norm() > 0 ? imbalance.norm() / weight.norm() : 0.0},
       {"largest_seam_gap_m", seam_gap},
       {"max_penetration_m", penetration},
-      {"contact_offset_m", options.real("contact-offset")},
+      {"contact_offset_m", offset},
+      {"residual_relative_to_weight", residual >= 0.0 && weight.norm() > 0.0
+                                          ? nlohmann::json(residual / weight.norm())
+                                          : nlohmann::json(nullptr)},
+      // The deepest vertex in the offset layer as a fraction of the offset
+      // (1: on the body's surface), and whether any vertex is inside the body.
+      {"deepest_vertex_relative_to_offset", penetration / offset},
+      {"vertex_inside_body", closest < 0.0},
+      {"method", result.dynamics           ? "dynamics"
+                 : result.report.minimised ? "minimise"
+                                           : "snes"},
+      // The certificate's verdict (its details: summary.json's certificate).
       {"certificate", verdict},
       {"timing_s",
        {{"construction", construction_seconds},
@@ -489,23 +539,28 @@ int run_drape(const Invocation& invocation) {
 
   SartorPetscCall(PetscPrintf(
       PETSC_COMM_WORLD,
-      "sartor drape: %zu triangles, %zu seams sewn; construction %.3f s, drape %.1f s (%s); "
-      "seam gap %.2e m, penetration %.2e m, body reaction %.6g N for a weight of %.6g N; "
-      "certificate: %s; wrote %s\n",
+      "sartor drape: %zu triangles, %zu seams sewn; construction %.3f s, drape %.1f s (%s, "
+      "%s); residual force %s of the weight; seam gap %.2e m, deepest vertex %.2e m into the "
+      "%.2g m offset (%s); body reaction %.6g N for a weight of %.6g N; certificate: "
+      "%s; wrote %s\n",
       result.mesh.triangle_count(), constructed.garment.seams.size(), construction_seconds,
-      result.solve_seconds,
+      result.solve_seconds, result.dynamics ? "dynamics" : "static minimiser",
       outcome.end != DrapeEnd::on_body ? ("garment " + outcome.description()).c_str()
       : !converged                     ? "not converged"
       : residual < 0.0 ? "dynamics completed; equilibrium not checked without --settle"
                        : "converged",
-      seam_gap, penetration, reaction.norm(), weight.norm(), verdict.c_str(), directory.c_str()));
+      residual >= 0.0 && weight.norm() > 0.0 ? format_number(residual / weight.norm()).c_str()
+                                             : "unknown",
+      seam_gap, penetration, offset,
+      closest < 0.0 ? "a vertex inside the body" : "outside the body", reaction.norm(),
+      weight.norm(), verdict.c_str(), directory.c_str()));
   // The picture helps most when the drape failed.
   if (!options.flag("no-plot")) make_plot("plot_drape.py", directory);
   if (!result.converged) {
     const std::string reason = result.dynamics ? result.dynamics->reason : result.report.reason;
     throw SolveFailure("the drape did not converge (" + reason + "); " + directory +
-                       " holds the last state. Try a longer --time-end, a smaller --time-step, "
-                       "or -snes_monitor");
+                       " holds the last state. Try -snes_monitor" +
+                       (result.dynamics ? ", a longer --time-end or a smaller --time-step" : ""));
   }
   if (outcome.end != DrapeEnd::on_body) {
     throw SolveFailure("the drape did not drape the garment: it ended " + outcome.description() +

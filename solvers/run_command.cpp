@@ -65,7 +65,8 @@ const std::vector<OptionSpec>& case_option_specs() {
       {"poisson", "NU", "0", "warp-weft Poisson coupling (stvk model)"},
       {"membrane-model", "M", "baraff_witkin",
        "baraff_witkin, stvk or measured (Wang et al. table) [measured for a fabric with one]"},
-      {"membrane-psd", "", "", "project membrane Hessians to PSD (compression stabilisation)"},
+      {"membrane-psd", "", "",
+       "project membrane (and contact) Hessians to PSD (compression stabilisation)"},
       {"bending-model", "M", "discrete_shell",
        "discrete_shell or quadratic (hinges), patch (converges to plate theory)"},
       {"bending-stiffness", "N*M", "1e-6",
@@ -116,6 +117,18 @@ const std::vector<OptionSpec>& case_option_specs() {
        "dynamic: sew gradually: each seam spring starts pulling with this force per metre of "
        "seam and stiffens to its own stiffness by --sewing-time (0 or none: no sewing stage)"},
       {"sewing-time", "S", "", "the end of the sewing stage, s [half of --time-end]"},
+      {"static-solver", "KIND", "minimise",
+       "static: minimise (Newton on the total potential with a contact step bound, "
+       "docs/drape.md) or snes (PETSc's SNES with pseudo-transient continuation); a follower "
+       "load always takes snes"},
+      {"sewing-stages", "N", "1",
+       "static: sew in N continuation stages of the seam stiffness, starting from "
+       "--sewing-start-tension (1: at once)"},
+      {"sewing-start-tension", "N/M", "10",
+       "static: with --sewing-stages, each seam's pull per metre of seam at the first stage"},
+      {"contact-max-depth", "F", "0.5",
+       "static: stiffen the contact penalty until no vertex is deeper in the offset layer than "
+       "F times --contact-offset (0: never)"},
       {"analysis", "KIND", "static",
        "static (equilibrium), dynamic (implicit time stepping) or creep (quasi-static creep "
        "over real time)"},
@@ -624,6 +637,24 @@ void add_edge_force(const Options& options, const TriangleMesh& mesh, ClothLoads
     loads->point_forces.push_back({vertex, f});
 }
 
+// The static solver's options.
+StaticOptions static_options(const Options& options, const ClothProblem& problem) {
+  StaticOptions solve;
+  solve.load_steps = count_option(options, "load-steps", 1);
+  const std::string solver = options.text("static-solver");
+  if (solver != "minimise" && solver != "snes") {
+    throw InputError("option --static-solver: unknown solver '" + solver + "' (minimise, snes)");
+  }
+  solve.minimise = solver == "minimise";
+  solve.sewing_stages = count_option(options, "sewing-stages", 1);
+  if (solve.sewing_stages > 1 && !problem.seam_coupling()) {
+    throw InputError("option --sewing-stages: the case has no seams to sew (or they are merged)");
+  }
+  solve.max_offset_depth = options.nonnegative_real("contact-max-depth");
+  if (solve.max_offset_depth == 0.0) solve.max_contact_rounds = 0;
+  return solve;
+}
+
 DynamicOptions dynamic_options(const Options& options) {
   DynamicOptions dynamic;
   dynamic.time_end = options.positive_real("time-end");
@@ -713,7 +744,11 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   problem.pin_motion = vector3(options, "pin-move");
   problem.pin_groups = pin_groups(options, mesh, pinned);
   set_up_contact(options, problem);
+  problem.contact.project_hessian = options.flag("membrane-psd");
   if (result.seams && !result.seams->merged) {
+    // Static sewing stages start from this pull (before the springs are made).
+    if (options.text("analysis") == "static" && count_option(options, "sewing-stages", 1) > 1)
+      problem.sewing_tension = options.positive_real("sewing-start-tension");
     attach_seams(options, seams, material, problem, &*result.seams);
   }
   const std::string analysis = options.text("analysis");
@@ -735,8 +770,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
     throw InputError("option --density: --analysis dynamic needs a positive areal density, got " +
                      options.text("density"));
   }
-  StaticOptions solve;
-  solve.load_steps = count_option(options, "load-steps", 1);
+  const StaticOptions solve = static_options(options, problem);
   if (options.is_set("probe")) {
     CaseProbe probe;
     probe.point = vector3(options, "probe");
@@ -850,7 +884,21 @@ void add_statics_summary(const StaticReport& report, nlohmann::json& summary) {
                        {"newton_iterations", report.newton_iterations},
                        {"linear_iterations", report.linear_iterations},
                        {"initial_residual_norm", report.initial_residual_norm},
-                       {"final_residual_norm", report.final_residual_norm}};
+                       {"final_residual_norm", report.final_residual_norm},
+                       {"method", report.minimised ? "minimise" : "snes"}};
+  if (report.minimised) {
+    summary["solver"]["minimiser"] = {
+        {"step_bound_cuts", report.minimiser.step_bound_cuts},
+        {"regularised_steps", report.minimiser.regularised_steps},
+        {"residual_rule_trials", report.minimiser.residual_rule_trials},
+        {"failed_factorisations", report.minimiser.failed_factorisations},
+        {"exact_steps", report.minimiser.exact_steps},
+        {"sewing_stages", report.sewing_stages},
+        {"contact_rounds", report.contact_rounds},
+        {"contact_round_failed", report.contact_round_failed},
+        {"contact_stiffness_scale", report.contact_stiffness_scale},
+        {"sliding_vertices", report.sliding_vertices}};
+  }
   summary["load_steps"] = nlohmann::json::array();
   for (const auto& step : report.steps) {
     summary["load_steps"].push_back({{"load_factor", step.load_factor},

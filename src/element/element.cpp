@@ -15,6 +15,7 @@ void project_to_psd(Eigen::Matrix<double, N, N>& matrix) {
   matrix = 0.5 * (projected + projected.transpose());
 }
 
+template void project_to_psd<3>(Eigen::Matrix<double, 3, 3>&);
 template void project_to_psd<6>(Eigen::Matrix<double, 6, 6>&);
 template void project_to_psd<9>(Eigen::Matrix<double, 9, 9>&);
 template void project_to_psd<12>(Eigen::Matrix<double, 12, 12>&);

@@ -304,10 +304,10 @@ void check_on_root(const ClothProblem& problem, const VertexForces& forces,
 PetscErrorCode true_hessian(ClothProblem& problem, Vec x, Mat* hessian, bool* symmetrised) {
   PetscFunctionBeginUser;
   PetscCall(problem.create_jacobian(hessian));
-  const bool saved = problem.true_hessian;
-  problem.true_hessian = true;
+  const bool saved = problem.exact_hessian;
+  problem.exact_hessian = true;
   const PetscErrorCode failed = problem.jacobian(x, *hessian);
-  problem.true_hessian = saved;
+  problem.exact_hessian = saved;
   PetscCall(failed);
   *symmetrised = !problem.has_potential();
   if (*symmetrised) {

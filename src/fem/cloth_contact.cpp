@@ -38,8 +38,9 @@ void ClothProblem::set_up_contact() {
 }
 
 double ClothProblem::contact_stiffness(int vertex) const {
-  if (contact.stiffness > 0.0) return contact.stiffness;
-  return contact::penalty_stiffness(contact.stiffness_factor, largest_modulus(),
+  if (contact.stiffness > 0.0) return contact.stiffness_scale * contact.stiffness;
+  return contact.stiffness_scale *
+         contact::penalty_stiffness(contact.stiffness_factor, largest_modulus(),
                                     vertex_area_[std::size_t(vertex)], mesh_size_);
 }
 
@@ -110,10 +111,76 @@ PetscErrorCode ClothProblem::add_contact_jacobian(const PetscScalar* x, Mat J) c
           vertex_contact(b, v, position(x, offset), element::Want::hessian);
       if (result.hessian.isZero(0.0)) continue; // out of contact and unanchored
       const PetscInt dofs[3] = {offset, offset + 1, offset + 2};
-      const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> block = result.hessian;
+      Eigen::Matrix<double, 3, 3, Eigen::RowMajor> block = result.hessian;
+      if (contact.project_hessian && !exact_hessian) {
+        Eigen::Matrix3d projected = result.hessian;
+        element::project_to_psd<3>(projected);
+        block = projected;
+      }
       PetscCall(MatSetValuesLocal(J, 3, dofs, 3, dofs, block.data(), ADD_VALUES));
     }
   }
+  PetscFunctionReturn(0);
+}
+
+double ClothProblem::vertex_step_bound(std::size_t body, const Eigen::Vector3d& p,
+                                       const Eigen::Vector3d& motion) const {
+  const contact::Body& b = bodies[body];
+  const double length = motion.norm();
+  const double slope = b.shape().slope_bound();
+  if (length == 0.0) return 1.0;
+  double distance = b.query(p, contact_clock()).distance;
+  if (distance <= 0.0) return 1.0; // inside: the penalty pushes it out
+  // Never closer than a tenth of the offset in one step (nor than half its
+  // distance when it is closer already): the penalty, which acts within the
+  // offset, has the room to hold it.
+  const double level = std::min(0.5 * distance, 0.1 * contact.offset);
+  // Conservative advancement: the distance falls by at most slope * |motion|
+  // per unit of t, so t may advance by (distance - level) / (slope |motion|)
+  // at a time without crossing the level.
+  double t = 0.0;
+  for (int k = 0; k < 50; ++k) {
+    const double room = (distance - level) / (slope * length);
+    if (t + room >= 1.0) return 1.0;
+    // Close to the level the advances shrink: stop at a tenth of it.
+    if (distance - level < 0.1 * level) return t;
+    t += room;
+    distance = b.query(p + t * motion, contact_clock()).distance;
+  }
+  return t;
+}
+
+PetscErrorCode ClothProblem::contact_step_bound(Vec x, Vec direction, double* bound) {
+  const PetscScalar *values = nullptr, *motions = nullptr;
+  Vec local_direction = nullptr;
+  PetscFunctionBeginUser;
+  double smallest = 1.0;
+  PetscCall(to_local(x));
+  PetscCall(DMGetLocalVector(dm_, &local_direction));
+  PetscCall(VecSet(local_direction, 0.0));
+  PetscCall(DMGlobalToLocal(dm_, direction, INSERT_VALUES, local_direction));
+  PetscCall(VecGetArrayRead(local_x_, &values));
+  PetscCall(VecGetArrayRead(local_direction, &motions));
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const double slope = bodies[b].shape().slope_bound();
+    for (int v : contact_vertices_) {
+      const PetscInt offset = vertex_dof_[std::size_t(v)];
+      const Eigen::Vector3d p = position(values, offset), motion = position(motions, offset);
+      // The cached distance bounds the current one from below (surely_apart):
+      // far vertices need no query.
+      if (queried_.size() == bodies.size()) {
+        const QueriedPlace& last = queried_[b][std::size_t(v)];
+        const double lower = last.distance - slope * (p - last.point).norm();
+        if (last.clock == contact_clock() && lower - slope * motion.norm() > contact.offset)
+          continue;
+      }
+      smallest = std::min(smallest, vertex_step_bound(b, p, motion));
+    }
+  }
+  PetscCall(VecRestoreArrayRead(local_direction, &motions));
+  PetscCall(VecRestoreArrayRead(local_x_, &values));
+  PetscCall(DMRestoreLocalVector(dm_, &local_direction));
+  PetscCallMPI(MPIU_Allreduce(&smallest, bound, 1, MPI_DOUBLE, MPI_MIN, comm_));
   PetscFunctionReturn(0);
 }
 

@@ -97,6 +97,12 @@ struct ContactSettings {
   double offset = 1e-3;          // m: the distance kept from bodies (half the cloth thickness)
   double stiffness = 0.0;        // N/m per vertex; 0: automatic, see contact::penalty_stiffness
   double stiffness_factor = 1.0; // the automatic rule's factor
+  // Multiplies the stiffness above: statics raise it where the cloth ends
+  // too deep in the offset layer (fem/statics.hpp, adaptive penalty).
+  double stiffness_scale = 1.0;
+  // PSD-project each vertex's contact Hessian (its curvature term
+  // -k (offset - d) H_d is negative on convex bodies).
+  bool project_hessian = false;
 };
 
 // What one body does to the cloth, summed over all vertices (every rank).
@@ -214,6 +220,13 @@ public:
   // Per body, the forces on the cloth and the contact state at x, the
   // friction forces from the anchors the solve used (before the last update).
   PetscErrorCode contact_report(Vec x, std::vector<BodyContact>* report);
+  // Collective. The largest t in (0, 1] such that no vertex moving from x
+  // towards x + t d comes closer to a body than the smaller of half its
+  // distance at x and a tenth of the contact offset, found by conservative advancement
+  // on the signed distance and the shape's slope bound (IPC's CCD filter,
+  // with the body's distance in place of CCD). Vertices already inside a
+  // body (d <= 0) do not bound the step: the penalty pushes them out.
+  PetscErrorCode contact_step_bound(Vec x, Vec direction, double* bound);
 
   // Seam springs (mesh/seams.hpp) between any vertices of the mesh, on any
   // ranks (fem/seam_coupling.hpp). Collective, with the same springs on every
@@ -231,18 +244,30 @@ public:
   // a body; the bodies have no friction meanwhile, so that the panels slide
   // into place (docs/seams.md). Set both before set_seams; sewing_tension 0
   // (or statics) sews with the springs' own stiffness throughout.
+  // Statics sew by continuation instead (fem/statics.hpp): `sewing_stage`
+  // is the progress of the stage being solved, 0 to 1; below 1 the bodies
+  // have no friction.
   double sewing_tension = 0.0;
   double sewing_end_time = 0.0;
+  double sewing_stage = 1.0;
   bool sewing() const {
-    return pins_follow_time && sewing_tension > 0.0 && time <= sewing_end_time;
+    if (sewing_tension <= 0.0) return false;
+    return pins_follow_time ? time <= sewing_end_time : sewing_stage < 1.0;
   }
 
   PetscErrorCode residual(Vec x, Vec f);
   PetscErrorCode jacobian(Vec x, Mat J);
-  // When set, jacobian() projects no element Hessian to PSD whatever the
-  // materials ask: the true Hessian, whose inertia certifies stability
-  // (fem/certificate.hpp).
-  bool true_hessian = false;
+  // The Jacobian without the PSD projections the materials and contact ask
+  // for: the true Hessian, whose inertia certifies stability
+  // (fem/certificate.hpp), and which the static minimiser tries near a
+  // solution, where the projected one converges only linearly.
+  bool exact_hessian = false;
+  bool projects_hessians() const {
+    for (const ClothMaterial& m : materials_) {
+      if (m.project_membrane || m.project_bending) return true;
+    }
+    return contact.project_hessian;
+  }
   PetscErrorCode energy(Vec x, ClothEnergy* energy);
   // Preallocated exactly for the element couplings (membrane and hinges).
   PetscErrorCode create_jacobian(Mat* J);
@@ -373,6 +398,9 @@ private:
   double contact_energy(const PetscScalar* x) const;
   void add_contact_forces(const PetscScalar* x, PetscScalar* f) const;
   PetscErrorCode add_contact_jacobian(const PetscScalar* x, Mat J) const;
+  // The step bound of one vertex moving from p by `motion` past `body`.
+  double vertex_step_bound(std::size_t body, const Eigen::Vector3d& p,
+                           const Eigen::Vector3d& motion) const;
   std::vector<int> contact_vertices_;
   std::vector<double> vertex_area_;
   double mesh_size_ = 0.0;

@@ -47,7 +47,11 @@ void ClothProblem::set_seams(const std::vector<SeamSpring>& springs) {
 
 // The seam springs' stiffness of this moment.
 void ClothProblem::update_sewing_progress() {
-  seams_->set_sewing_progress(sewing() ? time / sewing_end_time : 1.0);
+  if (!sewing()) {
+    seams_->set_sewing_progress(1.0);
+  } else {
+    seams_->set_sewing_progress(pins_follow_time ? time / sewing_end_time : sewing_stage);
+  }
 }
 
 // The pins' places, and the seam springs' stiffness of this moment.

@@ -39,7 +39,8 @@ IncrementalSystem::IncrementalSystem(ClothProblem& problem, Vec like) : problem_
   SartorPetscCall(set_default_option("-pc_factor_mat_solver_type", "mumps"));
   SartorPetscCall(problem.create_jacobian(&jacobian_));
   SartorPetscCall(attach_near_null_space(like, jacobian_));
-  for (Vec* v : {&residual_, &mass_, &predicted_, &previous_, &work_})
+  for (Vec* v :
+       {&residual_, &mass_, &predicted_, &previous_, &work_, &direction_, &trial_x_, &trial_f_})
     SartorPetscCall(VecDuplicate(like, v));
   SartorPetscCall(problem.lumped_mass(mass_));
   // Keeps the residual norms of each solve (the first is the initial one).
@@ -78,12 +79,17 @@ IncrementalSystem::~IncrementalSystem() {
   SNESDestroy(&snes_);
   SNESDestroy(&snes_without_potential_);
   MatDestroy(&jacobian_);
-  for (Vec* v : {&residual_, &mass_, &predicted_, &previous_, &work_})
+  for (Vec* v :
+       {&residual_, &mass_, &predicted_, &previous_, &work_, &direction_, &trial_x_, &trial_f_})
     VecDestroy(v);
 }
 
 PetscErrorCode IncrementalSystem::solve(Vec x, Solve* result) {
   PetscFunctionBeginUser;
+  if (minimises()) {
+    PetscCall(minimise(x, result));
+    PetscFunctionReturn(0);
+  }
   PetscCall(problem_.hold(x));
   const SNES snes_now = snes();
   PetscCall(run_snes(snes_now, x, result));

@@ -14,6 +14,12 @@
 // there is no potential: a follower load, monolithic creep), MUMPS LU, and a residual tolerance at
 // round-off of the membrane forces. Where the line search on Phi stalls at Phi's round-off after
 // the residual has fallen 1e3-fold, Newton finishes on the residual norm.
+//
+// Statics of a potential (a = b = 0, no follower load, no pin held by
+// equations) go to `minimise` instead (fem/minimiser.cpp) unless
+// `minimise_statics` is off: Newton on Phi with a Levenberg-style
+// regularisation mu M, a step bound from the bodies' signed distances and a
+// backtracking line search on Phi (docs/drape.md#the-static-minimiser).
 
 #include "fem/cloth_problem.hpp"
 
@@ -52,6 +58,25 @@ public:
   // Solves from x in place (x holds SNES's last iterate on failure).
   PetscErrorCode solve(Vec x, Solve* result);
 
+  // The static minimiser (fem/minimiser.cpp) instead of SNES for statics of
+  // a potential. Its stopping test is SNES's: |F| <= max(atol, rtol |F_0|),
+  // at most max_it iterations (-snes_atol, -snes_rtol, -snes_max_it), or
+  // `loose_rtol` instead of rtol when that is larger (the continuation
+  // stages of sewing, fem/statics.hpp).
+  bool minimise_statics = true;
+  double loose_rtol = 0.0;
+  PetscInt loose_max_iterations = 0; // with loose_rtol: at most this many (0: max_it)
+  struct MinimiserStatistics {
+    PetscInt step_bound_cuts = 0;      // Newton steps shortened by the contact step bound
+    PetscInt regularised_steps = 0;    // steps with mu > 0
+    PetscInt residual_rule_trials = 0; // line-search trials decided on |F| (Phi in round-off)
+    PetscInt failed_factorisations = 0;
+    PetscInt exact_steps = 0; // with the unprojected Hessian
+  };
+  MinimiserStatistics minimiser_statistics;
+  // Whether solve() uses the minimiser for the system as it is now.
+  bool minimises() const;
+
   // Phi - E + f.x at x: the inertia and damping terms alone.
   PetscErrorCode extra_energy(Vec x, double* value);
   PetscErrorCode residual(Vec x, Vec f);
@@ -60,6 +85,16 @@ public:
 
 private:
   PetscErrorCode create_snes(bool with_objective, SNES* snes);
+  // fem/minimiser.cpp
+  PetscErrorCode minimise(Vec x, Solve* result);
+  struct Trial;
+  PetscErrorCode newton_direction(Vec x, Vec gradient, double mu, Vec direction, bool* solved,
+                                  PetscInt* linear_iterations);
+  PetscErrorCode line_search(Vec x, Vec gradient, Vec direction, double first_length, Trial* trial);
+  PetscErrorCode regularisation_scale(double* scale);
+  Vec direction_ = nullptr;
+  Vec trial_x_ = nullptr;
+  Vec trial_f_ = nullptr;
   PetscErrorCode run_snes(SNES snes, Vec x, Solve* result);
 
   ClothProblem& problem_;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 
 namespace sartor {
 
@@ -63,38 +64,17 @@ PetscErrorCode continuation(IncrementalSystem& system, Vec x, const StaticOption
   PetscFunctionReturn(0);
 }
 
-} // namespace
-
-PetscErrorCode solve_static(ClothProblem& problem, Vec x, const StaticOptions& options,
-                            StaticReport* report) {
-  PetscFunctionBeginUser;
-  IncrementalSystem system(problem, x);
-  PetscCall(solve_static(system, x, options, report));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOptions& options,
-                            StaticReport* report) {
-  Vec f = nullptr, last = nullptr;
+// Ramps the load from options.start_load_factor to `target` in load steps,
+// halving an increment that fails, as the header says.
+PetscErrorCode ramp_load(IncrementalSystem& system, Vec x, const StaticOptions& options,
+                         double target, Vec last, StaticReport* report, bool* converged) {
   ClothProblem& problem = system.problem();
   PetscFunctionBeginUser;
-  const auto started = std::chrono::steady_clock::now();
-  system.inertia_weight = 0.0;
-  system.damping_weight = 0.0;
-  for (Vec* v : {&f, &last})
-    PetscCall(VecDuplicate(x, v));
-
-  // The load goes from options.start_load_factor to problem.load_factor;
-  // `reached` and the increments are fractions of that way.
   const double start = options.start_load_factor;
-  const double target = problem.load_factor;
   const auto load_at = [&](double fraction) { return start + fraction * (target - start); };
   double reached = 0.0;
   double increment = 1.0 / std::max(1, options.load_steps);
   int cutbacks = 0;
-  PetscCall(problem.update_contact(x)); // friction anchors for what touches a body at the start
-  PetscCall(problem.residual(x, f));
-  PetscCall(VecNorm(f, NORM_2, &report->initial_residual_norm));
   while (reached < 1.0) {
     const double next = std::min(1.0, reached + increment);
     problem.load_factor = next < 1.0 ? load_at(next) : target;
@@ -102,7 +82,7 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
     LoadStepReport step;
     step.load_factor = problem.load_factor;
     PetscCall(newton(system, x, &step, &step.converged));
-    if (!step.converged) {
+    if (!step.converged && !system.minimises()) {
       PetscCall(VecCopy(last, x));
       PetscCall(continuation(system, x, options, &step, &step.converged));
     }
@@ -125,9 +105,176 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
     PetscCall(PetscInfo(system.snes(), "load step to %g failed (%s); retrying with increment %g\n",
                         problem.load_factor, step.reason.c_str(), increment * (target - start)));
   }
-  report->converged = reached >= 1.0;
-  PetscCall(problem.residual(x, f));
-  PetscCall(VecNorm(f, NORM_2, &report->final_residual_norm));
+  *converged = reached >= 1.0;
+  PetscFunctionReturn(0);
+}
+
+// One more solve at the full load (a later sewing stage, a contact round).
+PetscErrorCode solve_again(IncrementalSystem& system, Vec x, Vec last, StaticReport* report,
+                           bool* converged) {
+  ClothProblem& problem = system.problem();
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(x, last));
+  LoadStepReport step;
+  step.load_factor = problem.load_factor;
+  PetscCall(newton(system, x, &step, &step.converged));
+  report->steps.push_back(step);
+  report->newton_iterations += step.newton_iterations;
+  report->linear_iterations += step.linear_iterations;
+  report->reason = step.reason;
+  *converged = step.converged;
+  if (step.converged) {
+    PetscCall(problem.accept_step(x));
+  } else {
+    PetscCall(VecCopy(last, x));
+  }
+  PetscFunctionReturn(0);
+}
+
+// A sewing stage before the last, solved loosely; its iterate is kept.
+PetscErrorCode sewing_stage(IncrementalSystem& system, Vec x, StaticReport* report) {
+  PetscFunctionBeginUser;
+  LoadStepReport step;
+  step.load_factor = system.problem().load_factor;
+  PetscCall(newton(system, x, &step, &step.converged));
+  report->steps.push_back(step);
+  report->newton_iterations += step.newton_iterations;
+  report->linear_iterations += step.linear_iterations;
+  PetscCall(system.problem().accept_step(x));
+  PetscFunctionReturn(0);
+}
+
+// The deepest vertex in the offset layers and the anchors that slid, over all bodies.
+PetscErrorCode measure_contact(ClothProblem& problem, Vec x, StaticReport* report) {
+  std::vector<BodyContact> bodies;
+  PetscFunctionBeginUser;
+  PetscCall(problem.contact_report(x, &bodies));
+  report->sliding_vertices = 0;
+  report->deepest_offset_depth = 0.0;
+  report->smallest_distance = std::numeric_limits<double>::max();
+  for (const BodyContact& body : bodies) {
+    report->sliding_vertices += body.sliding_vertices;
+    report->deepest_offset_depth = std::max(report->deepest_offset_depth, body.max_penetration);
+    report->smallest_distance = std::min(report->smallest_distance, body.min_distance);
+  }
+  PetscFunctionReturn(0);
+}
+
+// The adaptive penalty: stiffer contact where a vertex ended deeper than
+// allowed in the offset layer (by the ratio of depths, twice over, at most
+// tenfold). Whether it stiffened.
+bool stiffen_contact(ClothProblem& problem, const StaticOptions& options,
+                     const StaticReport& report) {
+  const double allowed = options.max_offset_depth * problem.contact.offset;
+  if (allowed <= 0.0 || report.deepest_offset_depth <= allowed) return false;
+  problem.contact.stiffness_scale *= std::min(10.0, 2.0 * report.deepest_offset_depth / allowed);
+  return true;
+}
+
+// Solves the last stage again while the contact rounds of the header ask for it.
+PetscErrorCode contact_rounds(IncrementalSystem& system, Vec x, const StaticOptions& options,
+                              Vec last, StaticReport* report) {
+  ClothProblem& problem = system.problem();
+  PetscFunctionBeginUser;
+  if (problem.bodies.empty()) PetscFunctionReturn(0);
+  PetscCall(measure_contact(problem, x, report));
+  if (!system.minimises()) PetscFunctionReturn(0);
+  while (report->converged && report->contact_rounds < options.max_contact_rounds) {
+    const double scale = problem.contact.stiffness_scale;
+    if (!stiffen_contact(problem, options, *report) && report->sliding_vertices == 0) break;
+    ++report->contact_rounds;
+    const double solved_residual = report->steps.back().residual_norm;
+    bool solved = false;
+    PetscCall(solve_again(system, x, last, report, &solved));
+    if (!solved) {
+      // The state before the round is an equilibrium with the anchors and
+      // penalty it was solved with: it stays, with its residual; the
+      // round's failure is reported (and the anchors that slid).
+      problem.contact.stiffness_scale = scale;
+      report->contact_round_failed = true;
+      report->kept_residual_norm = solved_residual;
+      break;
+    }
+    PetscCall(measure_contact(problem, x, report));
+  }
+  report->contact_stiffness_scale = problem.contact.stiffness_scale;
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode solve_static(ClothProblem& problem, Vec x, const StaticOptions& options,
+                            StaticReport* report) {
+  PetscFunctionBeginUser;
+  IncrementalSystem system(problem, x);
+  PetscCall(solve_static(system, x, options, report));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOptions& options,
+                            StaticReport* report) {
+  Vec f = nullptr, last = nullptr;
+  ClothProblem& problem = system.problem();
+  PetscFunctionBeginUser;
+  const auto started = std::chrono::steady_clock::now();
+  system.inertia_weight = 0.0;
+  system.damping_weight = 0.0;
+  system.minimise_statics = options.minimise;
+  system.minimiser_statistics = {};
+  report->minimised = system.minimises();
+  for (Vec* v : {&f, &last})
+    PetscCall(VecDuplicate(x, v));
+  const double target = problem.load_factor;
+  const bool sews = problem.sewing_tension > 0.0 && problem.seam_coupling();
+  const int stages = sews ? std::max(1, options.sewing_stages) : 1;
+  for (int stage = 0; stage < stages; ++stage) {
+    problem.sewing_stage = stages == 1 ? 1.0 : double(stage) / double(stages - 1);
+    // The loads grow with the seams' stiffness: the first stage sews the
+    // panels round the body unloaded, so that they are closed before their
+    // weight pulls them down (without friction while sewing).
+    const double stage_load =
+        options.start_load_factor + problem.sewing_stage * (target - options.start_load_factor);
+    problem.load_factor = stage_load;
+    const bool final_stage = stage + 1 == stages;
+    system.loose_rtol = final_stage ? 0.0 : options.stage_rtol;
+    system.loose_max_iterations = options.stage_max_iterations;
+    // Friction anchors for what touches a body now (none while sewing).
+    PetscCall(problem.update_contact(x));
+    if (stage == 0) {
+      PetscCall(problem.residual(x, f));
+      PetscCall(VecNorm(f, NORM_2, &report->initial_residual_norm));
+    }
+    report->sewing_stages = stage + 1;
+    if (!final_stage) {
+      // A stage before the last only starts the next: its iterate is kept
+      // even where it did not reach the loose tolerance in its budget.
+      PetscCall(sewing_stage(system, x, report));
+      // Seams pulling cloth against a body: the next stage's stiffer
+      // springs need a stiffer penalty to hold it outside.
+      if (system.minimises() && !problem.bodies.empty() && options.max_contact_rounds > 0) {
+        PetscCall(measure_contact(problem, x, report));
+        stiffen_contact(problem, options, *report);
+      }
+    } else if (stage == 0) {
+      PetscCall(ramp_load(system, x, options, stage_load, last, report, &report->converged));
+    } else {
+      PetscCall(solve_again(system, x, last, report, &report->converged));
+    }
+  }
+  system.loose_rtol = 0.0;
+  problem.sewing_stage = 1.0;
+  PetscCall(contact_rounds(system, x, options, last, report));
+  report->minimiser = system.minimiser_statistics;
+  // The minimiser's last residual is that of the friction anchors it solved
+  // with; the update after it (sliding_vertices) changes them.
+  if (report->contact_round_failed) {
+    report->final_residual_norm = report->kept_residual_norm;
+  } else if (report->minimised && report->converged && !report->steps.empty()) {
+    report->final_residual_norm = report->steps.back().residual_norm;
+  } else {
+    PetscCall(problem.residual(x, f));
+    PetscCall(VecNorm(f, NORM_2, &report->final_residual_norm));
+  }
   report->solve_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   for (Vec* v : {&f, &last})

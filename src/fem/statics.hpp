@@ -1,19 +1,40 @@
 #pragma once
-// Static equilibrium of a cloth: Newton's method (PETSc SNES) with the loads
-// ramped up in steps. A load step that Newton cannot solve from the previous
-// state is approached by pseudo-transient continuation: heavily damped
-// backward-Euler steps, each minimising
+// Static equilibrium of a cloth: the loads ramped up in steps, each solved by
+// IncrementalSystem: for a potential, the static minimiser (Newton on the
+// total potential, regularised by mu M, its steps bounded by the bodies'
+// signed distances, with a line search on the potential; fem/minimiser.cpp,
+// docs/drape.md#the-static-minimiser); otherwise (a follower load, or
+// `minimise` off) PETSc's SNES, and a load step it cannot solve from the
+// previous state is approached by pseudo-transient continuation: heavily
+// damped backward-Euler steps, each minimising
 //     E(x) - f.x + |x - x_k|^2_M / (2 dt^2)       (M: lumped masses)
 // with dt growing while steps succeed, until plain Newton converges
 // (Sensitive Couture §7's robust path from far-from-equilibrium starts). If
 // that fails too, the load increment is halved, up to `max_cutbacks` times,
-// and the solve stops with SNES's reason.
+// and the solve stops with the solver's reason.
+//
+// Sewing by continuation: with problem.sewing_tension > 0 and seams, the
+// seams close in `sewing_stages` stages of their stiffness (the geometric
+// ramp of gradual sewing, fem/seam_coupling.hpp, at progress 0, 1/(n-1),
+// ..., 1), the loads growing from start_load_factor to the target with the
+// same progress, the bodies without friction until the last; every stage but the
+// last is solved to `stage_rtol` of its first residual or for at most
+// `stage_max_iterations` Newton iterations (it only starts the next), the
+// last to the full tolerance. The friction anchors are lagged: set for what touches a
+// body at the start of a stage, and updated (Coulomb's law) between solves.
+//
+// Contact rounds (minimiser, bodies): after the last stage, while anchors
+// slid at the update (the solved state broke Coulomb's law with them) or a
+// vertex ended deeper than `max_offset_depth` of the contact offset in the
+// offset layer (the adaptive penalty: the contact stiffness grows by the
+// ratio of depths, twice over), the last stage is solved again, at most
+// `max_contact_rounds` times.
 //
 // Solver choices come from the options database (-snes_*, -ksp_*, -pc_*).
-// Defaults: Newton with a backtracking line search on the energy, a direct
-// solve (MUMPS LU) of each Newton system.
+// Defaults: a direct solve (MUMPS LU) of each Newton system.
 
 #include "fem/cloth_problem.hpp"
+#include "fem/incremental_system.hpp"
 
 #include <petscsnes.h>
 
@@ -29,6 +50,14 @@ struct StaticOptions {
   int max_cutbacks = 8;
   double initial_pseudo_step = 1e-2; // dt of the first continuation step, s
   int max_pseudo_steps = 200;        // per load step
+  // The static minimiser for a potential (`sartor run` and drape: on by
+  // --static-solver's default; off here, for callers of the SNES path).
+  bool minimise = false;
+  int sewing_stages = 1;         // with problem.sewing_tension > 0
+  double stage_rtol = 1e-3;      // of the stages before the last
+  int stage_max_iterations = 30; // of the stages before the last
+  int max_contact_rounds = 4;
+  double max_offset_depth = 0.5; // fraction of the contact offset
 };
 
 struct LoadStepReport {
@@ -51,9 +80,23 @@ struct StaticReport {
   double initial_residual_norm = 0.0;
   double final_residual_norm = 0.0;
   double solve_seconds = 0.0;
+  bool minimised = false; // by the static minimiser
+  IncrementalSystem::MinimiserStatistics minimiser;
+  int sewing_stages = 0;                // solved
+  int contact_rounds = 0;               // solves after the last stage
+  double contact_stiffness_scale = 1.0; // of the adaptive penalty at the end
+  long sliding_vertices = 0;            // anchors that slid at the last update
+  // A contact round that did not converge: the state before it is kept
+  // (with its residual), and sliding_vertices says what it left undone.
+  bool contact_round_failed = false;
+  double kept_residual_norm = 0.0;
+  double deepest_offset_depth = 0.0; // m: largest depth of a vertex into the offset layer
+  double smallest_distance = 0.0;    // m: smallest signed distance to a body (< 0: inside)
 };
 
-// Solves in place: `x` holds the start and, on return, the last converged state.
+// Solves in place (the seam springs of a sewing stage do not change the
+// problem: problem.sewing_stage is back at 1 on return): `x` holds the start and, on return, the
+// last converged state.
 PetscErrorCode solve_static(ClothProblem& problem, Vec x, const StaticOptions& options,
                             StaticReport* report);
 // The same with a system kept from solve to solve (its SNES and Jacobian),

@@ -55,12 +55,13 @@ struct Outcome {
   Vector3d pin_reaction = Vector3d::Zero();
 };
 
-Outcome solve(ClothProblem& problem, int steps) {
+Outcome solve(ClothProblem& problem, int steps, bool minimise = false) {
   Outcome out;
   Vec x = nullptr;
   EXPECT_EQ(problem.create_solution(&x), 0);
   StaticOptions options;
   options.load_steps = steps;
+  options.minimise = minimise;
   EXPECT_EQ(solve_static(problem, x, options, &out.report), 0);
   EXPECT_EQ(problem.contact_report(x, &out.contact), 0);
   EXPECT_EQ(problem.pin_reaction(x, &out.pin_reaction), 0);
@@ -231,6 +232,77 @@ TEST(ContactProblem, CoulombFrictionSticksBelowAndSlidesAboveTheAngle) {
     std::printf("tan(theta) = %.2f mu: mean slide %.3e m, friction/normal %.4f\n", ratio, slide,
                 c.friction_force.norm() / c.normal_force.norm());
   }
+}
+
+// The static minimiser's step bound (ClothProblem::contact_step_bound): a
+// sheet above a ball, moved by steps of up to a metre straight down, across
+// the ball's top and away from it; along every bounded step, sampled
+// densely, each vertex stays outside the ball (distance |p| - r, computed
+// here), and a step away from the ball is not cut.
+TEST(ContactProblem, StepBoundKeepsEveryVertexOutsideABall) {
+  const double offset = 2e-3, radius = 0.15;
+  const TriangleMesh mesh = placed(mesh::rectangle(0.2, 0.2, 4, 4), Eigen::Matrix3d::Identity(),
+                                   Vector3d(-0.1, -0.1, radius + 0.5 * offset));
+  ClothProblem problem(PETSC_COMM_WORLD, mesh, fabric(1e-4), {});
+  problem.contact.offset = offset;
+  problem.bodies = {contact::Body(
+      "ball", std::make_shared<contact::Sphere>(Vector3d::Zero(), radius), Vector3d::Zero())};
+  Vec x = nullptr, d = nullptr;
+  ASSERT_EQ(problem.create_solution(&x), 0);
+  ASSERT_EQ(VecDuplicate(x, &d), 0);
+  const auto check = [&](const Vector3d& motion, bool cut) {
+    std::vector<Vector3d> moved(mesh.vertex_count());
+    for (std::size_t v = 0; v < moved.size(); ++v) // a shear too: vertices move differently
+      moved[v] = mesh.positions[v] + (1.0 + 0.1 * double(v % 3)) * motion;
+    ASSERT_EQ(problem.set_solution(moved, d), 0);
+    ASSERT_EQ(VecAXPY(d, -1.0, x), 0);
+    double bound = 0.0;
+    ASSERT_EQ(problem.contact_step_bound(x, d, &bound), 0);
+    EXPECT_GT(bound, 0.0);
+    EXPECT_LE(bound, 1.0);
+    if (!cut) EXPECT_EQ(bound, 1.0);
+    if (cut) EXPECT_LT(bound, 1.0);
+    for (int k = 0; k <= 1000; ++k) {
+      const double t = bound * k / 1000.0;
+      for (std::size_t v = 0; v < moved.size(); ++v) {
+        const Vector3d p = mesh.positions[v] + t * (moved[v] - mesh.positions[v]);
+        ASSERT_GT(p.norm() - radius, 0.0) << "vertex " << v << " inside at t = " << t;
+      }
+    }
+  };
+  check(Vector3d(0, 0, -1.0), true);   // straight through the ball
+  check(Vector3d(0.6, 0, -0.2), true); // across its top and down into it
+  check(Vector3d(0, 0, 0.3), false);   // away from it
+  VecDestroy(&d);
+  VecDestroy(&x);
+}
+
+// The static minimiser (StaticOptions::minimise) on the sphere drape:
+// it minimises and converges within a generous Newton count (226 measured,
+// friction and adaptive-penalty rounds included), every vertex outside the
+// ball and none deeper than half the offset in the offset layer.
+TEST(ContactProblem, MinimiserDrapesOverASphere) {
+  const double offset = 2e-3, radius = 0.15;
+  const TriangleMesh mesh = placed(mesh::rectangle(0.5, 0.5, 8, 8), Eigen::Matrix3d::Identity(),
+                                   Vector3d(-0.25, -0.25, radius + 0.5 * offset));
+  ClothProblem problem(PETSC_COMM_WORLD, mesh, fabric(1e-4), {40});
+  problem.contact.offset = offset;
+  contact::Body ball("ball", std::make_shared<contact::Sphere>(Vector3d::Zero(), radius),
+                     Vector3d::Zero());
+  ball.friction = {0.4, 0.4};
+  problem.bodies = {ball};
+  problem.loads.gravity = Vector3d(0, 0, -gravity);
+  const Outcome out = solve(problem, 1, true);
+  ASSERT_TRUE(out.report.converged) << out.report.reason;
+  EXPECT_TRUE(out.report.minimised);
+  EXPECT_LT(out.report.newton_iterations, 600);
+  for (const Vector3d& p : out.positions)
+    EXPECT_GT(p.norm() - radius, 0.0);
+  // The adaptive penalty's promise: no vertex deeper than half the offset
+  // in the offset layer.
+  EXPECT_LT(out.contact[0].max_penetration, 0.5 * offset);
+  std::printf("minimiser sphere drape: %d Newton iterations, %d contact rounds\n",
+              int(out.report.newton_iterations), out.report.contact_rounds);
 }
 
 TEST(ContactProblem, DrapeOverASphereStaysOutside) {

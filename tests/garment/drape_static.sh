@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# `sartor drape` by its default, the static minimiser, on a coarsely meshed
+# garment (a case file of cases/garments): no time stepping (no dynamics in
+# summary.json, no dynamics.csv), sewn in eight continuation stages, in static
+# equilibrium (the residual force below 1e-5 of the weight, the body's
+# reaction balancing the weight computed here from density and area), the
+# seams closed, no vertex inside the body and none deeper than half the
+# contact offset in the offset layer (what the adaptive penalty promises),
+# and the garment resting on the body rather than squeezing it. The Newton
+# count has a generous bound (the dynamic relaxation took about 3,000 on
+# these garments; the minimiser about 100 to 400).
+#
+#   drape_static.sh SARTOR PATTERN CASE OUT_DIR SEAMS
+set -euo pipefail
+[ $# -eq 5 ] || { echo "usage: $0 SARTOR PATTERN CASE OUT_DIR SEAMS" >&2; exit 2; }
+sartor=$1 pattern=$2 case=$3 dir=$4 seams=$5
+python=/usr/bin/python3
+[ -x "$python" ] || { echo "error: $python not found (./dev deps installs it)" >&2; exit 1; }
+rm -rf "$dir"
+"$sartor" drape "$pattern" -options_file_yaml "$case" --no-plot --output "$dir" | tee "$dir.log"
+grep -q "static minimiser, converged" "$dir.log"
+for f in final.obj result.h5 summary.json; do
+  [ -s "$dir/$f" ] || { echo "drape_static: $dir/$f missing" >&2; exit 1; }
+done
+[ ! -e "$dir/dynamics.csv" ] || { echo "drape_static: time stepping ran" >&2; exit 1; }
+"$python" - "$dir" "$seams" <<'PY'
+import json, math, os, sys
+d, seams = sys.argv[1], int(sys.argv[2])
+s = json.load(open(os.path.join(d, "summary.json")))
+drape = s["drape"]
+assert "dynamics" not in s, "the static drape stepped in time"
+assert s["converged"] and drape["converged"] and drape["equilibrium_checked"], s["solver"]
+assert drape["method"] == "minimise" and s["solver"]["method"] == "minimise", s["solver"]
+minimiser = s["solver"]["minimiser"]
+assert minimiser["sewing_stages"] == 8, minimiser
+assert s["solver"]["newton_iterations"] < 1500, s["solver"]
+assert s["seams"]["seams"] == seams, s["seams"]
+assert drape["largest_seam_gap_m"] < 5e-4, drape
+offset = drape["contact_offset_m"]
+assert not drape["vertex_inside_body"], drape
+assert drape["max_penetration_m"] < 0.5 * offset, drape
+assert abs(drape["deepest_vertex_relative_to_offset"] - drape["max_penetration_m"] / offset) < 1e-9
+weight = math.hypot(*drape["weight_N"])
+assert abs(weight - 9.80665 * 0.25 * drape["material_area_m2"]) < 1e-9 * weight, drape
+assert drape["residual_force_N"] < 1e-5 * weight, drape
+assert drape["relative_imbalance"] < 1e-5, drape
+assert abs(drape["body_reaction_N"][2] - weight) < 1e-5 * weight, drape
+assert drape["certificate"] is None, drape  # no certification yet
+body = s["contact"]["bodies"][0]
+assert body["contacting_vertices"] > 0
+normal = math.hypot(*body["normal_force_N"])
+assert normal < 3 * weight, f"the body presses on the garment with {normal} N (weight {weight} N)"
+print("drape_static: %d triangles, %d Newton iterations, gap %.2e m, deepest %.2f of the offset, "
+      "residual %.1e of the weight" % (s["mesh"]["triangles"], s["solver"]["newton_iterations"],
+      drape["largest_seam_gap_m"], drape["deepest_vertex_relative_to_offset"],
+      drape["residual_relative_to_weight"]))
+PY
