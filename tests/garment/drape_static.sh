@@ -45,7 +45,14 @@ assert abs(weight - 9.80665 * 0.25 * drape["material_area_m2"]) < 1e-9 * weight,
 assert drape["residual_force_N"] < 1e-5 * weight, drape
 assert drape["relative_imbalance"] < 1e-5, drape
 assert abs(drape["body_reaction_N"][2] - weight) < 1e-5 * weight, drape
-assert drape["certificate"] is None, drape  # no certification yet
+# The parts of the certificate static drapes pass today (their equilibrium
+# with re-anchored friction, Coulomb's cone and the chords of coarse edges
+# do not yet: issue 15).
+c = s["certificate"]
+assert drape["certificate"] == c["verdict"], drape
+for part in ("depth", "seams", "placement"):
+    assert c[part]["passed"], (part, c[part])
+assert c["stability"]["assessed"] and c["stability"]["negative_directions"] == 0, c["stability"]
 body = s["contact"]["bodies"][0]
 assert body["contacting_vertices"] > 0
 normal = math.hypot(*body["normal_force_N"])

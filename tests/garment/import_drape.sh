@@ -23,10 +23,11 @@ mkdir -p "$dir"
 grep -q "wrote $dir/pencil_skirt.json: 3 panels in 2 packs, valid" "$dir/import.log"
 if [ -n "$twisted" ]; then
   status=0
+  # In dynamics it slides (the static minimiser stops with the seams open).
   "$sartor" drape "$dir/pencil_skirt.json" -options_file_yaml "$case" --seams-file "$twisted" \
-    --output "$dir/twisted" --no-plot > "$dir/twisted.log" 2>&1 || status=$?
+    --analysis dynamic --output "$dir/twisted" --no-plot > "$dir/twisted.log" 2>&1 || status=$?
   [ "$status" -eq 1 ] || { echo "drape exited with $status, expected 1" >&2; exit 1; }
-  grep -q "(garment slid down 0\.[1-9][0-9]* m)" "$dir/twisted.log"
+  grep -q "garment slid down 0\.[1-9][0-9]* m)" "$dir/twisted.log"
   grep -q "error: the drape did not drape the garment: it ended slid down" "$dir/twisted.log"
   "$python" - "$dir/twisted" <<'PY'
 import json, os, sys
@@ -39,7 +40,7 @@ PY
 fi
 "$sartor" drape "$dir/pencil_skirt.json" -options_file_yaml "$case" \
   --seams-file "$cases/pencil_skirt_seams.json" --output "$dir/drape" --no-plot | tee "$dir/drape.log"
-tail -n 1 "$dir/drape.log" | grep -q "(converged)"
+tail -n 1 "$dir/drape.log" | grep -qE "\((static minimiser|dynamics), converged\)"
 grep -q -- "-seams_file $cases/pencil_skirt_seams.json" "$dir/drape/petsc_options.txt"
 "$python" - "$dir/drape" <<'PY'
 import json, os, sys
