@@ -232,6 +232,7 @@ std::vector<double> level_edge_lengths(const Construction& construction,
     while (count < options.max_levels) {
       PanelMeshOptions coarser = mesh_options;
       coarser.edge_length = target * std::pow(2.0, count);
+      if (coarser.edge_length > options.coarsest_limit * (1 + 1e-9)) break;
       const double triangles =
           double(build_garment_mesh(construction, coarser).mesh.triangle_count());
       if (triangles / panels < options.min_triangles_per_panel) break;

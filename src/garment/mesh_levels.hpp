@@ -37,10 +37,14 @@ struct LevelOptions {
   double target_edge_length = 0.04; // m: the finest level's
   int levels = 0;                   // 0: automatic
   double coarsest_edge_length = 0;  // m; 0: automatic (or from `levels`)
-  // Automatic levels: the coarsest is the longest target * 2^k whose mesh
-  // still has this many triangles per panel on average, and there are at
-  // most max_levels levels.
+  // Automatic levels: the coarsest is the longest target * 2^k no longer
+  // than coarsest_limit whose mesh still has this many triangles per panel
+  // on average, and there are at most max_levels levels. The limit: a
+  // coarse triangle's chord cuts h^2 / 8R into a convex body, and a drape
+  // on 16 cm triangles cut 38 mm into the mannequin's arms (R ~ 8 cm), so
+  // its finer level started from a cloth stretched out of the body by 30 %.
   double min_triangles_per_panel = 20;
+  double coarsest_limit = 0.08; // m
   int max_levels = 4;
 };
 

@@ -170,13 +170,17 @@ TEST(MeshLevels, EdgeLengthsFromTheOptions) {
   EXPECT_NEAR(lengths[1], std::sqrt(0.12 * 0.04), 1e-12);
   options.coarsest_edge_length = 0.02;
   EXPECT_THROW(level_edge_lengths(construction, {}, options), InputError);
-  // Automatic: coarser by halves while the panels keep 20 triangles each on
-  // average; never fewer than one level.
+  // Automatic: coarser by halves up to 8 cm while the panels keep 20
+  // triangles each on average (the T-shirt's 8 panels: 664 triangles at
+  // 8 cm); never fewer than one level.
   options.coarsest_edge_length = 0;
-  const auto automatic = level_edge_lengths(construction, {}, options);
-  EXPECT_GE(automatic.size(), 2u);
-  EXPECT_EQ(automatic.back(), 0.04);
-  options.target_edge_length = 1.0;
+  EXPECT_EQ(level_edge_lengths(construction, {}, options), (std::vector<double>{0.08, 0.04}));
+  options.target_edge_length = 0.02;
+  EXPECT_EQ(level_edge_lengths(construction, {}, options), (std::vector<double>{0.08, 0.04, 0.02}));
+  options.target_edge_length = 0.08;
+  EXPECT_EQ(level_edge_lengths(construction, {}, options).size(), 1u);
+  options.target_edge_length = 0.04;
+  options.min_triangles_per_panel = 1e6;
   EXPECT_EQ(level_edge_lengths(construction, {}, options).size(), 1u);
 }
 
