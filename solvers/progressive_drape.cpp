@@ -66,8 +66,10 @@ private:
 std::vector<std::unique_ptr<ScopedOption>> finer_level_options(const Options& options,
                                                                const std::string& seams_file) {
   std::vector<std::unique_ptr<ScopedOption>> scoped;
+  // A static drape (--analysis static) stays static on every level.
   const std::string time = options.text("refine-time");
-  scoped.push_back(std::make_unique<ScopedOption>("-time_end", time.c_str()));
+  if (options.text("analysis") == "dynamic")
+    scoped.push_back(std::make_unique<ScopedOption>("-time_end", time.c_str()));
   scoped.push_back(std::make_unique<ScopedOption>("-seams_file", seams_file.c_str()));
   for (const char* left_out :
        {"-sewing_tension", "-sewing_time", "-output_interval", "-mesh_translate", "-mesh_rotate_x"})
@@ -273,6 +275,10 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
     if (l + 1 < count)
       solved = broadcast_positions(result.positions, level.cloth.mesh.vertex_count());
   }
+  // The drape's solve time is all its levels'.
+  result.solve_seconds = 0.0;
+  for (const LevelRun& run : *runs)
+    result.solve_seconds += run.solve_seconds;
   return result;
 }
 

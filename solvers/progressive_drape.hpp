@@ -65,7 +65,8 @@ struct LevelRun {
 // --refine-time (no sewing stage) and settles, from the prolonged drape.
 // The coarsest level's time steps go to DIRECTORY/series.h5 (with `labels`
 // for its panels). Returns
-// the finest level's result; `runs` gets one entry per level. A single
+// the finest level's result, its solve_seconds summed over the levels;
+// `runs` gets one entry per level. A single
 // level is solve_case on `finest`, as before.
 CaseResult drape_progressively(const Options& options, const garment::Construction& construction,
                                const PanelMeshOptions& mesh_options, const DrapeLevel& finest,
