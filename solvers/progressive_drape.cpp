@@ -77,6 +77,19 @@ std::vector<std::unique_ptr<ScopedOption>> finer_level_options(const Options& op
   return scoped;
 }
 
+// -log_view reports each level as its own stage, for as long as this lives.
+class LogStage {
+public:
+  explicit LogStage(const std::string& name) {
+    PetscLogStage stage = 0;
+    SartorPetscCall(PetscLogStageRegister(name.c_str(), &stage));
+    SartorPetscCall(PetscLogStagePush(stage));
+  }
+  LogStage(const LogStage&) = delete;
+  LogStage& operator=(const LogStage&) = delete;
+  ~LogStage() { PetscLogStagePop(); }
+};
+
 // A copy of the level's mesh whose material ids are its panels, as the
 // prolongation reads them.
 TriangleMesh panel_mesh(const DrapeLevel& level) {
@@ -184,10 +197,12 @@ void print_level(std::size_t index, std::size_t count, const LevelRun& run) {
   SartorPetscCall(
       PetscPrintf(PETSC_COMM_WORLD,
                   "sartor drape: level %zu of %zu: edge %.3g m, %zu triangles, %s, %s, %ld Newton "
-                  "iterations, residual %.2e N, %.1f s (CPU %.1f s)\n",
+                  "iterations, residual %s N, %.1f s (CPU %.1f s)\n",
                   index + 1, count, run.edge_length, run.triangles, run.analysis.c_str(),
                   run.converged ? "converged" : "NOT converged", run.newton_iterations,
-                  run.residual_force, run.solve_seconds, run.cpu_seconds));
+                  run.residual_force >= 0 ? format_number(run.residual_force).c_str()
+                                          : "not checked (no settle)",
+                  run.solve_seconds, run.cpu_seconds));
   if (index == 0) return;
   SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD,
                               "  from the level before: seam gap %.2e m, closed to %.2e m; "
@@ -250,6 +265,7 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
     run.vertices = level.cloth.mesh.vertex_count();
     run.triangles = level.cloth.mesh.triangle_count();
     const double cpu_start = cpu_seconds();
+    const LogStage stage("Drape level " + std::to_string(l));
     if (l == 0) {
       const ScopedOption seams("-seams_file", level.seams_file.c_str());
       ClothOutputLabels coarsest = labels;
