@@ -41,8 +41,9 @@ struct LevelOptions {
   // than coarsest_limit whose mesh still has this many triangles per panel
   // on average, and there are at most max_levels levels. The limit: a
   // coarse triangle's chord cuts h^2 / 8R into a convex body, and a drape
-  // on 16 cm triangles cut 38 mm into the mannequin's arms (R ~ 8 cm), so
-  // its finer level started from a cloth stretched out of the body by 30 %.
+  // on 16 cm triangles cut 38 mm into the mannequin's arms, so its 8 cm
+  // level, lifted out of them, started with 81 J of potential (2 J at
+  // rest) and did not converge.
   double min_triangles_per_panel = 20;
   double coarsest_limit = 0.08; // m
   int max_levels = 4;
