@@ -9,10 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <petscsys.h>
 
-#include <chrono>
 #include <ctime>
 #include <memory>
-#include <set>
 
 namespace sartor {
 
@@ -61,8 +59,8 @@ private:
 // without the placement options (the start is placed already). A static
 // Newton solve straight from the prolonged drape (tried first) stalled on
 // the T-shirt: 100 damped Newton steps from a residual of 3.6e3 N, then
-// pseudo-transient continuation for minutes; the coarse drape's membrane
-// state (locked, 9 J against 2 J at 8 cm) is far from the finer level's.
+// pseudo-transient continuation for minutes (16 to 8 cm; the coarse drape
+// held 9 J of potential, the 8 cm one 2 J at rest).
 std::vector<std::unique_ptr<ScopedOption>> finer_level_options(const Options& options,
                                                                const std::string& seams_file) {
   std::vector<std::unique_ptr<ScopedOption>> scoped;
