@@ -18,6 +18,7 @@
 #include "solvers/commands.hpp"
 #include "solvers/drape_outcome.hpp"
 #include "solvers/garment_construction.hpp"
+#include "solvers/progressive_drape.hpp"
 
 #include <nlohmann/json.hpp>
 #include <petscsys.h>
@@ -303,6 +304,8 @@ const CommandSpec& drape_command() {
           if (option.name == "edge-length") option.fallback = "0.04";
           options.push_back(option);
         }
+        for (const OptionSpec& option : level_option_specs())
+          options.push_back(option);
         options.push_back(
             {"output", "DIR", "out/drape", "output folder (created; files in it are replaced)"});
         options.push_back({"no-plot", "", "", "write data only, no PNG"});
@@ -441,7 +444,15 @@ int run_drape(const Invocation& invocation) {
   if (weight.norm() > 0.0)
     SartorPetscCall(set_default_option("-snes_atol", format_number(1e-6 * weight.norm()).c_str()));
   labels.fabrics = cloth.fabrics;
-  const CaseResult result = solve_case(options, 0, series_writer(directory, labels), {}, &cloth);
+  // Progressive refinement (solvers/progressive_drape.hpp): coarser levels
+  // first when --edge-length allows them; one level is the drape above.
+  const DrapeLevel finest{constructed.mesh_options.edge_length, cloth, sewable.mesh.material_ids,
+                          sewable.seams, seams_file};
+  std::vector<LevelRun> levels;
+  const CaseResult result = drape_progressively(
+      options, constructed.construction, constructed.mesh_options, finest,
+      drape_level_edge_lengths(options, constructed.construction, constructed.mesh_options),
+      directory, labels, &levels);
 
   // 4. What the drape achieved.
   Eigen::Vector3d reaction = Eigen::Vector3d::Zero();
@@ -524,7 +535,8 @@ int run_drape(const Invocation& invocation) {
         {"construct_total", std::chrono::duration<double>(constructed_at - started).count()},
         {"drape", result.solve_seconds},
         {"drape_setup", result.setup_seconds},
-        {"total", total_seconds}}}};
+        {"total", total_seconds}}},
+      {"levels", levels_json(levels)}};
   write_case_results(directory, result, summary, labels);
   // The seams file is drape's own (the pattern's seams, written above): the
   // echoed options re-run the job, and drape refuses a --seams-file given to it.

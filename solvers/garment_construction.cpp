@@ -18,6 +18,7 @@
 #include <petscsys.h>
 
 #include <chrono>
+#include <memory>
 #include <optional>
 
 namespace sartor {
@@ -75,10 +76,12 @@ ConstructedGarment construct_garment(const std::string& path, const PanelMeshOpt
   using Clock = std::chrono::steady_clock;
   const auto body_start = Clock::now();
   const Mannequin& body = default_mannequin();
-  const auto shape = contact::make_mannequin_shape();
+  // Shared with the construction, which places points later too (the
+  // levels of a progressive drape mesh it again).
+  const std::shared_ptr<const contact::Shape> shape = contact::make_mannequin_shape();
   constructed.body_seconds = std::chrono::duration<double>(Clock::now() - body_start).count();
-  const garment::BodyDistance distance = [&shape](const Eigen::Vector3d& p,
-                                                  Eigen::Vector3d* gradient) {
+  const garment::BodyDistance distance = [shape](const Eigen::Vector3d& p,
+                                                 Eigen::Vector3d* gradient) {
     const contact::SurfaceQuery q = shape->query(p);
     if (gradient) *gradient = q.normal;
     return q.distance;

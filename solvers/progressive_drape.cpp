@@ -1,0 +1,321 @@
+#include "solvers/progressive_drape.hpp"
+
+#include "common/csv.hpp"
+#include "common/error.hpp"
+#include "contact/body_spec.hpp"
+#include "fem/petsc_call.hpp"
+#include "solvers/commands.hpp"
+
+#include <nlohmann/json.hpp>
+#include <petscsys.h>
+
+#include <ctime>
+#include <memory>
+
+namespace sartor {
+
+namespace {
+
+// An option of the database set (or cleared) for one level's solve, and
+// put back as it was afterwards: the levels run solve_case, which reads
+// its settings there.
+class ScopedOption {
+public:
+  ScopedOption(const std::string& name, const char* value) : name_(name) {
+    PetscBool set = PETSC_FALSE;
+    char previous[PETSC_MAX_PATH_LEN] = "";
+    SartorPetscCall(
+        PetscOptionsGetString(nullptr, nullptr, name_.c_str(), previous, sizeof(previous), &set));
+    PetscBool present = PETSC_FALSE;
+    SartorPetscCall(PetscOptionsHasName(nullptr, nullptr, name_.c_str(), &present));
+    had_ = present == PETSC_TRUE;
+    previous_ = previous;
+    if (value) {
+      SartorPetscCall(PetscOptionsSetValue(nullptr, name_.c_str(), value));
+    } else {
+      SartorPetscCall(PetscOptionsClearValue(nullptr, name_.c_str()));
+    }
+  }
+  ScopedOption(const ScopedOption&) = delete;
+  ScopedOption& operator=(const ScopedOption&) = delete;
+  ~ScopedOption() {
+    // A destructor cannot report: setting a plain value does not fail.
+    if (had_) {
+      PetscOptionsSetValue(nullptr, name_.c_str(), previous_.empty() ? nullptr : previous_.c_str());
+    } else {
+      PetscOptionsClearValue(nullptr, name_.c_str());
+    }
+  }
+
+private:
+  std::string name_;
+  std::string previous_;
+  bool had_ = false;
+};
+
+// What a finer level changes for its solve: a short damped relaxation (drape's
+// dynamics with kinetic damping, --refine-time long) from the prolonged
+// drape, then the settle; without the sewing stage (the seams are closed) and
+// without the placement options (the start is placed already). A static
+// Newton solve straight from the prolonged drape (tried first) stalled on
+// the T-shirt: 100 damped Newton steps from a residual of 3.6e3 N, then
+// pseudo-transient continuation for minutes (16 to 8 cm; the coarse drape
+// held 9 J of potential, the 8 cm one 2 J at rest).
+std::vector<std::unique_ptr<ScopedOption>> finer_level_options(const Options& options,
+                                                               const std::string& seams_file) {
+  std::vector<std::unique_ptr<ScopedOption>> scoped;
+  // A static drape (--analysis static) stays static on every level.
+  const std::string time = options.text("refine-time");
+  if (options.text("analysis") == "dynamic")
+    scoped.push_back(std::make_unique<ScopedOption>("-time_end", time.c_str()));
+  scoped.push_back(std::make_unique<ScopedOption>("-seams_file", seams_file.c_str()));
+  for (const char* left_out :
+       {"-sewing_tension", "-sewing_time", "-output_interval", "-mesh_translate", "-mesh_rotate_x"})
+    scoped.push_back(std::make_unique<ScopedOption>(left_out, nullptr));
+  return scoped;
+}
+
+// -log_view reports each level as its own stage, for as long as this lives.
+class LogStage {
+public:
+  explicit LogStage(const std::string& name) {
+    PetscLogStage stage = 0;
+    SartorPetscCall(PetscLogStageRegister(name.c_str(), &stage));
+    SartorPetscCall(PetscLogStagePush(stage));
+  }
+  LogStage(const LogStage&) = delete;
+  LogStage& operator=(const LogStage&) = delete;
+  ~LogStage() { PetscLogStagePop(); }
+};
+
+// A copy of the level's mesh whose material ids are its panels, as the
+// prolongation reads them.
+TriangleMesh panel_mesh(const DrapeLevel& level) {
+  TriangleMesh mesh = level.cloth.mesh;
+  mesh.material_ids = level.panel_of_triangle;
+  return mesh;
+}
+
+// The level at edge length h: the construction meshed at h, finest's
+// panels and fabrics, its seams written to the file `seams_file`.
+DrapeLevel coarser_level(const garment::Construction& construction,
+                         const PanelMeshOptions& mesh_options, const DrapeLevel& finest, double h,
+                         const std::string& seams_file) {
+  PanelMeshOptions options = mesh_options;
+  options.edge_length = h;
+  options.pieces.clear();
+  const std::size_t panels = construction.pattern->panels.size();
+  std::vector<bool> kept(panels, false);
+  std::vector<int> fabric_of_panel(panels, 0);
+  for (std::size_t t = 0; t < finest.panel_of_triangle.size(); ++t) {
+    const std::size_t panel = std::size_t(finest.panel_of_triangle[t]);
+    kept[panel] = true;
+    if (!finest.cloth.mesh.material_ids.empty())
+      fabric_of_panel[panel] = finest.cloth.mesh.material_ids[t];
+  }
+  const garment::GarmentMesh garment =
+      garment::keep_panels(garment::build_garment_mesh(construction, options), kept);
+  DrapeLevel level;
+  level.edge_length = h;
+  level.cloth.fabrics = finest.cloth.fabrics;
+  level.cloth.mesh = garment.mesh;
+  level.panel_of_triangle = garment.mesh.material_ids;
+  if (finest.cloth.mesh.material_ids.empty()) {
+    level.cloth.mesh.material_ids.clear();
+  } else {
+    for (int& id : level.cloth.mesh.material_ids)
+      id = fabric_of_panel[std::size_t(id)];
+  }
+  level.seams = garment.seams;
+  level.seams_file = seams_file;
+  if (is_root()) write_seams(seams_file, level.seams);
+  SartorPetscCall(MPI_Barrier(PETSC_COMM_WORLD));
+  return level;
+}
+
+// Moves the vertices of a prolonged drape that lie deeper than half the
+// contact offset out to that depth, along the body's normal. A coarse
+// triangle's chord cuts into a convex body between its vertices (by
+// h^2 / 8R: 2 cm for 16 cm edges on a 15 cm radius), so the finer vertices
+// interpolated on it start inside; their penalty forces (1e4 N on the
+// T-shirt's 2 N) would throw the static solve far off. Half the offset
+// keeps them in contact, so that friction anchors them at the start.
+// Returns the deepest start, m below the offset surface.
+double lift_out_of_bodies(const Options& options, std::vector<Eigen::Vector3d>* positions) {
+  const double offset = options.positive_real("contact-offset");
+  double deepest = 0.0;
+  for (const char* name : {"body", "body2", "body3", "body4"}) {
+    if (!options.is_set(name)) continue;
+    const contact::Body body =
+        contact::parse_body(options.text(name), std::string("option --") + name, name);
+    for (Eigen::Vector3d& x : *positions) {
+      deepest = std::max(deepest, offset - body.query(x, 0.0).distance);
+      // Newton on the distance (the smooth mannequin's gradient is not unit
+      // in its fillets): a few steps reach the level set.
+      for (int k = 0; k < 4; ++k) {
+        const contact::SurfaceQuery q = body.query(x, 0.0);
+        if (q.distance >= 0.5 * offset || q.normal.squaredNorm() == 0.0) break;
+        x += (0.5 * offset - q.distance) * q.normal / q.normal.squaredNorm();
+      }
+    }
+  }
+  return deepest;
+}
+
+// Rank 0's positions on every rank.
+std::vector<Eigen::Vector3d> broadcast_positions(std::vector<Eigen::Vector3d> positions,
+                                                 std::size_t count) {
+  positions.resize(count);
+  static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double), "packed vectors");
+  SartorPetscCall(
+      MPI_Bcast(positions.data()->data(), int(3 * count), MPI_DOUBLE, 0, PETSC_COMM_WORLD));
+  return positions;
+}
+
+double cpu_seconds() {
+  return double(std::clock()) / CLOCKS_PER_SEC;
+}
+
+void record(const CaseResult& result, LevelRun* run) {
+  run->converged = result.converged;
+  run->solve_seconds = result.solve_seconds;
+  if (result.dynamics) {
+    run->analysis = "dynamic";
+    run->newton_iterations = long(result.dynamics->newton_iterations);
+    if (!result.dynamics->settle_reason.empty())
+      run->residual_force = result.dynamics->settle_residual_norm;
+  } else {
+    run->analysis = "static";
+    run->newton_iterations = long(result.report.newton_iterations);
+    run->residual_force = result.report.final_residual_norm;
+  }
+}
+
+void print_level(std::size_t index, std::size_t count, const LevelRun& run) {
+  SartorPetscCall(
+      PetscPrintf(PETSC_COMM_WORLD,
+                  "sartor drape: level %zu of %zu: edge %.3g m, %zu triangles, %s, %s, %ld Newton "
+                  "iterations, residual %s N, %.1f s (CPU %.1f s)\n",
+                  index + 1, count, run.edge_length, run.triangles, run.analysis.c_str(),
+                  run.converged ? "converged" : "NOT converged", run.newton_iterations,
+                  run.residual_force >= 0 ? format_number(run.residual_force).c_str()
+                                          : "not checked (no settle)",
+                  run.solve_seconds, run.cpu_seconds));
+  if (index == 0) return;
+  SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                              "  from the level before: seam gap %.2e m, closed to %.2e m; "
+                              "deepest vertex %.2e m below the contact offset, lifted out\n",
+                              run.seam_gap_prolonged, run.seam_gap_start, run.deepest_start));
+}
+
+} // namespace
+
+const std::vector<OptionSpec>& level_option_specs() {
+  static const std::vector<OptionSpec> specs{
+      {"levels", "N", "",
+       "progressive refinement: N panel meshings, edge lengths --edge-length x 2^(N-1) .. "
+       "--edge-length (1: a single level) [automatic]"},
+      {"coarsest-edge", "M", "",
+       "progressive refinement: the coarsest level's edge length, m; levels in ratios of at "
+       "most 2 down to --edge-length [automatic]"},
+      {"refine-time", "S", "0.3",
+       "progressive refinement: simulated time of the damped relaxation on each finer level, "
+       "s, before its settle"},
+  };
+  return specs;
+}
+
+std::vector<double> drape_level_edge_lengths(const Options& options,
+                                             const garment::Construction& construction,
+                                             const PanelMeshOptions& mesh_options) {
+  garment::LevelOptions levels;
+  levels.target_edge_length = mesh_options.edge_length;
+  if (options.is_set("levels")) levels.levels = int(options.integer_in("levels", 1, 8));
+  if (options.is_set("coarsest-edge"))
+    levels.coarsest_edge_length = options.positive_real("coarsest-edge");
+  const std::vector<double> lengths =
+      garment::level_edge_lengths(construction, mesh_options, levels);
+  if (lengths.size() > 1 && options.is_set("mesh-refine")) {
+    throw InputError("option --mesh-refine: refines one mesh uniformly; with progressive "
+                     "refinement give --edge-length (the target) or --levels 1");
+  }
+  return lengths;
+}
+
+CaseResult drape_progressively(const Options& options, const garment::Construction& construction,
+                               const PanelMeshOptions& mesh_options, const DrapeLevel& finest,
+                               const std::vector<double>& edge_lengths,
+                               const std::string& directory, const ClothOutputLabels& labels,
+                               std::vector<LevelRun>* runs) {
+  const std::size_t count = edge_lengths.size();
+  std::vector<DrapeLevel> levels;
+  for (std::size_t l = 0; l + 1 < count; ++l) {
+    levels.push_back(coarser_level(construction, mesh_options, finest, edge_lengths[l],
+                                   directory + "/drape_seams_level" + std::to_string(l) + ".json"));
+  }
+  levels.push_back(finest);
+  CaseResult result;
+  std::vector<Eigen::Vector3d> solved;
+  for (std::size_t l = 0; l < count; ++l) {
+    DrapeLevel& level = levels[l];
+    LevelRun run;
+    run.edge_length = level.edge_length;
+    run.vertices = level.cloth.mesh.vertex_count();
+    run.triangles = level.cloth.mesh.triangle_count();
+    const double cpu_start = cpu_seconds();
+    const LogStage stage("Drape level " + std::to_string(l));
+    if (l == 0) {
+      const ScopedOption seams("-seams_file", level.seams_file.c_str());
+      ClothOutputLabels coarsest = labels;
+      coarsest.panel_of_triangle = level.panel_of_triangle;
+      result = solve_case(options, 0, series_writer(directory, coarsest), {}, &level.cloth);
+    } else {
+      const garment::Prolongation prolongation(panel_mesh(levels[l - 1]), panel_mesh(level));
+      std::vector<Eigen::Vector3d> start = prolongation.vertex_field(solved);
+      const garment::SeamClosure closure =
+          garment::close_seams(panel_mesh(level), level.seams, &start);
+      run.seam_gap_prolonged = closure.gap_before;
+      run.seam_gap_start = closure.gap_after;
+      run.outside_distance = prolongation.largest_outside_distance();
+      run.deepest_start = lift_out_of_bodies(options, &start);
+      level.cloth.mesh.positions = start;
+      const auto scoped = finer_level_options(options, level.seams_file);
+      result = solve_case(options, 0, {}, {}, &level.cloth);
+    }
+    run.cpu_seconds = cpu_seconds() - cpu_start;
+    record(result, &run);
+    if (count > 1) print_level(l, count, run);
+    runs->push_back(run);
+    if (l + 1 < count)
+      solved = broadcast_positions(result.positions, level.cloth.mesh.vertex_count());
+  }
+  // The drape's solve time is all its levels'.
+  result.solve_seconds = 0.0;
+  for (const LevelRun& run : *runs)
+    result.solve_seconds += run.solve_seconds;
+  return result;
+}
+
+nlohmann::json levels_json(const std::vector<LevelRun>& runs) {
+  nlohmann::json levels = nlohmann::json::array();
+  for (const LevelRun& run : runs) {
+    levels.push_back(
+        {{"edge_length_m", run.edge_length},
+         {"vertices", run.vertices},
+         {"triangles", run.triangles},
+         {"analysis", run.analysis},
+         {"converged", run.converged},
+         {"newton_iterations", run.newton_iterations},
+         {"residual_force_N",
+          run.residual_force >= 0 ? nlohmann::json(run.residual_force) : nlohmann::json(nullptr)},
+         {"start_seam_gap_prolonged_m", run.seam_gap_prolonged},
+         {"start_seam_gap_closed_m", run.seam_gap_start},
+         {"largest_outside_distance_m", run.outside_distance},
+         {"start_depth_below_offset_m", run.deepest_start},
+         {"solve_s", run.solve_seconds},
+         {"cpu_s", run.cpu_seconds}});
+  }
+  return levels;
+}
+
+} // namespace sartor
