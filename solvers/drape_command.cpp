@@ -114,6 +114,10 @@ SewableGarment sewable_garment(const ConstructedGarment& constructed) {
     kept.mesh.material_uv.push_back(garment.mesh.material_uv[t]);
     kept.mesh.material_ids.push_back(garment.mesh.material_ids[t]);
   }
+  for (const CreaseEdge& crease : garment.mesh.creases)
+    if (new_index[std::size_t(crease.a)] >= 0)
+      kept.mesh.creases.push_back(
+          {new_index[std::size_t(crease.a)], new_index[std::size_t(crease.b)], crease.rest_angle});
   for (Seam seam : garment.seams) {
     for (auto* line : {&seam.a, &seam.b})
       for (int& v : *line)
@@ -250,7 +254,8 @@ int run_drape(const Invocation& invocation) {
   }
 
   // 1. The garment, constructed and written as `sartor construct` writes it.
-  const ConstructedGarment constructed = construct_garment(path, panel_mesh_options(options));
+  const ConstructedGarment constructed =
+      construct_garment(path, panel_mesh_options(options), !options.flag("no-prefold"));
   print_construction(constructed);
   const auto constructed_at = Clock::now();
   write_construction(directory, constructed,

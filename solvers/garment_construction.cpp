@@ -17,6 +17,8 @@
 #include <petscsys.h>
 
 #include <chrono>
+#include <cmath>
+#include <map>
 
 namespace sartor {
 
@@ -38,6 +40,8 @@ const std::vector<OptionSpec>& panel_mesh_option_specs() {
   static const std::vector<OptionSpec> specs{
       {"edge-length", "M", "0.02", "target (longest) triangle edge length, m"},
       {"min-angle", "DEG", "25", "smallest triangle angle, degrees, in (0, 33]"},
+      {"no-prefold", "", "",
+       "start creased panels flat (their creases keep their rest angles): docs/pleats.md"},
   };
   return specs;
 }
@@ -51,8 +55,8 @@ PanelMeshOptions panel_mesh_options(const Options& options) {
   return mesh_options;
 }
 
-ConstructedGarment construct_garment(const std::string& path,
-                                     const PanelMeshOptions& mesh_options) {
+ConstructedGarment construct_garment(const std::string& path, const PanelMeshOptions& mesh_options,
+                                     bool prefold) {
   ConstructedGarment constructed;
   constructed.path = path;
   constructed.mesh_options = mesh_options;
@@ -72,7 +76,8 @@ ConstructedGarment construct_garment(const std::string& path,
   constructed.construction =
       garment::construct(constructed.pattern, body, distance, constructed.tagcon);
   const auto mesh_start = Clock::now();
-  constructed.garment = garment::build_garment_mesh(constructed.construction, mesh_options);
+  constructed.garment =
+      garment::build_garment_mesh(constructed.construction, mesh_options, prefold);
   constructed.mesh_seconds = std::chrono::duration<double>(Clock::now() - mesh_start).count();
   return constructed;
 }
@@ -202,6 +207,33 @@ nlohmann::json construction_summary(const Invocation& invocation, const std::str
     lines.push_back(entry);
   }
   summary["lines"] = lines;
+  nlohmann::json stitches = nlohmann::json::array();
+  for (const auto& stitch : pattern.stitches)
+    stitches.push_back({{"line_a", stitch.line_a},
+                        {"line_b", stitch.line_b},
+                        {"reverse", stitch.reverse},
+                        {"pleat", stitch.origin}});
+  summary["stitches"] = stitches;
+  // Creased fold lines: their mesh vertices (garment.obj numbering) and
+  // rest angle (element/bending.hpp's sign), for postproc/pleat_shape.py.
+  std::map<std::pair<int, int>, double> rest_angles;
+  for (const CreaseEdge& edge : garment.mesh.creases)
+    rest_angles[std::minmax(edge.a, edge.b)] = edge.rest_angle;
+  nlohmann::json creases = nlohmann::json::array();
+  for (const auto& panel : pattern.panels) {
+    for (const auto& line : panel.interior) {
+      if (!line.crease) continue;
+      const std::vector<int>& vertices = garment.line_vertices.at(line.id);
+      creases.push_back({{"line", line.id},
+                         {"panel", panel.id},
+                         {"vertices", vertices},
+                         {"angle_deg", line.crease->angle * 180.0 / M_PI},
+                         {"toward", line.crease->outside ? "outside" : "inside"},
+                         {"rest_angle_deg",
+                          rest_angles.at(std::minmax(vertices[0], vertices[1])) * 180.0 / M_PI}});
+    }
+  }
+  summary["creases"] = creases;
   summary["mesh"] = {{"vertices", garment.mesh.vertex_count()},
                      {"triangles", garment.mesh.triangle_count()},
                      {"edge_length_m", mesh_options.edge_length},

@@ -29,14 +29,17 @@ struct ConstructedGarment {
   double mesh_seconds = 0.0; // meshing the panels, s
 };
 
-// --edge-length and --min-angle: how finely the panels are meshed.
+// --edge-length and --min-angle: how finely the panels are meshed;
+// --no-prefold: the creased panels start flat (docs/pleats.md).
 const std::vector<OptionSpec>& panel_mesh_option_specs();
 // Throws InputError for a value out of range.
 PanelMeshOptions panel_mesh_options(const Options& options);
 
-// Reads PATTERN.json and constructs it around the built-in mannequin. Throws
-// InputError for a bad pattern or one TAGCON cannot construct.
-ConstructedGarment construct_garment(const std::string& path, const PanelMeshOptions& mesh_options);
+// Reads PATTERN.json and constructs it around the built-in mannequin,
+// pre-folding its creased fold lines when `prefold`. Throws InputError for a
+// bad pattern or one TAGCON cannot construct.
+ConstructedGarment construct_garment(const std::string& path, const PanelMeshOptions& mesh_options,
+                                     bool prefold = true);
 
 // Prints the one-line summary and the seam table (PetscPrintf, rank 0).
 void print_construction(const ConstructedGarment& garment);
