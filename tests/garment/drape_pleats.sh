@@ -26,9 +26,9 @@ assert len(c["creases"]) == 8, c["creases"]
 assert len(c["stitches"]) == 4, c["stitches"]
 assert p["pleats"] == 4, p
 for row in p["creases"]:
-    # Pre-folded: each crease starts within a degree of its rest angle
+    # Pre-folded: each crease starts within 3 degrees of its rest angle
     # (the wrap onto the cylinder bends the panel only between creases).
-    assert abs(row["start_deg"] - row["rest_deg"]) < 1.0, row
+    assert abs(row["start_deg"] - row["rest_deg"]) < 3.0, row
 drape = s["drape"]
 assert s["converged"] and drape["converged"] and drape["equilibrium_checked"], s["dynamics"]["reason"]
 assert drape["max_penetration_m"] < drape["contact_offset_m"], drape  # no vertex inside the body
