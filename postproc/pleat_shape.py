@@ -4,7 +4,7 @@ line of a `sartor construct` or `sartor drape` output folder, at the start
 (garment.obj) and at the end (final.obj), against the crease's rest angle,
 and the pleats that formed.
 
-    postproc/pleat_shape.py DIR [--json FILE]
+    postproc/pleat_shape.py DIR [--json FILE] [--series]
 
 A crease line's angle is the mean over its mesh edges of the signed dihedral
 angle of element/bending.hpp: theta = atan2((n1 x n2) . e, n1 . n2), n1 and n2
@@ -14,7 +14,9 @@ normals face). A crease is *formed* when its angle has the rest angle's sign
 and at least half its size; a pleat (the creases of one slash line, the
 generator's PLEATS_K_* lines) is formed when all its creases are. Lines
 that are not pleat creases (a lapel's) are reported but not counted as
-pleats.
+pleats. --series also follows them through the drape's fall (series.h5:
+every output state), one row per state: time, pleats formed, and the mean
+over creases of angle / rest angle.
 """
 
 import argparse
@@ -68,8 +70,10 @@ def dihedral(x, faces, table, a, b):
     return math.atan2(np.dot(np.cross(n1, n2), e), np.dot(n1, n2))
 
 
-def crease_angles(obj_path, creases):
+def crease_angles(obj_path, creases, positions=None):
     x, faces = read_obj(obj_path)
+    if positions is not None:
+        x = positions
     table = edge_faces(faces)
     angles = {}
     for crease in creases:
@@ -83,10 +87,40 @@ def formed(angle, rest):
     return angle * rest > 0 and abs(angle) >= 0.5 * abs(rest)
 
 
+def pleat_groups(creases):
+    groups = defaultdict(list)
+    for crease in creases:
+        match = re.match(r"(.+)_(\d+)_\d+_(out|in)$", crease["line"])
+        if match:
+            groups[(match.group(1), int(match.group(2)))].append(crease)
+    return groups
+
+
+def follow_series(directory, creases):
+    import h5py
+    groups = pleat_groups(creases)
+    obj = os.path.join(directory, "garment.obj")
+    print(f"{'time (s)':>9s} {'pleats formed':>14s} {'angle / rest':>13s}")
+    rows = []
+    with h5py.File(os.path.join(directory, "series.h5"), "r") as series:
+        for name in sorted(series["steps"]):
+            step = series["steps"][name]
+            time = float(np.array(step["time"]).ravel()[0])
+            angles = crease_angles(obj, creases, np.array(step["fields/position"]))
+            ok = {c["line"]: formed(angles[c["line"]], c["rest_angle_deg"]) for c in creases}
+            count = sum(all(ok[c["line"]] for c in g) for g in groups.values())
+            ratio = np.mean([angles[c["line"]] / c["rest_angle_deg"] for c in creases])
+            rows.append({"time_s": time, "pleats_formed": count, "angle_over_rest": ratio})
+            print(f"{time:9.3f} {count:8d} of {len(groups):<3d} {ratio:13.3f}")
+    return rows
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("dir", help="output folder of sartor construct or sartor drape")
     parser.add_argument("--json", help="also write the table as JSON to FILE")
+    parser.add_argument("--series", action="store_true",
+                        help="also follow the creases through series.h5 (drape's output states)")
     args = parser.parse_args()
     construct = json.load(open(os.path.join(args.dir, "construct.json")))
     creases = construct.get("creases", [])
@@ -112,10 +146,11 @@ def main():
     count = sum(all(v) for v in pleats.values())
     print(f"pleats: {count} of {len(pleats)} formed "
           f"({'final' if final else 'start'} shape)")
+    history = follow_series(args.dir, creases) if args.series else None
     if args.json:
         with open(args.json, "w") as out:
-            json.dump({"creases": rows, "pleats": len(pleats), "pleats_formed": count}, out,
-                      indent=1)
+            json.dump({"creases": rows, "pleats": len(pleats), "pleats_formed": count,
+                       "series": history}, out, indent=1)
     return 0
 
 

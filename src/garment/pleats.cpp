@@ -73,14 +73,15 @@ struct Slashing {
   // is made by this one expression from an integer count, so that a corner
   // two lines share is the same double in both (no round-off gap).
   Vector2d moved(const Vector2d& p, int depths) const { return p + (double(depths) * depth) * t; }
-  // Slashes a point lies beyond (its piece index).
+  // Slashes a point lies beyond (its piece index); a point on a slash line
+  // (within a nanometre) is not beyond it.
   int piece_of(const Vector2d& p) const {
     int beyond = 0;
     for (std::size_t k = 0; k < on_a.size(); ++k) {
       const Vector2d d = on_b[k] - on_a[k];
-      Vector2d normal(-d.y(), d.x());
+      Vector2d normal = Vector2d(-d.y(), d.x()).normalized();
       if (normal.dot(t) < 0) normal = -normal;
-      if ((p - on_a[k]).dot(normal) > 0) ++beyond;
+      if ((p - on_a[k]).dot(normal) > 1e-9) ++beyond;
     }
     return beyond;
   }
