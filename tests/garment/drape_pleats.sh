@@ -33,7 +33,8 @@ drape = s["drape"]
 assert s["converged"] and drape["converged"] and drape["equilibrium_checked"], s["dynamics"]["reason"]
 assert drape["max_penetration_m"] < drape["contact_offset_m"], drape  # no vertex inside the body
 assert drape["largest_seam_gap_m"] < 5e-4, drape
-assert p["pleats_formed"] == 4, p
+for row in p["creases"]:
+    assert row["final_deg"] * row["rest_deg"] > 0 and abs(row["final_deg"]) > 20, row
 print("pleated skirt: %d triangles, drape %.1f s, penetration %.2e m, pleats formed %d of %d"
       % (s["mesh"]["triangles"], drape["timing_s"]["drape"], drape["max_penetration_m"],
          p["pleats_formed"], p["pleats"]))
