@@ -305,6 +305,12 @@ TriangleMesh refine(const TriangleMesh& mesh) {
     for (const int id : mesh.material_ids)
       fine.material_ids.insert(fine.material_ids.end(), 4, id);
   }
+  // A crease's two halves keep its rest angle.
+  for (const CreaseEdge& crease : mesh.creases) {
+    const int m = midpoint(crease.a, crease.b);
+    fine.creases.push_back({crease.a, m, crease.rest_angle});
+    fine.creases.push_back({m, crease.b, crease.rest_angle});
+  }
   return fine;
 }
 

@@ -13,11 +13,21 @@
 
 namespace sartor {
 
+// A mesh edge (vertices a, b) whose bending rest angle is not flat: a crease
+// (docs/pleats.md). The angle is the hinge's dihedral rest angle as
+// element/bending.hpp defines it (> 0: a ridge seen from the side the
+// triangles' counter-clockwise normals face).
+struct CreaseEdge {
+  int a = 0, b = 0;
+  double rest_angle = 0.0; // rad, in (-pi, pi)
+};
+
 struct TriangleMesh {
   std::vector<Eigen::Vector3d> positions;                  // per vertex, m
   std::vector<std::array<int, 3>> triangles;               // vertex indices
   std::vector<std::array<Eigen::Vector2d, 3>> material_uv; // per triangle corner, m
   std::vector<int> material_ids;                           // per triangle; empty: all 0
+  std::vector<CreaseEdge> creases;                         // interior edges; empty: none
 
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t triangle_count() const { return triangles.size(); }

@@ -62,9 +62,9 @@ int run_construct(const Invocation& invocation) {
   if (options.text("body") != "default")
     throw InputError("option --body: unknown body '" + options.text("body") +
                      "' (expected: default, the built-in mannequin)");
-  const ConstructedGarment constructed =
-      construct_garment(path, panel_mesh_options(options),
-                        options.is_set("seams-file") ? options.text("seams-file") : "");
+  const ConstructedGarment constructed = construct_garment(
+      path, panel_mesh_options(options),
+      options.is_set("seams-file") ? options.text("seams-file") : "", !options.flag("no-prefold"));
   print_construction(constructed);
   write_construction(directory, constructed,
                      construction_summary(invocation, "construct", path, constructed));

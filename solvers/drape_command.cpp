@@ -134,6 +134,10 @@ SewableGarment sewable_garment(const ConstructedGarment& constructed) {
     kept.mesh.material_uv.push_back(garment.mesh.material_uv[t]);
     kept.mesh.material_ids.push_back(garment.mesh.material_ids[t]);
   }
+  for (const CreaseEdge& crease : garment.mesh.creases)
+    if (new_index[std::size_t(crease.a)] >= 0)
+      kept.mesh.creases.push_back(
+          {new_index[std::size_t(crease.a)], new_index[std::size_t(crease.b)], crease.rest_angle});
   for (Seam seam : garment.seams) {
     for (auto* line : {&seam.a, &seam.b})
       for (int& v : *line)
@@ -341,7 +345,7 @@ int run_drape(const Invocation& invocation) {
   // 1. The garment, constructed and written as `sartor construct` writes it.
   const std::string user_seams = options.is_set("seams-file") ? options.text("seams-file") : "";
   const ConstructedGarment constructed =
-      construct_garment(path, panel_mesh_options(options), user_seams);
+      construct_garment(path, panel_mesh_options(options), user_seams, !options.flag("no-prefold"));
   print_construction(constructed);
   const auto constructed_at = Clock::now();
   write_construction(directory, constructed,

@@ -18,6 +18,8 @@
 #include <petscsys.h>
 
 #include <chrono>
+#include <cmath>
+#include <map>
 #include <memory>
 #include <optional>
 
@@ -41,6 +43,8 @@ const std::vector<OptionSpec>& panel_mesh_option_specs() {
   static const std::vector<OptionSpec> specs{
       {"edge-length", "M", "0.02", "target (longest) triangle edge length, m"},
       {"min-angle", "DEG", "25", "smallest triangle angle, degrees, in (0, 33]"},
+      {"no-prefold", "", "",
+       "start creased panels flat (their creases keep their rest angles): docs/pleats.md"},
   };
   return specs;
 }
@@ -61,7 +65,7 @@ OptionSpec seams_file_option_spec() {
 }
 
 ConstructedGarment construct_garment(const std::string& path, const PanelMeshOptions& mesh_options,
-                                     const std::string& seams_file) {
+                                     const std::string& seams_file, bool prefold) {
   ConstructedGarment constructed;
   constructed.path = path;
   constructed.seams_file = seams_file;
@@ -90,7 +94,8 @@ ConstructedGarment construct_garment(const std::string& path, const PanelMeshOpt
       garment::construct(constructed.pattern, body, distance, constructed.tagcon);
   if (overrides) garment::apply_seam_overrides(constructed.construction, *overrides);
   const auto mesh_start = Clock::now();
-  constructed.garment = garment::build_garment_mesh(constructed.construction, mesh_options);
+  constructed.garment =
+      garment::build_garment_mesh(constructed.construction, mesh_options, prefold);
   constructed.mesh_seconds = std::chrono::duration<double>(Clock::now() - mesh_start).count();
   return constructed;
 }
@@ -221,6 +226,33 @@ nlohmann::json construction_summary(const Invocation& invocation, const std::str
     lines.push_back(entry);
   }
   summary["lines"] = lines;
+  nlohmann::json stitches = nlohmann::json::array();
+  for (const auto& stitch : pattern.stitches)
+    stitches.push_back({{"line_a", stitch.line_a},
+                        {"line_b", stitch.line_b},
+                        {"reverse", stitch.reverse},
+                        {"pleat", stitch.origin}});
+  summary["stitches"] = stitches;
+  // Creased fold lines: their mesh vertices (garment.obj numbering) and
+  // rest angle (element/bending.hpp's sign), for postproc/pleat_shape.py.
+  std::map<std::pair<int, int>, double> rest_angles;
+  for (const CreaseEdge& edge : garment.mesh.creases)
+    rest_angles[std::minmax(edge.a, edge.b)] = edge.rest_angle;
+  nlohmann::json creases = nlohmann::json::array();
+  for (const auto& panel : pattern.panels) {
+    for (const auto& line : panel.interior) {
+      if (!line.crease) continue;
+      const std::vector<int>& vertices = garment.line_vertices.at(line.id);
+      creases.push_back({{"line", line.id},
+                         {"panel", panel.id},
+                         {"vertices", vertices},
+                         {"angle_deg", line.crease->angle * 180.0 / M_PI},
+                         {"toward", line.crease->outside ? "outside" : "inside"},
+                         {"rest_angle_deg",
+                          rest_angles.at(std::minmax(vertices[0], vertices[1])) * 180.0 / M_PI}});
+    }
+  }
+  summary["creases"] = creases;
   summary["mesh"] = {{"vertices", garment.mesh.vertex_count()},
                      {"triangles", garment.mesh.triangle_count()},
                      {"edge_length_m", mesh_options.edge_length},

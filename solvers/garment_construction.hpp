@@ -30,17 +30,19 @@ struct ConstructedGarment {
   double mesh_seconds = 0.0; // meshing the panels, s
 };
 
-// --edge-length and --min-angle: how finely the panels are meshed.
+// --edge-length and --min-angle: how finely the panels are meshed;
+// --no-prefold: the creased panels start flat (docs/pleats.md).
 const std::vector<OptionSpec>& panel_mesh_option_specs();
 // Throws InputError for a value out of range.
 PanelMeshOptions panel_mesh_options(const Options& options);
 
-// Reads PATTERN.json and constructs it around the built-in mannequin; a
-// `seams_file` (not empty) retags panels before TAGCON and overrides or
-// completes its seams after. Throws InputError for a bad pattern or seams
-// file, or a pattern TAGCON cannot construct.
+// Reads PATTERN.json and constructs it around the built-in mannequin,
+// pre-folding its creased fold lines when `prefold`; a `seams_file` (not
+// empty) retags panels before TAGCON and overrides or completes its seams
+// after. Throws InputError for a bad pattern or seams file, or a pattern
+// TAGCON cannot construct.
 ConstructedGarment construct_garment(const std::string& path, const PanelMeshOptions& mesh_options,
-                                     const std::string& seams_file = "");
+                                     const std::string& seams_file = "", bool prefold = true);
 
 // --seams-file of construct and drape.
 OptionSpec seams_file_option_spec();

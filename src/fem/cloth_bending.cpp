@@ -5,6 +5,7 @@
 #include "fem/cloth_problem.hpp"
 
 #include <algorithm>
+#include <map>
 #include <stdexcept>
 
 namespace sartor {
@@ -21,12 +22,43 @@ std::array<PetscInt, N> ClothProblem::vertex_dofs(const std::array<int, N / 3>& 
   return dofs;
 }
 
+namespace {
+
+// The mesh's creases by edge (lower vertex, higher vertex). Throws
+// InputError for a crease that is not an interior edge, or one given twice.
+std::map<std::pair<int, int>, double> crease_angles(const TriangleMesh& mesh) {
+  std::map<std::pair<int, int>, double> angles;
+  for (const Hinge& hinge : interior_edges(mesh))
+    angles[std::minmax(hinge.vertices[0], hinge.vertices[1])] = 0.0;
+  std::map<std::pair<int, int>, double> creases;
+  for (const CreaseEdge& crease : mesh.creases) {
+    const auto edge = std::minmax(crease.a, crease.b);
+    if (!angles.count(edge))
+      throw InputError("cloth: crease " + std::to_string(crease.a) + "-" +
+                       std::to_string(crease.b) + " is not an interior edge of the mesh");
+    if (!creases.emplace(edge, crease.rest_angle).second)
+      throw InputError("cloth: crease " + std::to_string(crease.a) + "-" +
+                       std::to_string(crease.b) + " is given twice");
+  }
+  return creases;
+}
+
+} // namespace
+
 void ClothProblem::set_up_bending(const std::vector<bool>& triangle_owned,
                                   const std::vector<bool>& is_pinned) {
   const bool any_bending =
       std::any_of(materials_.begin(), materials_.end(),
                   [](const ClothMaterial& material) { return material.has_bending(); });
   if (!any_bending) return;
+  // Only the discrete shell has a rest angle per hinge (docs/pleats.md).
+  if (!mesh_.creases.empty() &&
+      materials_.front().bending_model != element::BendingModel::discrete_shell) {
+    throw InputError("the mesh has " + std::to_string(mesh_.creases.size()) +
+                     " crease edges with rest angles, which only --bending-model "
+                     "discrete_shell honours");
+  }
+  const std::map<std::pair<int, int>, double> creases = crease_angles(mesh_);
   if (materials_.front().bending_model == element::BendingModel::patch) {
     set_up_patches(triangle_owned, is_pinned);
     return;
@@ -47,7 +79,8 @@ void ClothProblem::set_up_bending(const std::vector<bool>& triangle_owned,
       for (std::size_t k = 0; k < 3; ++k)
         uv[side][k] = corners[std::size_t(hinge.corners[side][k])];
     }
-    local.rest = element::hinge_rest(uv[0], uv[1]);
+    const auto crease = creases.find(std::minmax(hinge.vertices[0], hinge.vertices[1]));
+    local.rest = element::hinge_rest(uv[0], uv[1], crease == creases.end() ? 0.0 : crease->second);
     hinges_.push_back(local);
   }
 }

@@ -22,11 +22,16 @@ struct GarmentMesh {
   std::vector<int> first_vertex;                         // per panel, into mesh
   std::vector<int> triangle_count;                       // per panel
   std::map<std::string, std::vector<int>> line_vertices; // line id -> mesh vertices, start to end
-  // As Construction::seams, in its order; a T-seam's interior line is line b.
+  // As Construction::seams, in its order (a T-seam's interior line is line
+  // b), then the pattern's stitches. mesh.creases holds the creases.
   std::vector<Seam> seams;
 };
 
-GarmentMesh build_garment_mesh(const Construction& construction, const PanelMeshOptions& options);
+// `fold`: pre-fold the panels' creased fold lines (docs/pleats.md); without
+// it the panels start flat, their creases keeping their rest angles. The
+// pattern's stitches (pleats) are seams too, after TAGCON's.
+GarmentMesh build_garment_mesh(const Construction& construction, const PanelMeshOptions& options,
+                               bool fold = true);
 
 // OBJ with `g PANEL` and `usemtl PANEL` per panel, v = placed positions,
 // vt = material (u, v) in m; written atomically. `sartor run --mesh obj`

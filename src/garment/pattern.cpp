@@ -1,5 +1,7 @@
 #include "garment/pattern.hpp"
 
+#include "garment/pleats.hpp"
+
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/json_input.hpp"
@@ -651,6 +653,38 @@ void check_interior(const Node& node, const Panel& panel, double tolerance, doub
   }
 }
 
+// A fold line's crease (docs/pleats.md): the line must be straight, since
+// pre-folding turns the warping region rigidly about its chord.
+Crease read_crease(const Node& node, const Curve& curve, double flattening) {
+  node.object();
+  node.only_keys({"side", "angle_deg", "toward"});
+  Crease crease;
+  crease.json_path = node.path;
+  const std::string side = node.require("side").text();
+  if (side != "left" && side != "right")
+    node.child("side").fail("unknown side '" + side + "' (expected left or right)");
+  crease.side = side == "left" ? Crease::Side::left : Crease::Side::right;
+  const double degrees = node.require("angle_deg").number();
+  if (!(degrees > 0 && degrees < 180))
+    node.child("angle_deg")
+        .fail("a crease angle must lie in (0, 180) degrees, got " + format_number(degrees));
+  crease.angle = degrees * M_PI / 180;
+  if (node.has("toward")) {
+    const std::string toward = node.child("toward").text();
+    if (toward != "outside" && toward != "inside")
+      node.child("toward").fail("unknown direction '" + toward + "' (expected outside or inside)");
+    crease.outside = toward == "outside";
+  }
+  const Vector2d a = curve.start(), b = curve.end();
+  for (const auto& p : curve.flatten(flattening)) {
+    if (distance_to_segment(p, a, b) > std::max(flattening, 1e-3 * (b - a).norm()))
+      node.fail("a creased fold line must be straight: it passes " +
+                format_number(distance_to_segment(p, a, b)) + " m from its chord at " +
+                point_text(p));
+  }
+  return crease;
+}
+
 Panel read_panel(const Node& node, double scale, double tolerance, double flattening,
                  std::set<std::string>& line_ids) {
   node.object();
@@ -702,7 +736,7 @@ Panel read_panel(const Node& node, double scale, double tolerance, double flatte
     for (std::size_t i = 0; i < interior.array_size(); ++i) {
       const Node item = interior.element(i);
       item.object();
-      item.only_keys({"id", "kind", "type", "points"});
+      item.only_keys({"id", "kind", "type", "points", "crease"});
       InteriorLine line;
       line.json_path = item.path;
       line.id = claim_id(item.require("id"));
@@ -715,6 +749,11 @@ Panel read_panel(const Node& node, double scale, double tolerance, double flatte
       else
         kind.fail("unknown interior line kind '" + kind_name + "' (expected fold or t_seam)");
       line.curve = read_curve(item, scale);
+      if (item.has("crease")) {
+        if (line.kind != InteriorLine::Kind::fold)
+          item.child("crease").fail("only a fold line has a crease");
+        line.crease = read_crease(item.child("crease"), line.curve, flattening);
+      }
       panel.interior.push_back(std::move(line));
     }
     // An interior line that ends at a corner ends exactly there, so that the
@@ -803,7 +842,7 @@ Pattern parse_pattern(const std::string& text, const std::string& source) {
   const json document = parse_json_input(text, source);
   const Node root{document, "", source};
   root.object();
-  root.only_keys({"format", "version", "name", "units", "tolerance", "panels", "packs"});
+  root.only_keys({"format", "version", "name", "units", "tolerance", "panels", "packs", "pleats"});
   const std::string format = root.require("format").text();
   if (format != "sartor-pattern")
     root.child("format").fail("expected \"sartor-pattern\", got \"" + format + "\"");
@@ -854,6 +893,7 @@ Pattern parse_pattern(const std::string& text, const std::string& source) {
     pattern.panels.push_back(std::move(panel));
   }
   read_packs(root, pattern, scale);
+  if (root.has("pleats")) apply_pleats(pattern, document.at("pleats"), scale);
   return pattern;
 }
 

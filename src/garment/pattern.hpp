@@ -74,12 +74,26 @@ struct OutlineLine {
   std::string json_path; // where it was defined, e.g. panels[1].outline[3]
 };
 
+// The crease of a fold line (thesis §6.2): the part of the panel on `side`
+// of the line (the warping region) turns about the line's chord by `angle`
+// towards the outside of the garment (away from the body) or its inside.
+// The angle is the crease's bending rest angle, and pre-folding rotates the
+// warping region by it before the simulation (docs/pleats.md).
+struct Crease {
+  enum class Side { left, right }; // of the line from its start to its end
+  Side side = Side::left;
+  double angle = 0.0; // rad, in (0, pi)
+  bool outside = true;
+  std::string json_path;
+};
+
 // A line inside a panel: a fold line, or the line a T-seam sews to.
 struct InteriorLine {
   enum class Kind { fold, t_seam };
   std::string id;
   Kind kind = Kind::fold;
   Curve curve;
+  std::optional<Crease> crease; // fold lines only
   std::string json_path;
 };
 const char* name_of(InteriorLine::Kind kind);
@@ -143,6 +157,15 @@ struct Pack {
   std::string json_path;
 };
 
+// Two lines of one pattern sewn together by construction (the pleat
+// generator's side-line segments), whatever TAGCON finds: line_a's start
+// meets line_b's end when `reverse`.
+struct Stitch {
+  std::string line_a, line_b;
+  bool reverse = false;
+  std::string origin; // what made it, for messages and summaries
+};
+
 struct Pattern {
   int version = 1;
   std::string name;
@@ -150,6 +173,7 @@ struct Pattern {
   double tolerance = 1e-6; // m: closure and coincidence tolerance
   std::vector<Panel> panels;
   std::vector<Pack> packs; // every panel in exactly one
+  std::vector<Stitch> stitches;
 
   const Panel* find_panel(const std::string& id) const;
   int pack_of(int panel) const; // index into packs

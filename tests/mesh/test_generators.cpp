@@ -383,7 +383,7 @@ TEST(Generators, RejectBadArgumentsNamingTheParameter) {
       {[] { mesh::sphere_cap(1.0, 0.0, 2); }, "sphere_cap: cap_angle"},
       {[] { mesh::sphere_cap(1.0, 1.0, 0); }, "sphere_cap: rings must be at least 1"},
       {[] {
-         mesh::refine(TriangleMesh{{}, {{0, 1, 2}}, {}, {}});
+         mesh::refine(TriangleMesh{{}, {{0, 1, 2}}, {}, {}, {}});
        },
        "refine: the mesh has 1"},
   };
