@@ -328,7 +328,7 @@ def option_cases(src, work):
               Case("option.no_case", ["run"], "takes 1 argument"),
               Case("option.missing_case", ["run", f"{work}/nosuch.yaml"], "nosuch.yaml"),
               Case("option.drape_seams", ["drape", f"{src}/cases/patterns/skirt.json",
-                                          "--seams-file", "x.json", *out], "--seams-file")]
+                                          "--seams-file", "x.json", *out], "x.json")]
     return cases
 
 
