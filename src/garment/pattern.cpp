@@ -594,19 +594,6 @@ void check_simple(const Node& node, const Panel& panel, double tolerance, double
   }
 }
 
-// Winding-number test; the point is assumed off the polygon.
-bool inside(const std::vector<Vector2d>& polygon, const Vector2d& p) {
-  bool in = false;
-  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const Vector2d& a = polygon[i];
-    const Vector2d& b = polygon[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
-      in = !in;
-  }
-  return in;
-}
-
 // Interior lines lie inside their panel and meet the outline only at corners
 // between outline lines (so that no outline line gets a vertex that its
 // equal-arc-length discretisation does not have).
@@ -645,7 +632,7 @@ void check_interior(const Node& node, const Panel& panel, double tolerance, doub
         }
       }
       const Vector2d middle = 0.5 * (points[k] + points[k + 1]);
-      if (!inside(polygon, middle)) {
+      if (!inside_polygon(polygon, middle)) {
         where_defined.fail("interior line '" + line.id + "' leaves the panel near " +
                            point_text(middle));
       }
@@ -903,6 +890,18 @@ Pattern read_pattern(const std::string& path) {
   std::ostringstream text;
   text << in.rdbuf();
   return parse_pattern(text.str(), path);
+}
+
+bool inside_polygon(const std::vector<Vector2d>& polygon, const Vector2d& p) {
+  bool in = false;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    const Vector2d& a = polygon[i];
+    const Vector2d& b = polygon[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+      in = !in;
+  }
+  return in;
 }
 
 } // namespace sartor::garment

@@ -206,4 +206,8 @@ std::vector<Dart> read_darts(const nlohmann::json& darts, const std::string& pat
 // `gap` metres apart.
 std::vector<Placement> sheet_layout(const Pattern& pattern, double gap);
 
+// Crossing-number test of a point against a closed polygon; the point is
+// assumed off the polygon's boundary.
+bool inside_polygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p);
+
 } // namespace sartor::garment

@@ -55,18 +55,6 @@ double signed_area(const std::vector<Vector2d>& polygon) {
   return 0.5 * twice;
 }
 
-bool inside(const std::vector<Vector2d>& polygon, const Vector2d& p) {
-  bool in = false;
-  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const Vector2d& a = polygon[i];
-    const Vector2d& b = polygon[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
-      in = !in;
-  }
-  return in;
-}
-
 // The two halves of a cubic (or a straight) at t, by de Casteljau.
 std::array<Curve, 2> split(const Curve& c, double t) {
   std::array<Curve, 2> halves{c, c};
@@ -317,7 +305,7 @@ json panel_json(const ImportedPiece& piece, const std::string& id, const PanelTa
   int skipped = 0;
   for (const auto& line : piece.internal) {
     const bool within = line.size() >= 2 && std::all_of(line.begin(), line.end(), [&](auto& p) {
-                          return inside(polygon, p);
+                          return inside_polygon(polygon, p);
                         });
     if (!within) {
       ++skipped;

@@ -47,18 +47,6 @@ namespace {
   throw InputError(pattern.source + ": " + path + ": " + what);
 }
 
-bool inside_polygon(const std::vector<Vector2d>& polygon, const Vector2d& p) {
-  bool in = false;
-  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const Vector2d& a = polygon[i];
-    const Vector2d& b = polygon[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
-      in = !in;
-  }
-  return in;
-}
-
 // The slash lines of a pleat specification on its panel, and how the
 // pieces between them move.
 struct Slashing {
