@@ -266,10 +266,33 @@ bool has_token(const std::string& text, const std::string& token) {
   return false;
 }
 
+// FreeSewing 4 names a part's group "fs-stack-DESIGN.PART-part-DESIGN.PART"
+// (older releases "fs-part-PART" or "part-PART"): the piece is PART.
 std::string piece_name(const std::string& id) {
+  std::string name = id;
+  const std::size_t part = name.rfind("-part-");
+  if (part != std::string::npos) name = name.substr(part + 6);
   for (const std::string prefix : {"fs-part-", "fs-stack-", "part-"})
-    if (id.rfind(prefix, 0) == 0) return id.substr(prefix.size());
-  return id;
+    if (name.rfind(prefix, 0) == 0) name = name.substr(prefix.size());
+  const std::size_t design = name.rfind('.');
+  return design == std::string::npos ? name : name.substr(design + 1);
+}
+
+std::string lower(std::string text) {
+  for (char& c : text)
+    c = char(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+// Whether a path is a grain or fold mark: its id or class says so, or, as
+// FreeSewing 4 draws them, its markers (url(#grainlineFrom),
+// url(#cutonfoldFrom)) or its data-text (plugin-annotations:cutOnFold,
+// plugin-annotations:cutOnFoldAndGrainline).
+bool marks(const pt::ptree& node, const std::string& id, const std::string& what) {
+  for (const std::string& text : {id, attribute(node, "class"), attribute(node, "marker-start"),
+                                  attribute(node, "marker-end"), attribute(node, "data-text")})
+    if (lower(text).find(what) != std::string::npos) return true;
+  return false;
 }
 
 double length_unit(const std::string& value, const std::string& where) {
@@ -353,7 +376,9 @@ public:
         if (std::abs(twice) > best_area) best_area = std::abs(twice), best = k;
       }
       for (std::size_t k = 0; k < d.outlines.size(); ++k) {
-        if (k == best) continue;
+        // Open cut-line paths are marks on the outline, e.g. FreeSewing's
+        // hem fold line (class "fabric stroke-sm") across a hem allowance.
+        if (k == best || !d.outlines[k].second.closed) continue;
         std::vector<Vector2d> line{d.outlines[k].second.curves.front().start()};
         for (const Curve& c : d.outlines[k].second.curves) {
           const auto pts = c.flatten(1e-4);
@@ -392,10 +417,8 @@ private:
   void add_path(const pt::ptree& node, const Affine2& map, const std::string& piece,
                 const std::string& id, const std::string& where) {
     const std::string cls = attribute(node, "class");
-    const bool grain =
-        id.find("grainline") != std::string::npos || cls.find("grainline") != std::string::npos;
-    const bool fold =
-        id.find("cutonfold") != std::string::npos || cls.find("cutonfold") != std::string::npos;
+    const bool grain = marks(node, id, "grainline");
+    const bool fold = marks(node, id, "cutonfold");
     const bool cut_line =
         (has_token(cls, "fabric") || has_token(cls, "lining") || has_token(cls, "interfacing")) &&
         !has_token(cls, "sa");
@@ -415,7 +438,8 @@ private:
       if ((ends[1] - ends[0]).norm() <= 0)
         throw InputError(where + ": the " + std::string(grain ? "grain" : "fold") +
                          " line's first and last points coincide");
-      (grain ? d.piece.grain : d.piece.fold) = ends;
+      if (grain) d.piece.grain = ends;
+      if (fold) d.piece.fold = ends;
       return;
     }
     for (Subpath& s : subpaths) {
@@ -459,6 +483,10 @@ std::vector<ImportedPiece> parse_svg_pieces(const std::string& text, const std::
     if (width.empty())
       throw InputError(source + ": <svg> has a viewBox but no width: cannot tell the units");
     scale = length_unit(width, source + ": <svg width>") / v[2];
+  } else if (!attribute(*svg, "freesewing").empty()) {
+    // FreeSewing 4 writes no viewBox but draws in millimetres, the width in
+    // mm being the drawing's extent in user units.
+    scale = 1e-3;
   } else if (!width.empty()) {
     length_unit(width, source + ": <svg width>"); // checked; user units stay px
   }

@@ -829,7 +829,8 @@ Pattern parse_pattern(const std::string& text, const std::string& source) {
   const json document = parse_json_input(text, source);
   const Node root{document, "", source};
   root.object();
-  root.only_keys({"format", "version", "name", "units", "tolerance", "panels", "packs", "pleats"});
+  root.only_keys({"format", "version", "name", "units", "tolerance", "hangs_from", "panels",
+                  "packs", "pleats"});
   const std::string format = root.require("format").text();
   if (format != "sartor-pattern")
     root.child("format").fail("expected \"sartor-pattern\", got \"" + format + "\"");
@@ -842,6 +843,12 @@ Pattern parse_pattern(const std::string& text, const std::string& source) {
                                std::to_string(pattern_format_version) + ")");
   }
   if (root.has("name")) pattern.name = root.child("name").text();
+  if (root.has("hangs_from")) {
+    const std::string from = root.child("hangs_from").text();
+    if (from != "shoulders" && from != "waist")
+      root.child("hangs_from").fail("expected \"shoulders\" or \"waist\", got \"" + from + "\"");
+    pattern.hangs_from_shoulders = from == "shoulders";
+  }
   double scale = 1;
   if (root.has("units")) {
     const std::string units = root.child("units").text();

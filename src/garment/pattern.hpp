@@ -171,6 +171,9 @@ struct Pattern {
   std::string name;
   std::string source;      // the file read, for messages
   double tolerance = 1e-6; // m: closure and coincidence tolerance
+  // Where TAGCON hangs the torso cylinder: from the shoulders (a top, a
+  // dress) or the waist; unset: decided from the packs (docs/tagcon.md).
+  std::optional<bool> hangs_from_shoulders;
   std::vector<Panel> panels;
   std::vector<Pack> packs; // every panel in exactly one
   std::vector<Stitch> stitches;

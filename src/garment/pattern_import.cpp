@@ -223,8 +223,10 @@ std::vector<Curve> outline_lines(std::vector<Curve> loop, std::vector<bool> star
   return lines;
 }
 
-// A dart: two straight lines meeting at a reflex corner (a V cut into the
-// piece), narrower than the largest dart angle, equal in length within 5%.
+// A dart: two lines meeting at a reflex corner (a V cut into the piece),
+// their chords narrower than the largest dart angle, equal in length within
+// 5%. The legs may be curves: FreeSewing draws its darts' legs as cubic
+// Béziers, shaped to the body.
 std::vector<std::array<std::size_t, 2>> find_darts(const std::vector<Curve>& lines,
                                                    bool counter_clockwise, double max_angle_deg) {
   std::vector<std::array<std::size_t, 2>> darts;
@@ -233,14 +235,12 @@ std::vector<std::array<std::size_t, 2>> find_darts(const std::vector<Curve>& lin
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t next = (k + 1) % n;
     const Curve &in = lines[k], &out = lines[next];
-    if (used[k] || used[next] || in.kind != Curve::Kind::straight ||
-        out.kind != Curve::Kind::straight)
-      continue;
+    if (used[k] || used[next]) continue;
     const Vector2d a = in.start() - in.end(), b = out.end() - out.start();
     const double turn = cross(in.end() - in.start(), b);
     const bool reflex = counter_clockwise ? turn < 0 : turn > 0;
     const double angle = std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0));
-    const double la = a.norm(), lb = b.norm();
+    const double la = in.length(), lb = out.length();
     if (reflex && angle < max_angle_deg * M_PI / 180 &&
         std::abs(la - lb) <= 0.05 * std::max(la, lb)) {
       darts.push_back({k, next});
@@ -355,9 +355,12 @@ PieceSettings read_piece_settings(const json& value, const std::string& where) {
     } else if (item.key() == "darts") {
       if (!v.is_boolean()) throw InputError(at + ": expected true or false");
       settings.darts = v.get<bool>();
+    } else if (item.key() == "import") {
+      if (!v.is_boolean()) throw InputError(at + ": expected true or false");
+      settings.imported = v.get<bool>();
     } else {
       throw InputError(at + ": unknown key (expected one of: tag, twin_tag, fabric, cut, mirror, "
-                            "darts)");
+                            "darts, import)");
     }
   }
   return settings;
@@ -410,8 +413,13 @@ ImportSettings read_import_settings(const std::string& path) {
       for (const auto& piece : value.items())
         settings.pieces[piece.key()] =
             read_piece_settings(piece.value(), path + ": pieces." + piece.key());
+    } else if (item.key() == "hangs_from") {
+      if (!value.is_string() || (value != "shoulders" && value != "waist"))
+        fail("hangs_from", "expected \"shoulders\" or \"waist\"");
+      settings.hangs_from = value.get<std::string>();
     } else {
-      fail(item.key(), "unknown key (expected one of: fabric, corner_angle_deg, pieces)");
+      fail(item.key(),
+           "unknown key (expected one of: fabric, corner_angle_deg, hangs_from, pieces)");
     }
   }
   return settings;
@@ -438,6 +446,11 @@ json imported_pattern(const std::vector<ImportedPiece>& pieces, const ImportSett
   for (ImportedPiece piece : pieces) {
     const auto found = settings.pieces.find(piece.name);
     const PieceSettings given = found == settings.pieces.end() ? PieceSettings{} : found->second;
+    if (!given.imported) {
+      if (report)
+        report->lines.push_back("piece '" + piece.name + "': left out (\"import\": false)");
+      continue;
+    }
     const PanelTag tag = given.tag.value_or(PanelTag{});
     const std::string fabric = given.fabric.empty() ? settings.fabric : given.fabric;
     if (piece.fold) {
@@ -476,6 +489,7 @@ json imported_pattern(const std::vector<ImportedPiece>& pieces, const ImportSett
   }
   json pattern = {{"format", "sartor-pattern"}, {"version", 1},    {"name", name}, {"units", "m"},
                   {"tolerance", 1e-6},          {"panels", panels}};
+  if (!settings.hangs_from.empty()) pattern["hangs_from"] = settings.hangs_from;
   if (!packs.empty()) pattern["packs"] = packs;
   return pattern;
 }

@@ -41,6 +41,7 @@ struct PieceSettings {
   std::optional<int> quantity;
   bool mirror_right = false; // twin mirrored about the piece's right edge, not its left
   bool darts = true;         // find darts
+  bool imported = true;      // false: the piece is left out (a waistband, a binding)
 };
 
 struct ImportSettings {
@@ -48,7 +49,8 @@ struct ImportSettings {
   std::map<std::string, PieceSettings> pieces;
   double corner_angle_deg = 20; // a turn sharper than this between curves starts a new line
   double max_dart_angle_deg = 35;
-  std::string source; // the tag file, for messages; empty: none
+  std::string hangs_from; // "shoulders", "waist" or empty: the pattern's hangs_from
+  std::string source;     // the tag file, for messages; empty: none
 };
 
 // Reads a tag file. Throws InputError naming file and key.

@@ -109,6 +109,7 @@ void pack_box(const Pattern& pattern, const Pack& pack, Vector2d* low, Vector2d*
 }
 
 bool upper_body_garment(const Pattern& pattern) {
+  if (pattern.hangs_from_shoulders) return *pattern.hangs_from_shoulders;
   for (std::size_t k = 0; k < pattern.packs.size(); ++k) {
     const Cylinder c = pattern.pack_tag(int(k)).cylinder;
     if (c == Cylinder::arm_l || c == Cylinder::arm_r || c == Cylinder::neck || c == Cylinder::head)
