@@ -315,6 +315,29 @@ double length_unit(const std::string& value, const std::string& where) {
   return number * found->second;
 }
 
+// FreeSewing also marks points inside a piece with its notch snippet (a
+// bust point, a dart's tip): only notches on the outline split it.
+void drop_interior_notches(ImportedPiece& piece) {
+  constexpr double on_outline = 1e-3; // m
+  std::vector<Vector2d> outline;
+  for (const Curve& c : piece.boundary) {
+    const auto points = c.flatten(1e-5);
+    outline.insert(outline.end(), points.begin(), points.end());
+  }
+  const auto near_outline = [&](const Vector2d& p) {
+    for (std::size_t k = 0; k + 1 < outline.size(); ++k) {
+      const Vector2d a = outline[k], ab = outline[k + 1] - a;
+      const double t =
+          ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+      if ((a + t * ab - p).norm() <= on_outline) return true;
+    }
+    return false;
+  };
+  piece.notches.erase(std::remove_if(piece.notches.begin(), piece.notches.end(),
+                                     [&](const Vector2d& p) { return !near_outline(p); }),
+                      piece.notches.end());
+}
+
 struct PieceDraft {
   ImportedPiece piece;
   std::vector<std::pair<std::string, Subpath>> outlines; // path id, closed subpath
@@ -395,6 +418,7 @@ public:
             " m from its first");
       d.piece.boundary = outline.curves;
       d.piece.boundary.back().points.back() = d.piece.boundary.front().start();
+      drop_interior_notches(d.piece);
       result.push_back(d.piece);
     }
     if (result.empty())

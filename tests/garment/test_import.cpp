@@ -231,6 +231,56 @@ Construction build(const Pattern& pattern) {
 // cases/import/pencil_skirt.svg (mm; the front's stack moved by (20, 30)):
 // the half front unfolded about its centre line x = 20 mm, the back cut
 // twice, four darts, and TAGCON sews every dart leg to its partner.
+// What FreeSewing 4 itself writes (cases/import/freesewing/): no viewBox but
+// millimetres, a part's group "fs-stack-D.P-part-D.P", the grain and fold
+// marks known by their markers and data-text, an open hem fold line drawn
+// as fabric, and darts whose legs are cubic curves.
+TEST(ImportSvg, FreeSewingFourOutput) {
+  const std::string text =
+      R"svg(<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" freesewing="4.10.2" width="300mm" height="700mm">
+  <g id="fs-stack-d.front" transform="translate(10, 20)">
+  <g id="fs-stack-d.front-part-d.front" transform="translate(0, 0)">
+  <path class="fabric stroke-sm" id="fs-1" d="M 0,590 L 200,590" />
+  <path class="fabric" id="fs-2" d="M 0,0 L 0,600 L 200,600 L 200,0 L 120,0 C 119,40 112,80 110,100 C 108,80 101,40 100,0 L 0,0 z" />
+  <path class="note" marker-start="url(#cutonfoldFrom)" marker-end="url(#cutonfoldTo)" data-text="plugin-annotations:cutOnFold" d="M 0,30 L 15,30 L 15,570 L 0,570" />
+  <use x="200" y="300" xlink:href="#notch" /><use x="60" y="300" xlink:href="#notch" />
+  <path class="note" marker-start="url(#grainlineFrom)" marker-end="url(#grainlineTo)" data-text="plugin-annotations:grainline" d="M 50,70 L 50,540" />
+  </g></g></svg>)svg";
+  const auto pieces = parse_svg_pieces(text, "fs4.svg");
+  ASSERT_EQ(pieces.size(), 1u);
+  EXPECT_EQ(pieces[0].name, "front");
+  // User units are mm: the hem corner (200, 600) moved by (10, 20), y up.
+  EXPECT_NEAR((pieces[0].boundary[2].start() - Vector2d(0.21, -0.62)).norm(), 0, 1e-12);
+  EXPECT_TRUE(pieces[0].internal.empty()); // the open hem fold line is not an internal line
+  // The notch on the side seam splits the outline; the one inside is a mark.
+  ASSERT_EQ(pieces[0].notches.size(), 1u);
+  EXPECT_NEAR((pieces[0].notches[0] - Vector2d(0.21, -0.32)).norm(), 0, 1e-12);
+  ASSERT_TRUE(pieces[0].fold.has_value());
+  EXPECT_NEAR(((*pieces[0].fold)[0] - Vector2d(0.01, -0.05)).norm(), 0, 1e-12);
+  EXPECT_NEAR(((*pieces[0].fold)[1] - Vector2d(0.01, -0.59)).norm(), 0, 1e-12);
+  ASSERT_TRUE(pieces[0].grain.has_value());
+  EXPECT_NEAR(((*pieces[0].grain)[1] - (*pieces[0].grain)[0]).norm(), 0.47, 1e-12);
+
+  // Unfolded: the dart (20 mm wide, 100 mm deep, curved legs) and its mirror.
+  const Pattern pattern =
+      parse_pattern(imported_pattern(pieces, ImportSettings{}, "fs4").dump(), "fs4.json");
+  ASSERT_EQ(pattern.panels.size(), 1u);
+  const Panel& front = pattern.panels[0];
+  ASSERT_EQ(front.darts.size(), 2u);
+  for (const Dart& dart : front.darts)
+    for (const OutlineLine& line : front.outline)
+      if (line.id == dart.first_leg || line.id == dart.second_leg) {
+        EXPECT_EQ(line.curve.kind, Curve::Kind::bezier) << line.id;
+        // Longer than the chord of 10 mm across and 100 mm down, shorter
+        // than the control polygon.
+        const double chord = std::hypot(0.010, 0.100);
+        const double polygon =
+            std::hypot(0.001, 0.040) + std::hypot(0.007, 0.040) + std::hypot(0.002, 0.020);
+        EXPECT_GT(line.curve.length(), chord) << line.id;
+        EXPECT_LT(line.curve.length(), polygon) << line.id;
+      }
+}
+
 TEST(ImportSvg, FreeSewingStylePencilSkirt) {
   const auto pieces = read_svg_pieces(cases_import + "/pencil_skirt.svg");
   ASSERT_EQ(pieces.size(), 2u);
