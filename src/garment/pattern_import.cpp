@@ -169,10 +169,15 @@ void unfold(ImportedPiece& piece) {
   for (auto c = rest.rbegin(); c != rest.rend(); ++c)
     unfolded.push_back(reflected(*c, fold).reversed());
   loop = unfolded;
-  const std::size_t notches = piece.notches.size();
-  for (std::size_t k = 0; k < notches; ++k)
-    if (distance_to_line(piece.notches[k], fold) > snap)
-      piece.notches.push_back(reflect(piece.notches[k], fold));
+  // A notch on the fold (a centre front mark) lies inside the unfolded panel:
+  // it marks, it splits no line. The others get their mirror images.
+  std::vector<Vector2d> notches;
+  for (const Vector2d& notch : piece.notches)
+    if (distance_to_line(notch, fold) > snap) notches.push_back(notch);
+  const std::size_t kept = notches.size();
+  for (std::size_t k = 0; k < kept; ++k)
+    notches.push_back(reflect(notches[k], fold));
+  piece.notches = notches;
   const std::size_t internal = piece.internal.size();
   for (std::size_t k = 0; k < internal; ++k) {
     std::vector<Vector2d> mirror;
@@ -413,13 +418,18 @@ ImportSettings read_import_settings(const std::string& path) {
       for (const auto& piece : value.items())
         settings.pieces[piece.key()] =
             read_piece_settings(piece.value(), path + ": pieces." + piece.key());
+    } else if (item.key() == "max_dart_angle_deg") {
+      if (!value.is_number() || !(value.get<double>() > 0 && value.get<double>() < 90))
+        fail("max_dart_angle_deg", "expected a number of degrees in (0, 90)");
+      settings.max_dart_angle_deg = value.get<double>();
     } else if (item.key() == "hangs_from") {
       if (!value.is_string() || (value != "shoulders" && value != "waist"))
         fail("hangs_from", "expected \"shoulders\" or \"waist\"");
       settings.hangs_from = value.get<std::string>();
     } else {
       fail(item.key(),
-           "unknown key (expected one of: fabric, corner_angle_deg, hangs_from, pieces)");
+           "unknown key (expected one of: fabric, corner_angle_deg, max_dart_angle_deg, "
+           "hangs_from, pieces)");
     }
   }
   return settings;

@@ -21,7 +21,7 @@ const designs = { penelope: Penelope, bella: Bella, aaron: Aaron, teagan: Teagan
 
 function usage(message) {
   if (message) console.error(`draft.mjs: ${message}`)
-  console.error(
+  ;(message ? console.error : console.log)(
     'usage: node draft.mjs DESIGN (--model NAME | --measurements FILE.json) --outdir DIR [--sa MM] [--option KEY=VALUE ...]\n' +
       `  DESIGN: ${Object.keys(designs).join(', ')}\n` +
       '  NAME: a measurement set of @freesewing/models, e.g. cisFemaleAdult36'

@@ -15,3 +15,6 @@ fi
 node "$here/draft.mjs" penelope --model cisFemaleAdult36 --outdir "$out" --option backVent=false
 # Aaron (tank top): front and back cut on the fold, shoulder and side seams.
 node "$here/draft.mjs" aaron --model cisFemaleAdult36 --outdir "$out"
+# Bella (bodice block): front with waist and side bust darts, cut on the
+# fold; back with a waist dart, cut 2; sleeve.
+node "$here/draft.mjs" bella --model cisFemaleAdult36 --outdir "$out"
