@@ -24,20 +24,24 @@ const CommandSpec& import_command() {
       "[--units mm|cm|m|in] [--name TEXT]",
       "Reads the pieces of a DXF-AAMA file (ASTM D6673: a block per piece, boundary\n"
       "on layer 1 or sew line on layer 14, notches 4, mirror line 6, grain line 7,\n"
-      "internal lines 8, \"Piece Name:\" and \"Quantity:\" texts) or of an SVG drawn as\n"
-      "FreeSewing draws patterns (a group per piece, the seam line a closed path of\n"
-      "class \"fabric\", seam allowance \"sa\" ignored, grainline and cutonfold paths,\n"
-      "notch <use> marks) and writes them as a Sartor pattern (docs/patterns.md):\n"
-      "a piece cut on the fold mirrored about it into one panel, a piece cut twice\n"
-      "given a mirrored twin, the outline split into lines at corners and notches,\n"
-      "V-shaped notches of two equal straight lines declared as darts. The tag file\n"
-      "gives each piece its TAGCON tag, fabric and cut; pieces it does not name are\n"
+      "internal lines 8, \"Piece Name:\" and \"Quantity:\" texts) or an SVG as\n"
+      "FreeSewing renders patterns (its own output, docs/freesewing.md: a group per\n"
+      "part, the seam line a closed path of class \"fabric\", seam allowance \"sa\"\n"
+      "ignored, grain line and cut-on-fold marks, notch <use> marks, mm) and writes\n"
+      "them as a Sartor pattern (docs/patterns.md): a piece cut on the fold mirrored\n"
+      "about it into one panel, a piece cut twice given a mirrored twin, the outline\n"
+      "split into lines at corners and notches, V-shaped notches of two equal lines\n"
+      "(straight or curved) declared as darts. The tag file gives each piece its\n"
+      "TAGCON tag, fabric and cut, or leaves it out; pieces it does not name are\n"
       "(torso, front, 0). The pattern written is read back and validated.\n\n"
       "examples:\n"
       "  sartor import skirt.svg --tags skirt_tags.json --output skirt.json\n"
+      "  sartor import cases/import/freesewing/penelope_cisFemaleAdult36.svg "
+      "--tags cases/import/freesewing/penelope_tags.json\n"
       "  sartor import bodice.dxf --units mm --output bodice.json",
       {
-          {"tags", "FILE", "", "tag file: tags, fabrics, cut counts per piece (JSON)"},
+          {"tags", "FILE", "",
+           "tag file: tags, fabrics, cut counts per piece, pieces left out (JSON)"},
           {"output", "FILE", "out/import/pattern.json", "the pattern JSON written"},
           {"units", "UNIT", "", "DXF only: the drawing unit (mm, cm, m, in) [from the file]"},
           {"name", "TEXT", "", "the pattern's name [the input file's name]"},
