@@ -281,6 +281,47 @@ TEST(ImportSvg, FreeSewingFourOutput) {
       }
 }
 
+// The tag file's keys for FreeSewing's patterns: pieces left out, the widest
+// dart, where the torso hangs (written into the pattern, read back); bad
+// values are errors naming the file and key.
+TEST(ImportSvg, TagFileLeavesOutPiecesAndSetsTheAnchor) {
+  const std::string two = svg(
+      R"svg(<g id="fs-stack-d.a-part-d.a"><path class="fabric" d="M 0,0 L 100,0 L 100,100 L 0,100 Z"/></g>
+      <g id="fs-stack-d.b-part-d.b"><path class="fabric" d="M 200,0 L 300,0 L 300,100 L 200,100 Z"/></g>)svg");
+  const auto pieces = parse_svg_pieces(two, "two.svg");
+  ASSERT_EQ(pieces.size(), 2u);
+  const ImportSettings settings = read_import_settings(write_file(
+      "tags_two.json",
+      R"({"hangs_from": "shoulders", "max_dart_angle_deg": 40, "pieces": {"b": {"import": false}}})"));
+  EXPECT_EQ(settings.max_dart_angle_deg, 40);
+  const Pattern pattern =
+      parse_pattern(imported_pattern(pieces, settings, "two").dump(), "two.json");
+  ASSERT_EQ(pattern.panels.size(), 1u);
+  EXPECT_EQ(pattern.panels[0].id, "a");
+  ASSERT_TRUE(pattern.hangs_from_shoulders.has_value());
+  EXPECT_TRUE(*pattern.hangs_from_shoulders);
+
+  const auto expect_error = [](const std::string& text, const std::string& fragment) {
+    try {
+      read_import_settings(write_file("tags_bad.json", text));
+      ADD_FAILURE() << "no error; expected: " << fragment;
+    } catch (const InputError& error) {
+      EXPECT_NE(std::string(error.what()).find(fragment), std::string::npos) << error.what();
+    }
+  };
+  expect_error(R"({"hangs_from": "knees"})", "tags_bad.json: hangs_from: expected");
+  expect_error(R"({"max_dart_angle_deg": 95})", "tags_bad.json: max_dart_angle_deg: expected");
+  expect_error(R"({"pieces": {"a": {"import": "no"}}})", "pieces.a.import: expected true or false");
+  try {
+    parse_pattern(R"({"format": "sartor-pattern", "version": 1, "hangs_from": "knees",
+                      "panels": []})",
+                  "p.json");
+    ADD_FAILURE() << "no error for hangs_from knees";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("hangs_from"), std::string::npos) << error.what();
+  }
+}
+
 TEST(ImportSvg, FreeSewingStylePencilSkirt) {
   const auto pieces = read_svg_pieces(cases_import + "/pencil_skirt.svg");
   ASSERT_EQ(pieces.size(), 2u);
