@@ -1,0 +1,148 @@
+// Wrapping by marks (garment/wrap.hpp): the sample sleeve on a capsule arm.
+// The references are the arm's closed-form geometry, computed here.
+
+#include "contact/analytic_shapes.hpp"
+#include "garment/wrap.hpp"
+
+#include <Eigen/LU>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace {
+
+using namespace sartor;
+using namespace sartor::garment;
+
+const std::string cases = SARTOR_WRAP_CASES_DIR;
+// The arm of cases/wrap/sleeve_marks.json.
+const Eigen::Vector3d arm_a(0.0, 0.0, 1.2), arm_b(0.6, 0.0, 1.2);
+constexpr double arm_radius = 0.05;
+
+// The nearest point of the arm's axis segment.
+Eigen::Vector3d on_axis(const Eigen::Vector3d& p) {
+  const Eigen::Vector3d axis = arm_b - arm_a;
+  const double t = std::clamp((p - arm_a).dot(axis) / axis.squaredNorm(), 0.0, 1.0);
+  return arm_a + t * axis;
+}
+
+double arm_distance(const Eigen::Vector3d& p) { return (p - on_axis(p)).norm() - arm_radius; }
+
+// The 3D point of the wrapped mesh at panel point `q` (panel 0, its grain
+// making material (u, v) = (y, -x)), by barycentric interpolation.
+Eigen::Vector3d cloth_point(const TriangleMesh& mesh, const Eigen::Vector2d& q) {
+  const Eigen::Vector2d uv(q.y(), -q.x());
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const auto& c = mesh.material_uv[t];
+    Eigen::Matrix2d edges;
+    edges << c[1] - c[0], c[2] - c[0];
+    const Eigen::Vector2d w = edges.inverse() * (uv - c[0]);
+    if (w.minCoeff() < -1e-9 || w.sum() > 1.0 + 1e-9) continue;
+    const auto& v = mesh.triangles[t];
+    return (1.0 - w.sum()) * mesh.positions[std::size_t(v[0])] +
+           w.x() * mesh.positions[std::size_t(v[1])] + w.y() * mesh.positions[std::size_t(v[2])];
+  }
+  ADD_FAILURE() << "panel point " << q.transpose() << " not in the mesh";
+  return Eigen::Vector3d::Zero();
+}
+
+struct WrappedSleeve {
+  Pattern pattern;
+  TriangleMesh sewn;
+  WrapResult result;
+};
+
+const WrappedSleeve& wrapped_sleeve() {
+  static const WrappedSleeve sleeve = [] {
+    WrappedSleeve s;
+    std::vector<ClothMark> pattern_marks;
+    s.pattern = read_pattern_with_marks(cases + "/sleeve.json", pattern_marks);
+    WrapMarks marks = read_marks(cases + "/sleeve_marks.json", s.pattern, pattern_marks);
+    const contact::Capsule arm(arm_a, arm_b, arm_radius);
+    for (MarkPair& pair : marks.pairs)
+      pair.body = body_surface_path(arm, pair.body, 0.01);
+    s.sewn = sew_panels(s.pattern, marks.seams, 0.04, 25.0);
+    s.result = wrap(s.sewn, s.pattern, marks.pairs, arm, WrapOptions{});
+    return s;
+  }();
+  return sleeve;
+}
+
+TEST(Wrap, SleeveIsSewnIntoATube) {
+  const WrappedSleeve& sleeve = wrapped_sleeve();
+  // A tube has two boundary loops (cuff and top), no seam edge left open:
+  // every boundary vertex lies on y = 0 or y = 0.36 of the panel.
+  for (int v : boundary_vertices(sleeve.sewn)) {
+    bool on_end = false;
+    for (std::size_t t = 0; t < sleeve.sewn.triangle_count(); ++t)
+      for (std::size_t c = 0; c < 3; ++c)
+        if (sleeve.sewn.triangles[t][c] == v) {
+          const double along = sleeve.sewn.material_uv[t][c].x();
+          on_end = on_end || std::abs(along) < 1e-9 || std::abs(along - 0.36) < 1e-9;
+        }
+    EXPECT_TRUE(on_end) << "vertex " << v << " is on an open boundary";
+  }
+}
+
+TEST(Wrap, SleeveMarksLandOnTheArmMarks) {
+  const WrappedSleeve& sleeve = wrapped_sleeve();
+  // Along each cloth mark, the arm point under the cloth is compared with
+  // the body mark's point at the same fraction of its length.
+  struct Line {
+    double panel_x, body_y;
+  };
+  double worst = 0.0;
+  for (const Line line : {Line{0.3, -arm_radius}, Line{0.1, arm_radius}}) {
+    for (int k = 0; k <= 10; ++k) {
+      const double fraction = k / 10.0;
+      const Eigen::Vector3d cloth =
+          cloth_point(sleeve.result.mesh, {line.panel_x, 0.04 + 0.28 * fraction});
+      const Eigen::Vector3d axis = on_axis(cloth);
+      const Eigen::Vector3d under = axis + arm_radius * (cloth - axis).normalized();
+      const Eigen::Vector3d target(0.1 + 0.28 * fraction, line.body_y, 1.2);
+      worst = std::max(worst, (under - target).norm());
+    }
+  }
+  // Bound: one edge length (0.04 m) of the mesh.
+  EXPECT_LT(worst, 0.04);
+  RecordProperty("mark_mismatch_max_m", std::to_string(worst));
+}
+
+TEST(Wrap, NoSleeveVertexInsideTheArm) {
+  const WrappedSleeve& sleeve = wrapped_sleeve();
+  double closest = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& p : sleeve.result.mesh.positions)
+    closest = std::min(closest, arm_distance(p));
+  EXPECT_GE(closest, 0.0);
+  // Every vertex is kept at the 12 mm offset: well above the half of it.
+  EXPECT_GT(closest, 0.006);
+}
+
+TEST(Wrap, SleeveEdgesStayNearTheirRestLengths) {
+  const WrappedSleeve& sleeve = wrapped_sleeve();
+  double low = std::numeric_limits<double>::infinity(), high = 0.0;
+  const TriangleMesh& mesh = sleeve.result.mesh;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double rest = (mesh.material_uv[t][c] - mesh.material_uv[t][(c + 1) % 3]).norm();
+      const double now = (mesh.positions[std::size_t(mesh.triangles[t][c])] -
+                          mesh.positions[std::size_t(mesh.triangles[t][(c + 1) % 3])])
+                             .norm();
+      low = std::min(low, now / rest);
+      high = std::max(high, now / rest);
+    }
+  EXPECT_GT(low, 0.7);
+  EXPECT_LT(high, 1.3);
+}
+
+TEST(Wrap, EveryVertexIsMappedOnce) {
+  const WrappedSleeve& sleeve = wrapped_sleeve();
+  std::vector<int> order = sleeve.result.growth_order;
+  std::sort(order.begin(), order.end());
+  EXPECT_EQ(std::unique(order.begin(), order.end()), order.end());
+  EXPECT_EQ(order.size(), sleeve.sewn.vertex_count());
+}
+
+} // namespace
