@@ -197,19 +197,19 @@ void check_keys(const YAML::Node& map, const std::vector<std::string>& known,
 
 } // namespace
 
-DragScript read_drag_script(const std::string& path, const std::vector<Eigen::Vector3d>& positions) {
+DragScript read_drag_script(const std::string& path,
+                            const std::vector<Eigen::Vector3d>& positions) {
   const YAML::Node document = load_yaml_input(path, "drag script");
   if (!document.IsMap()) throw InputError(path + ": a mapping is needed");
-  check_keys(document, {"body", "offset", "relax_steps", "pull_band", "drags"}, path);
+  check_keys(document, {"body", "relax_steps", "pull_band", "drags"}, path);
   DragScript script;
   try {
     if (!document["body"]) throw InputError(path + ": body: a body specification is needed");
     script.body = document["body"].as<std::string>();
-    script.offset = document["offset"] ? document["offset"].as<double>() : script.offset;
-    if (!(script.offset >= 0.0)) throw InputError(path + ": offset: must be >= 0");
     if (document["relax_steps"]) script.options.relax_steps = document["relax_steps"].as<int>();
     if (script.options.relax_steps < 0) throw InputError(path + ": relax_steps: must be >= 0");
     if (document["pull_band"]) script.options.pull_band = document["pull_band"].as<double>();
+    if (!(script.options.pull_band >= 0.0)) throw InputError(path + ": pull_band: must be >= 0");
     const YAML::Node drags = document["drags"];
     if (!drags || !drags.IsSequence() || drags.size() == 0)
       throw InputError(path + ": drags: a list of at least one drag is needed");
@@ -224,8 +224,8 @@ DragScript read_drag_script(const std::string& path, const std::vector<Eigen::Ve
       if (repeat < 1) throw InputError(where + ".repeat: must be >= 1");
       for (int r = 0; r < repeat; ++r)
         for (std::size_t s = 0; s < drags[i]["steps"].size(); ++s)
-          drag.steps.push_back(read_vector(drags[i]["steps"][s],
-                                           where + ".steps[" + std::to_string(s) + "]"));
+          drag.steps.push_back(
+              read_vector(drags[i]["steps"][s], where + ".steps[" + std::to_string(s) + "]"));
       if (drags[i]["pins"]) {
         for (std::size_t p = 0; p < drags[i]["pins"].size(); ++p)
           drag.pins.push_back(read_vertex(drags[i]["pins"][p], positions,

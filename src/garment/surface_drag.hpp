@@ -44,7 +44,7 @@ double attenuation_ratio(double a, double b, double c);
 std::vector<double> attenuation(const RestEdges& edges, int grabbed, const std::vector<int>& pins);
 
 struct DragOptions {
-  int relax_steps = 3;     // after every drag step
+  int relax_steps = 3;      // after every drag step
   double pull_band = 0.036; // m: vertices nearer the body are pulled halfway to the offset
 };
 
@@ -78,7 +78,7 @@ private:
   std::vector<Eigen::Vector3d> motion_;
 };
 
-// A drag script (docs/wrapping.md): the body, the offset, and drags.
+// A drag script (docs/wrapping.md): the body and the drags.
 struct ScriptedDrag {
   int vertex = 0;
   std::vector<Eigen::Vector3d> steps; // displacements, m
@@ -86,7 +86,6 @@ struct ScriptedDrag {
 };
 struct DragScript {
   std::string body; // a body specification (contact/body_spec.hpp)
-  double offset = 0.012;
   DragOptions options;
   std::vector<ScriptedDrag> drags;
 };

@@ -31,9 +31,9 @@ std::vector<double> arc_lengths(const std::vector<Point>& points) {
 }
 
 // The point at `fraction` of a 3D polyline's arc length and its unit tangent.
-std::pair<Eigen::Vector3d, Eigen::Vector3d>
-at_fraction(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& lengths,
-            double fraction) {
+std::pair<Eigen::Vector3d, Eigen::Vector3d> at_fraction(const std::vector<Eigen::Vector3d>& points,
+                                                        const std::vector<double>& lengths,
+                                                        double fraction) {
   const double target = std::clamp(fraction, 0.0, 1.0) * lengths.back();
   std::size_t segment = 0;
   while (segment + 2 < points.size() && lengths[segment + 1] < target)
@@ -70,7 +70,8 @@ Adjacency adjacency(const TriangleMesh& mesh) {
   adjacent.triangles_of_vertex.resize(mesh.vertex_count());
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
     for (int c = 0; c < 3; ++c) {
-      const int a = mesh.triangles[t][std::size_t(c)], b = mesh.triangles[t][std::size_t(c + 1) % 3];
+      const int a = mesh.triangles[t][std::size_t(c)],
+                b = mesh.triangles[t][std::size_t(c + 1) % 3];
       adjacent.triangles_of_vertex[std::size_t(a)].push_back(int(t));
       adjacent.triangles_of_edge[{std::min(a, b), std::max(a, b)}].push_back(int(t));
     }
@@ -150,9 +151,9 @@ Eigen::Vector3d place_from_parent(const TriangleMesh& mesh, const std::vector<Ei
     for (int corner : mesh.triangles[std::size_t(parent)])
       if (corner != a && corner != b) third = corner;
     const Eigen::Vector3d to_third = x[std::size_t(third)] - xa;
-    const Eigen::Vector3d across =
-        to_third - to_third.dot(shared) / shared.squaredNorm() * shared;
-    if (across.norm() > 1e-9 * shared.norm()) return base - std::abs(altitude) * across.normalized();
+    const Eigen::Vector3d across = to_third - to_third.dot(shared) / shared.squaredNorm() * shared;
+    if (across.norm() > 1e-9 * shared.norm())
+      return base - std::abs(altitude) * across.normalized();
   }
   // The front (counter-clockwise (u, v)) faces away from the body.
   const Eigen::Vector3d normal = nearest_body_point(body, base).normal;
@@ -184,7 +185,8 @@ class Growth {
 public:
   Growth(ClothOnBody& cloth, std::vector<double> priority, int relax_steps)
       : cloth_(cloth), mesh_(cloth.mesh()), adjacent_(adjacency(cloth.mesh())),
-        priority_(std::move(priority)), relax_steps_(relax_steps), queued_(mesh_.vertex_count(), false) {}
+        priority_(std::move(priority)), relax_steps_(relax_steps),
+        queued_(mesh_.vertex_count(), false) {}
 
   // Maps every vertex reachable from the mapped ones; returns them in order.
   std::vector<int> grow() {
@@ -263,8 +265,7 @@ std::vector<Eigen::Vector3d> body_surface_path(const contact::Shape& body,
                                                double spacing) {
   std::vector<Eigen::Vector3d> path{nearest_body_point(body, points.front()).closest};
   for (std::size_t i = 1; i < points.size(); ++i) {
-    const int pieces =
-        std::max(1, int(std::ceil((points[i] - points[i - 1]).norm() / spacing)));
+    const int pieces = std::max(1, int(std::ceil((points[i] - points[i - 1]).norm() / spacing)));
     for (int k = 1; k <= pieces; ++k) {
       const Eigen::Vector3d p = points[i - 1] + double(k) / pieces * (points[i] - points[i - 1]);
       path.push_back(nearest_body_point(body, p).closest);
@@ -279,8 +280,9 @@ MarkMismatch mark_mismatch(const std::vector<MarkCrossing>& crossings,
   MarkMismatch mismatch;
   double squares = 0.0;
   for (const MarkCrossing& crossing : crossings) {
-    const Eigen::Vector3d on_cloth = (1.0 - crossing.along_edge) * positions[std::size_t(crossing.a)] +
-                                     crossing.along_edge * positions[std::size_t(crossing.b)];
+    const Eigen::Vector3d on_cloth =
+        (1.0 - crossing.along_edge) * positions[std::size_t(crossing.a)] +
+        crossing.along_edge * positions[std::size_t(crossing.b)];
     const double error = (nearest_body_point(body, on_cloth).closest - crossing.target).norm();
     mismatch.max = std::max(mismatch.max, error);
     squares += error * error;

@@ -44,8 +44,8 @@ std::vector<Eigen::Matrix<double, count, 1>> read_points(const nlohmann::json& v
   for (std::size_t i = 0; i < value.size(); ++i) {
     const nlohmann::json& point = value[i];
     if (!point.is_array() || point.size() != std::size_t(count))
-      throw InputError(where + "[" + std::to_string(i) + "]: a point of " +
-                       std::to_string(count) + " numbers is needed");
+      throw InputError(where + "[" + std::to_string(i) + "]: a point of " + std::to_string(count) +
+                       " numbers is needed");
     Eigen::Matrix<double, count, 1> p;
     for (int k = 0; k < count; ++k) {
       if (!point[std::size_t(k)].is_number() || !std::isfinite(point[std::size_t(k)].get<double>()))
@@ -197,9 +197,9 @@ TriangleMesh sew_panels(const Pattern& pattern, const std::vector<SewnLines>& se
   for (const SewnLines& seam : all) {
     const std::vector<int>&a = line_vertices[seam.a], &b = line_vertices[seam.b];
     if (a.size() != b.size())
-      throw InputError(seam.where + ": lines '" + seam.a + "' and '" + seam.b + "' were meshed with " +
-                       std::to_string(a.size()) + " and " + std::to_string(b.size()) +
-                       " vertices; try another --edge-length");
+      throw InputError(seam.where + ": lines '" + seam.a + "' and '" + seam.b +
+                       "' were meshed with " + std::to_string(a.size()) + " and " +
+                       std::to_string(b.size()) + " vertices; try another --edge-length");
     for (std::size_t i = 0; i < a.size(); ++i)
       pairs.emplace_back(a[i], seam.reverse ? b[b.size() - 1 - i] : b[i]);
   }

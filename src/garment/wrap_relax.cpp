@@ -53,9 +53,11 @@ RestEdges rest_edges(const TriangleMesh& mesh) {
   std::map<std::pair<int, int>, std::pair<double, int>> sums;
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
     for (int c = 0; c < 3; ++c) {
-      const int a = mesh.triangles[t][std::size_t(c)], b = mesh.triangles[t][std::size_t(c + 1) % 3];
+      const int a = mesh.triangles[t][std::size_t(c)],
+                b = mesh.triangles[t][std::size_t(c + 1) % 3];
       const double length =
-          (mesh.material_uv[t][std::size_t(c)] - mesh.material_uv[t][std::size_t(c + 1) % 3]).norm();
+          (mesh.material_uv[t][std::size_t(c)] - mesh.material_uv[t][std::size_t(c + 1) % 3])
+              .norm();
       auto& sum = sums[{std::min(a, b), std::max(a, b)}];
       sum.first += length;
       sum.second += 1;
@@ -75,8 +77,8 @@ RestEdges rest_edges(const TriangleMesh& mesh) {
 
 ClothOnBody::ClothOnBody(TriangleMesh mesh, const contact::Shape& body,
                          const RelaxParameters& parameters)
-    : active(mesh.vertex_count(), true), fixed(mesh.vertex_count(), false),
-      mesh_(std::move(mesh)), body_(body), parameters_(parameters) {
+    : active(mesh.vertex_count(), true), fixed(mesh.vertex_count(), false), mesh_(std::move(mesh)),
+      body_(body), parameters_(parameters) {
   validate(mesh_, "cloth on body");
   edges_ = rest_edges(mesh_);
   hinges_ = interior_edges(mesh_);
@@ -196,12 +198,15 @@ void ClothOnBody::relax(int steps) {
       if (count[i] > 0) move[i] += parameters_.stretch_rate * pull[i] / count[i];
       move[i] += parameters_.gravity_step * parameters_.down;
       if (held_by_friction(move[i], near[i])) continue;
+      // No step past the body's nearest point: only vertices are kept out.
+      if (move[i].norm() > parameters_.max_step) move[i] *= parameters_.max_step / move[i].norm();
       x[i] = keep_above(body_, x[i] + move[i], parameters_.offset);
     }
   }
 }
 
-EdgeRatios edge_length_ratios(const RestEdges& edges, const std::vector<Eigen::Vector3d>& positions) {
+EdgeRatios edge_length_ratios(const RestEdges& edges,
+                              const std::vector<Eigen::Vector3d>& positions) {
   EdgeRatios ratios;
   ratios.min = std::numeric_limits<double>::infinity();
   ratios.max = 0.0;
@@ -216,7 +221,8 @@ EdgeRatios edge_length_ratios(const RestEdges& edges, const std::vector<Eigen::V
   return ratios;
 }
 
-double min_body_distance(const contact::Shape& body, const std::vector<Eigen::Vector3d>& positions) {
+double min_body_distance(const contact::Shape& body,
+                         const std::vector<Eigen::Vector3d>& positions) {
   double smallest = std::numeric_limits<double>::infinity();
   for (const Eigen::Vector3d& p : positions)
     smallest = std::min(smallest, body.query(p).distance);

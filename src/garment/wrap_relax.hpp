@@ -38,13 +38,18 @@ namespace sartor::garment {
 // The lengths are in the body's units (metres); the paper's values (its
 // bodies are 1 to 2 units tall) are the defaults.
 struct RelaxParameters {
-  double offset = 0.012;         // vertices are kept this far above the body
-  double near_body = 0.012;      // temporary normal = body normal closer than this
-  double far_body = 0.08;        // = cloth normal farther than this
-  double stretch_rate = 0.5;     // fraction of the way to the reference copies per step
-  double flatten_rate = 0.1;     // fraction of a hinge's out-of-plane offset per step
-  double gravity_step = 0.001;   // m down per step (constant speed)
+  double offset = 0.012;     // vertices are kept this far above the body
+  double near_body = 0.012;  // temporary normal = body normal closer than this
+  double far_body = 0.08;    // = cloth normal farther than this
+  double stretch_rate = 0.5; // fraction of the way to the reference copies per step
+  double flatten_rate = 0.1; // fraction of a hinge's out-of-plane offset per step
+  // m down per step (constant speed). Small against the reference-triangle
+  // pull: a hanging loop of a sleeve stretched without end at 1 mm.
+  double gravity_step = 0.0001;
   double friction_limit = 0.002; // m: a shorter downhill move of a vertex in contact is held
+  // m: the longest move of a vertex in one step. Only vertices are kept out
+  // of the body; a longer step can carry one through a thin limb.
+  double max_step = 0.006;
   Eigen::Vector3d down = -Eigen::Vector3d::UnitZ();
 };
 
@@ -78,7 +83,7 @@ Eigen::Vector3d keep_above(const contact::Shape& body, const Eigen::Vector3d& p,
 // triangles' lengths are averaged).
 struct RestEdges {
   std::vector<std::array<int, 2>> edges;
-  std::vector<double> lengths;                                  // m
+  std::vector<double> lengths;                                 // m
   std::vector<std::vector<std::pair<int, double>>> neighbours; // per vertex: (vertex, rest length)
 };
 RestEdges rest_edges(const TriangleMesh& mesh);
@@ -121,7 +126,8 @@ private:
 struct EdgeRatios {
   double min = 0.0, max = 0.0, mean = 0.0;
 };
-EdgeRatios edge_length_ratios(const RestEdges& edges, const std::vector<Eigen::Vector3d>& positions);
+EdgeRatios edge_length_ratios(const RestEdges& edges,
+                              const std::vector<Eigen::Vector3d>& positions);
 
 // The smallest signed distance of a vertex to the body, m.
 double min_body_distance(const contact::Shape& body, const std::vector<Eigen::Vector3d>& positions);
