@@ -60,6 +60,14 @@ const std::map<std::string, std::string>& wrap_drape_defaults() {
   return defaults;
 }
 
+// Options of `sartor run` that wrapping answers itself: the mesh and its
+// placement (the wrapped garment), its seams (merged) and the body (the
+// marks file's).
+bool describes_wrapped_garment(const std::string& name) {
+  const bool mesh = name.rfind("mesh", 0) == 0 && name != "mesh-refine";
+  return mesh || name == "body" || name == "seams-file";
+}
+
 nlohmann::json point_json(const Eigen::Vector3d& p) {
   return {p.x(), p.y(), p.z()};
 }
@@ -166,7 +174,9 @@ const CommandSpec& wrap_command() {
       "\"marks\"); body marks are 3D polylines taken onto the body surface. The\n"
       "front of a panel (its outline counter-clockwise) faces away from the body.\n"
       "--drape then drapes the wrapped garment with the case pipeline of `sartor\n"
-      "run` (its options apply; the marks file's body is --body).\n"
+      "run`: its options below apply (only with --drape), except those of the mesh,\n"
+      "the seams file and --body (the marks file's body); drape's material and\n"
+      "dynamics (fall, kinetic damping, settle) are the defaults.\n"
       "docs/wrapping.md has the formats, the algorithm and measured runs.\n\n"
       "Output in DIR: wrapped.obj (the wrapped garment; vt = material (u, v), a\n"
       "group per panel), wrap.json (mark mismatch, smallest body distance, edge\n"
@@ -178,12 +188,20 @@ const CommandSpec& wrap_command() {
       "  sartor wrap cases/wrap/tube.json cases/wrap/tube_marks.json --output out/wrap/tube",
       [] {
         std::vector<OptionSpec> options = wrap_option_specs();
-        for (const OptionSpec& option : case_option_specs()) {
+        for (OptionSpec option : case_option_specs()) {
           const bool own = std::any_of(options.begin(), options.end(),
                                        [&](const OptionSpec& o) { return o.name == option.name; });
           // Their help keeps its own scoping ("dynamic: ..."), which the
           // options' checks read; the description says they need --drape.
-          if (!own) options.push_back(option);
+          if (own) continue;
+          // The pipeline reads them, so they stay declared.
+          if (describes_wrapped_garment(option.name)) {
+            // The placement's defaults are read (as no move); the rest not.
+            if (option.name != "mesh-rotate-x" && option.name != "mesh-translate")
+              option.fallback.clear();
+            option.help = "sartor run only: the wrapped garment and the marks file's body";
+          }
+          options.push_back(option);
         }
         return options;
       }(),
@@ -196,14 +214,17 @@ int run_wrap(const Invocation& invocation) {
   const std::string pattern_path = invocation.command_line.positionals.at(0);
   const std::string marks_path = invocation.command_line.positionals.at(1);
   const bool drape = options.flag("drape");
-  if (!drape) {
-    const std::vector<OptionSpec> own = wrap_option_specs();
-    for (const OptionSpec& option : case_option_specs()) {
-      const bool is_own = std::any_of(own.begin(), own.end(),
-                                      [&](const OptionSpec& o) { return o.name == option.name; });
-      if (!is_own && options.is_set(option.name))
-        throw InputError("option --" + option.name + " applies to the drape only: add --drape");
-    }
+  const std::vector<OptionSpec> own = wrap_option_specs();
+  for (const OptionSpec& option : case_option_specs()) {
+    const bool is_own = std::any_of(own.begin(), own.end(),
+                                    [&](const OptionSpec& o) { return o.name == option.name; });
+    if (is_own || !options.is_set(option.name)) continue;
+    if (describes_wrapped_garment(option.name))
+      throw InputError("option --" + option.name +
+                       " does not apply to sartor wrap: the wrapped garment is the mesh and the "
+                       "marks file gives the body");
+    if (!drape)
+      throw InputError("option --" + option.name + " applies to the drape only: add --drape");
   }
   std::vector<garment::ClothMark> pattern_marks;
   const garment::Pattern pattern = garment::read_pattern_with_marks(pattern_path, pattern_marks);
