@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <optional>
 
 namespace sartor {
 
@@ -33,6 +34,9 @@ std::vector<OptionSpec> wrap_option_specs() {
       {"growth-relax-steps", "N", "1", "relaxation steps after each vertex the growth maps"},
       {"relax-steps", "N", "100", "relaxation steps of the whole garment after the growth"},
       {"drape", "", "", "then drape the wrapped garment as `sartor run` would (into DIR/drape)"},
+      {"rewrap", "GARMENT.obj", "",
+       "rewrap this garment (wrapped from the same pattern, seams and --edge-length): "
+       "cloth as far from the marks as the marks file's nearest pin stays"},
       {"no-plot", "", "", "write data only, no PNG"},
   };
   for (const OptionSpec& option : relax_option_specs())
@@ -177,6 +181,9 @@ const CommandSpec& wrap_command() {
       "run`: its options below apply (only with --drape), except those of the mesh,\n"
       "the seams file and --body (the marks file's body); drape's material and\n"
       "dynamics (fall, kinetic damping, settle) are the defaults.\n"
+      "--rewrap GARMENT.obj wraps a garment already on the body again by new marks:\n"
+      "the marks file's \"pins\" keep every vertex at least as far from the marks\n"
+      "as the nearest pin where it is (all of it is rewrapped without pins).\n"
       "docs/wrapping.md has the formats, the algorithm and measured runs.\n\n"
       "Output in DIR: wrapped.obj (the wrapped garment; vt = material (u, v), a\n"
       "group per panel), wrap.json (mark mismatch, smallest body distance, edge\n"
@@ -241,9 +248,19 @@ int run_wrap(const Invocation& invocation) {
   wrap_options.growth_relax_steps = int(options.integer_in("growth-relax-steps", 0, 1000));
   wrap_options.final_relax_steps = int(options.integer_in("relax-steps", 0, 1000000));
 
+  std::optional<garment::Rewrap> rewrap;
+  if (options.is_set("rewrap")) {
+    rewrap = garment::Rewrap{read_obj(options.text("rewrap")).positions, {}};
+    for (const garment::PinRef& pin : marks.pins)
+      rewrap->pins.push_back(garment::pinned_vertex(pin, rewrap->positions));
+  } else if (!marks.pins.empty()) {
+    throw InputError(marks_path + ": pins: pushpins limit a rewrap only: add --rewrap GARMENT.obj");
+  }
+
   const double cpu_started = cpu_seconds();
   const auto wall_started = std::chrono::steady_clock::now();
-  const garment::WrapResult result = garment::wrap(sewn, pattern, marks.pairs, shape, wrap_options);
+  const garment::WrapResult result =
+      garment::wrap(sewn, pattern, marks.pairs, shape, wrap_options, rewrap ? &*rewrap : nullptr);
   const double wrap_cpu = cpu_seconds() - cpu_started;
   const double wrap_wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_started).count();
@@ -256,8 +273,20 @@ int run_wrap(const Invocation& invocation) {
       groups.push_back(pattern.panels[std::size_t(panel)].id);
     write_obj(directory + "/wrapped.obj", result.mesh, groups,
               "Sartor wrap: " + pattern_path + " on " + body.describe() + " by " + marks_path);
-    write_json(directory + "/wrap.json",
-               wrap_summary(invocation, result, marks.pairs, shape, wrap_cpu, wrap_wall));
+    nlohmann::json summary =
+        wrap_summary(invocation, result, marks.pairs, shape, wrap_cpu, wrap_wall);
+    if (rewrap) {
+      double pin_motion = 0.0;
+      for (int pin : rewrap->pins)
+        pin_motion = std::max(
+            pin_motion,
+            (result.mesh.positions[std::size_t(pin)] - rewrap->positions[std::size_t(pin)]).norm());
+      summary["rewrap"] = {{"garment", options.text("rewrap")},
+                           {"pins", rewrap->pins},
+                           {"kept_vertices", result.kept_vertices},
+                           {"pin_motion_max_m", pin_motion}};
+    }
+    write_json(directory + "/wrap.json", summary);
     write_body_samples(directory + "/body_points.csv", shape, result.mesh.positions,
                        std::max(0.01, 0.5 * edge_length));
   }

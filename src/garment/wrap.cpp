@@ -292,9 +292,54 @@ MarkMismatch mark_mismatch(const std::vector<MarkCrossing>& crossings,
   return mismatch;
 }
 
+namespace {
+
+// The unmapped vertices' panels, named in the error.
+void check_all_mapped(const ClothOnBody& cloth, const Pattern& pattern) {
+  const TriangleMesh& mesh = cloth.mesh();
+  std::set<std::string> unreached;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+    for (int corner : mesh.triangles[t])
+      if (!cloth.active[std::size_t(corner)])
+        unreached.insert(pattern.panels[std::size_t(mesh.material_ids[t])].id);
+  if (unreached.empty()) return;
+  std::string names;
+  for (const std::string& id : unreached)
+    names += (names.empty() ? "'" : ", '") + id + "'";
+  throw InputError("wrap: panel(s) " + names +
+                   " not reached from any mark: give each piece of the sewn garment a mark");
+}
+
+// Rewrapping: vertices at least as far from the new root vertices as the
+// nearest pin (mesh distance) keep their place and are held; the others
+// are mapped again.
+int keep_beyond_pins(ClothOnBody& cloth, const Rewrap& rewrap,
+                     const std::vector<double>& distance) {
+  if (rewrap.positions.size() != cloth.positions().size())
+    throw InputError("rewrap: the placed garment has " + std::to_string(rewrap.positions.size()) +
+                     " vertices, the sewn pattern " + std::to_string(cloth.positions().size()) +
+                     ": mesh it with the same pattern, seams and --edge-length");
+  double limit = std::numeric_limits<double>::infinity();
+  for (int pin : rewrap.pins) {
+    if (pin < 0 || std::size_t(pin) >= distance.size())
+      throw InputError("rewrap: pin " + std::to_string(pin) + " is not in the garment");
+    limit = std::min(limit, distance[std::size_t(pin)]);
+  }
+  int kept = 0;
+  for (std::size_t v = 0; v < distance.size(); ++v) {
+    if (cloth.active[v] || distance[v] < limit) continue;
+    cloth.active[v] = cloth.fixed[v] = true;
+    cloth.positions()[v] = rewrap.positions[v];
+    ++kept;
+  }
+  return kept;
+}
+
+} // namespace
+
 WrapResult wrap(const TriangleMesh& sewn, const Pattern& pattern,
                 const std::vector<MarkPair>& pairs, const contact::Shape& body,
-                const WrapOptions& options) {
+                const WrapOptions& options, const Rewrap* rewrap) {
   ClothOnBody cloth(sewn, body, options.relax);
   const std::size_t n = sewn.vertex_count();
   std::vector<Eigen::Vector3d> sum(n, Eigen::Vector3d::Zero());
@@ -317,21 +362,12 @@ WrapResult wrap(const TriangleMesh& sewn, const Pattern& pattern,
   }
   result.root_vertices = int(roots.size());
   result.growth_order = roots;
-  Growth growth(cloth, distance_from(cloth.edges(), roots), options.growth_relax_steps);
+  std::vector<double> distance = distance_from(cloth.edges(), roots);
+  if (rewrap) result.kept_vertices = keep_beyond_pins(cloth, *rewrap, distance);
+  Growth growth(cloth, std::move(distance), options.growth_relax_steps);
   for (int v : growth.grow())
     result.growth_order.push_back(v);
-  std::set<std::string> unreached;
-  for (std::size_t t = 0; t < sewn.triangle_count(); ++t)
-    for (int corner : sewn.triangles[t])
-      if (!cloth.active[std::size_t(corner)])
-        unreached.insert(pattern.panels[std::size_t(sewn.material_ids[t])].id);
-  if (!unreached.empty()) {
-    std::string names;
-    for (const std::string& id : unreached)
-      names += (names.empty() ? "'" : ", '") + id + "'";
-    throw InputError("wrap: panel(s) " + names +
-                     " not reached from any mark: give each piece of the sewn garment a mark");
-  }
+  check_all_mapped(cloth, pattern);
   cloth.relax(options.final_relax_steps);
   result.mesh = cloth.mesh();
   result.mismatch = mark_mismatch(result.crossings, result.mesh.positions, body);

@@ -56,11 +56,23 @@ struct SewnLines {
   std::string where;
 };
 
+// A pushpin for rewrapping: a vertex index, or the vertex nearest a point.
+struct PinRef {
+  int vertex = -1; // < 0: by `point`
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  std::string where;
+};
+
 struct WrapMarks {
   std::string body; // a body specification (contact/body_spec.hpp)
   std::vector<SewnLines> seams;
   std::vector<MarkPair> pairs; // body points as given, not yet on the surface
+  std::vector<PinRef> pins;    // for rewrapping
 };
+
+// The vertex of `positions` a pin names; throws InputError for an index
+// outside them.
+int pinned_vertex(const PinRef& pin, const std::vector<Eigen::Vector3d>& positions);
 
 // Reads a pattern file that may carry "marks" (docs/wrapping.md): the rest
 // goes to the pattern reader. Throws InputError naming the file and entry.
@@ -109,19 +121,29 @@ struct WrapResult {
   TriangleMesh mesh; // the wrapped garment
   std::vector<MarkCrossing> crossings;
   int root_vertices = 0;
+  int kept_vertices = 0;         // rewrap: vertices beyond the pins, kept in place
   std::vector<int> growth_order; // the vertices in the order they were mapped (roots first)
   MarkMismatch mismatch;
   EdgeRatios edge_ratios;
   double min_distance = 0.0; // smallest signed distance of a vertex to the body, m
 };
 
+// Rewrapping a garment already on the body (the paper's, with pushpins):
+// the vertices at least as far (mesh distance from the new marks' root
+// vertices) as the nearest pin keep `positions` and are held; the rest are
+// pasted and grown again. Without pins, everything is wrapped anew.
+struct Rewrap {
+  std::vector<Eigen::Vector3d> positions; // the sewn mesh's vertices, placed
+  std::vector<int> pins;
+};
+
 // Wraps the sewn mesh (sew_panels) onto the body by the mark pairs, whose
-// body points lie on the body's surface (body_surface_path). Throws
-// InputError when a mark crosses no edge or some panel is not reached from
-// any mark (naming them).
+// body points lie on the body's surface (body_surface_path); or rewraps it.
+// Throws InputError when a mark crosses no edge, some panel is not reached
+// from any mark (naming them), or a rewrap's garment does not match.
 WrapResult wrap(const TriangleMesh& sewn, const Pattern& pattern,
                 const std::vector<MarkPair>& pairs, const contact::Shape& body,
-                const WrapOptions& options);
+                const WrapOptions& options, const Rewrap* rewrap = nullptr);
 
 // The mark mismatch of positions: for every crossing, the distance from the
 // body point nearest the cloth's mark point to the body mark's point.

@@ -105,7 +105,7 @@ WrapMarks read_marks(const std::string& path, const Pattern& pattern,
                      const std::vector<ClothMark>& pattern_marks) {
   const nlohmann::json document = parse_json_input(read_text(path, "marks file"), path);
   if (!document.is_object()) throw InputError(path + ": a JSON object is needed");
-  check_keys(document, {"format", "version", "body", "seams", "marks"}, path);
+  check_keys(document, {"format", "version", "body", "seams", "marks", "pins"}, path);
   if (!document.contains("format") || document["format"] != "sartor-marks")
     throw InputError(path + ": format: \"sartor-marks\" is needed");
   if (!document.contains("version") || document["version"] != 1)
@@ -150,7 +150,38 @@ WrapMarks read_marks(const std::string& path, const Pattern& pattern,
     pair.body = read_points<3>(pairs[i]["body"], where + ".body");
     marks.pairs.push_back(pair);
   }
+  const nlohmann::json pins = document.value("pins", nlohmann::json::array());
+  for (std::size_t i = 0; i < pins.size(); ++i) {
+    PinRef pin;
+    pin.where = path + ": pins[" + std::to_string(i) + "]";
+    if (pins[i].is_number_integer()) {
+      pin.vertex = pins[i].get<int>();
+      if (pin.vertex < 0) throw InputError(pin.where + ": a vertex index is >= 0");
+    } else {
+      const nlohmann::json& point = pins[i];
+      if (!point.is_array() || point.size() != 3 ||
+          !std::all_of(point.begin(), point.end(), [](const nlohmann::json& x) {
+            return x.is_number() && std::isfinite(x.get<double>());
+          }))
+        throw InputError(pin.where + ": a vertex index or a point [x, y, z] is needed");
+      pin.point = {point[0].get<double>(), point[1].get<double>(), point[2].get<double>()};
+    }
+    marks.pins.push_back(pin);
+  }
   return marks;
+}
+
+int pinned_vertex(const PinRef& pin, const std::vector<Eigen::Vector3d>& positions) {
+  if (pin.vertex >= 0) {
+    if (std::size_t(pin.vertex) >= positions.size())
+      throw InputError(pin.where + ": vertex " + std::to_string(pin.vertex) +
+                       " is not in the garment (0.." + std::to_string(positions.size() - 1) + ")");
+    return pin.vertex;
+  }
+  std::size_t nearest = 0;
+  for (std::size_t v = 1; v < positions.size(); ++v)
+    if ((positions[v] - pin.point).norm() < (positions[nearest] - pin.point).norm()) nearest = v;
+  return int(nearest);
 }
 
 TriangleMesh sew_panels(const Pattern& pattern, const std::vector<SewnLines>& seams,

@@ -147,4 +147,46 @@ TEST(Wrap, EveryVertexIsMappedOnce) {
   EXPECT_EQ(order.size(), sleeve.sewn.vertex_count());
 }
 
+// Rewrapping with a pushpin: new marks on the cuff half, 2 cm further
+// along the arm; a pin at the far end of the sleeve. Everything at least as
+// far from the new marks as the pin stays exactly where it was.
+TEST(Wrap, RewrapKeepsTheClothBeyondThePin) {
+  const WrappedSleeve& sleeve = wrapped_sleeve();
+  const contact::Capsule arm(arm_a, arm_b, arm_radius);
+  std::vector<MarkPair> pairs(2);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const double panel_x = k == 0 ? 0.3 : 0.1, side = k == 0 ? -arm_radius : arm_radius;
+    pairs[k].id = k == 0 ? "front" : "back";
+    pairs[k].cloth.points = {{panel_x, 0.04}, {panel_x, 0.12}};
+    pairs[k].body = body_surface_path(arm, {{0.12, side, 1.2}, {0.20, side, 1.2}}, 0.01);
+  }
+  // The pin: the vertex nearest panel point (0.3, 0.28), above the front mark.
+  Rewrap rewrap{sleeve.result.mesh.positions, {}};
+  const Eigen::Vector3d pin_at = cloth_point(sleeve.result.mesh, {0.3, 0.28});
+  int pin = 0;
+  for (std::size_t v = 0; v < rewrap.positions.size(); ++v)
+    if ((rewrap.positions[v] - pin_at).norm() <
+        (rewrap.positions[std::size_t(pin)] - pin_at).norm())
+      pin = int(v);
+  rewrap.pins = {pin};
+  const WrapResult again = wrap(sleeve.sewn, sleeve.pattern, pairs, arm, WrapOptions{}, &rewrap);
+  EXPECT_GT(again.kept_vertices, 10);
+  EXPECT_LT(again.kept_vertices, int(rewrap.positions.size()) / 2);
+  EXPECT_LT((again.mesh.positions[std::size_t(pin)] - rewrap.positions[std::size_t(pin)]).norm(),
+            1e-12);
+  int unmoved = 0;
+  for (std::size_t v = 0; v < rewrap.positions.size(); ++v)
+    unmoved += (again.mesh.positions[v] - rewrap.positions[v]).norm() < 1e-12 ? 1 : 0;
+  EXPECT_GE(unmoved, again.kept_vertices);
+  // The cuff moved: its marks now lie on the new body marks.
+  for (const double panel_x : {0.3, 0.1}) {
+    const Eigen::Vector3d cloth = cloth_point(again.mesh, {panel_x, 0.08});
+    EXPECT_NEAR(on_axis(cloth).x(), 0.16, 0.01);
+  }
+  double closest = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& p : again.mesh.positions)
+    closest = std::min(closest, arm_distance(p));
+  EXPECT_GE(closest, 0.0);
+}
+
 } // namespace
