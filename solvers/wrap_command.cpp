@@ -33,6 +33,8 @@ std::vector<OptionSpec> wrap_option_specs() {
       {"min-angle", "DEG", "25", "smallest triangle angle of the panels' meshes, degrees"},
       {"growth-relax-steps", "N", "1", "relaxation steps after each vertex the growth maps"},
       {"relax-steps", "N", "100", "relaxation steps of the whole garment after the growth"},
+      {"subdivide", "", "",
+       "then split the edges that cut into the body once (sqrt(3) subdivision) and relax again"},
       {"drape", "", "", "then drape the wrapped garment as `sartor run` would (into DIR/drape)"},
       {"rewrap", "GARMENT.obj", "",
        "rewrap this garment (wrapped from the same pattern, seams and --edge-length): "
@@ -131,6 +133,7 @@ nlohmann::json wrap_summary(const Invocation& invocation, const garment::WrapRes
                      {"edge_length_m", options.positive_real("edge-length")},
                      {"obj", "wrapped.obj"}};
   summary["root_vertices"] = result.root_vertices;
+  summary["split_edges"] = result.split_edges;
   summary["mark_mismatch_m"] = {{"max", result.mismatch.max},
                                 {"rms", result.mismatch.rms},
                                 {"crossings", result.mismatch.crossings}};
@@ -247,6 +250,7 @@ int run_wrap(const Invocation& invocation) {
   wrap_options.relax = relax_parameters(options);
   wrap_options.growth_relax_steps = int(options.integer_in("growth-relax-steps", 0, 1000));
   wrap_options.final_relax_steps = int(options.integer_in("relax-steps", 0, 1000000));
+  wrap_options.subdivide = options.flag("subdivide");
 
   std::optional<garment::Rewrap> rewrap;
   if (options.is_set("rewrap")) {

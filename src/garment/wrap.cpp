@@ -370,8 +370,18 @@ WrapResult wrap(const TriangleMesh& sewn, const Pattern& pattern,
   check_all_mapped(cloth, pattern);
   cloth.relax(options.final_relax_steps);
   result.mesh = cloth.mesh();
+  if (options.subdivide) {
+    result.split_edges = subdivide_cutting_edges(result.mesh, body, options.relax.offset);
+    // The new vertices settle among the old, which are held where the
+    // relaxation above left them (the pins of a rewrap stay held).
+    ClothOnBody refined(result.mesh, body, options.relax);
+    for (std::size_t v = 0; v < n; ++v)
+      refined.fixed[v] = true;
+    refined.relax(options.final_relax_steps);
+    result.mesh = refined.mesh();
+  }
   result.mismatch = mark_mismatch(result.crossings, result.mesh.positions, body);
-  result.edge_ratios = edge_length_ratios(cloth.edges(), result.mesh.positions);
+  result.edge_ratios = edge_length_ratios(rest_edges(result.mesh), result.mesh.positions);
   result.min_distance = min_body_distance(body, result.mesh.positions);
   return result;
 }

@@ -102,6 +102,7 @@ struct WrapOptions {
   RelaxParameters relax;
   int growth_relax_steps = 1; // after each mapped vertex
   int final_relax_steps = 100;
+  bool subdivide = false; // subdivide_cutting_edges after the relaxation, then relax again
 };
 
 // Where a root edge crosses a cloth mark, and where that point belongs.
@@ -122,6 +123,7 @@ struct WrapResult {
   std::vector<MarkCrossing> crossings;
   int root_vertices = 0;
   int kept_vertices = 0;         // rewrap: vertices beyond the pins, kept in place
+  int split_edges = 0;           // by subdivide_cutting_edges (WrapOptions::subdivide)
   std::vector<int> growth_order; // the vertices in the order they were mapped (roots first)
   MarkMismatch mismatch;
   EdgeRatios edge_ratios;
@@ -144,6 +146,17 @@ struct Rewrap {
 WrapResult wrap(const TriangleMesh& sewn, const Pattern& pattern,
                 const std::vector<MarkPair>& pairs, const contact::Shape& body,
                 const WrapOptions& options, const Rewrap* rewrap = nullptr);
+
+// One level of sqrt(3) subdivision (Kobbelt; the paper's adaptive
+// subdivision) of the edges that cut into the body: an edge AB cuts when it
+// passes through the sphere of radius |AB| that touches the body at A's (or
+// B's) nearest body point from inside (the body's least radius of concern).
+// Its two triangles get a vertex at their centroids (`offset` above the body
+// at least) and the edge is flipped to join them: six triangles for two.
+// Edges on seams (two rest frames) and edges next to a triangle already
+// split are left. Vertices are appended; triangles are renumbered (split ones
+// first). Returns the number of edges split.
+int subdivide_cutting_edges(TriangleMesh& mesh, const contact::Shape& body, double offset);
 
 // The mark mismatch of positions: for every crossing, the distance from the
 // body point nearest the cloth's mark point to the body mark's point.

@@ -189,4 +189,61 @@ TEST(Wrap, RewrapKeepsTheClothBeyondThePin) {
   EXPECT_GE(closest, 0.0);
 }
 
+// A finger (radius 15 mm) in a coarse tube (6 cm edges): the chords between
+// vertices 12 mm above it cut into it until the sqrt(3) subdivision splits
+// them. Edges are judged here by their midpoints' distance to the finger.
+TEST(Wrap, SubdivisionSplitsEdgesThatCutIntoAFinger) {
+  const Eigen::Vector3d tip(0.0, 0.0, 1.0), knuckle(0.3, 0.0, 1.0);
+  const double radius = 0.015;
+  const contact::Capsule finger(tip, knuckle, radius);
+  const auto finger_distance = [&](const Eigen::Vector3d& p) {
+    const double t =
+        std::clamp((p - tip).dot(knuckle - tip) / (knuckle - tip).squaredNorm(), 0.0, 1.0);
+    return (p - tip - t * (knuckle - tip)).norm() - radius;
+  };
+  const Pattern pattern = parse_pattern(R"({"format": "sartor-pattern", "version": 1,
+    "name": "finger tube", "units": "m", "panels": [{"id": "tube", "fabric": "cotton_twill",
+    "tag": {"cylinder": "arm_l", "side": "front", "layer": 0}, "grain": {"angle_deg": 90},
+    "outline": [
+      {"id": "t_end", "type": "straight", "points": [[0.0, 0.0], [0.17, 0.0]]},
+      {"id": "t_right", "type": "straight", "points": [[0.17, 0.0], [0.17, 0.2]]},
+      {"id": "t_top", "type": "straight", "points": [[0.17, 0.2], [0.0, 0.2]]},
+      {"id": "t_left", "type": "straight", "points": [[0.0, 0.2], [0.0, 0.0]]}]}]})",
+                                        "finger tube");
+  const TriangleMesh sewn =
+      sew_panels(pattern, {{"t_right", "t_left", true, "test seam"}}, 0.06, 25.0);
+  std::vector<MarkPair> pairs(2);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const double panel_x = k == 0 ? 0.1275 : 0.0425, side = k == 0 ? -radius : radius;
+    pairs[k].id = k == 0 ? "front" : "back";
+    pairs[k].cloth.points = {{panel_x, 0.02}, {panel_x, 0.18}};
+    pairs[k].body = body_surface_path(finger, {{0.07, side, 1.0}, {0.23, side, 1.0}}, 0.005);
+  }
+  const auto cutting_edges = [&](const TriangleMesh& mesh) {
+    int cutting = 0;
+    for (const auto& edge : rest_edges(mesh).edges)
+      cutting += finger_distance(0.5 * (mesh.positions[std::size_t(edge[0])] +
+                                        mesh.positions[std::size_t(edge[1])])) < 0.0;
+    return cutting;
+  };
+  WrapOptions options;
+  const WrapResult plain = wrap(sewn, pattern, pairs, finger, options);
+  options.subdivide = true;
+  const WrapResult refined = wrap(sewn, pattern, pairs, finger, options);
+  const int before = cutting_edges(plain.mesh), after = cutting_edges(refined.mesh);
+  EXPECT_GT(before, 0);
+  EXPECT_GT(refined.split_edges, 0);
+  EXPECT_LT(after, before);
+  EXPECT_EQ(refined.mesh.vertex_count(),
+            sewn.vertex_count() + 2 * std::size_t(refined.split_edges));
+  EXPECT_EQ(refined.mesh.triangle_count(),
+            sewn.triangle_count() + 4 * std::size_t(refined.split_edges));
+  double closest = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& p : refined.mesh.positions)
+    closest = std::min(closest, finger_distance(p));
+  EXPECT_GE(closest, 0.0);
+  RecordProperty("cutting_edges_before", before);
+  RecordProperty("cutting_edges_after", after);
+}
+
 } // namespace
