@@ -63,8 +63,6 @@ public:
 
   const DependencyGraph& graph() const { return graph_; }
   const std::vector<double>& ratios() const { return ratios_; }
-  // The motion of every vertex in the last step before attenuation.
-  const std::vector<Eigen::Vector3d>& motion() const { return motion_; }
 
 private:
   void propagate(const Eigen::Vector3d& root_motion);
