@@ -346,6 +346,9 @@ WrapResult wrap(const TriangleMesh& sewn, const Pattern& pattern,
   std::vector<int> count(n, 0);
   WrapResult result;
   for (std::size_t k = 0; k < pairs.size(); ++k) {
+    if (pairs[k].body.size() < 2 || arc_lengths(pairs[k].body).back() <= 0.0)
+      throw InputError(pairs[k].cloth.where + ": mark '" + pairs[k].id +
+                       "': its body mark has no length on the body's surface");
     const std::size_t before = result.crossings.size();
     paste_root_edges(sewn, pairs[k], int(k), pattern, body, sum, count, result.crossings);
     if (result.crossings.size() == before)
