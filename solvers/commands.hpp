@@ -45,6 +45,10 @@ const CommandSpec& drape_command();
 int run_drape(const Invocation&);
 const CommandSpec& import_command();
 int run_import(const Invocation&);
+const CommandSpec& wrap_command();
+int run_wrap(const Invocation&);
+const CommandSpec& drag_command();
+int run_drag(const Invocation&);
 
 // Metadata every output JSON carries: version, command line, options used.
 nlohmann::json run_metadata(const Invocation& invocation, const std::string& command);

@@ -34,6 +34,8 @@ const std::vector<Command>& commands() {
       {sartor::construct_command, sartor::run_construct},
       {sartor::drape_command, sartor::run_drape},
       {sartor::import_command, sartor::run_import},
+      {sartor::wrap_command, sartor::run_wrap},
+      {sartor::drag_command, sartor::run_drag},
   };
   return all;
 }
