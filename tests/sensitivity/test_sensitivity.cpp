@@ -13,6 +13,7 @@
 #include "contact/analytic_shapes.hpp"
 #include "fem/sensitivity.hpp"
 #include "fem/statics.hpp"
+#include "garment/pattern_edit.hpp"
 #include "mesh/generators.hpp"
 #include "mesh/panels.hpp"
 #include "mesh/seams.hpp"
@@ -185,7 +186,7 @@ per_vertex(const TriangleMesh& mesh,
 }
 
 // A 0.5 m square hanging in the x-z plane from its top edge.
-TEST(DesignSensitivity, HangingSheetMembrane) {
+Case hanging_sheet() {
   Case c;
   c.mesh = mesh::rectangle(0.5, 0.5, 6, 6);
   for (auto& p : c.mesh.positions)
@@ -197,11 +198,33 @@ TEST(DesignSensitivity, HangingSheetMembrane) {
         comm, mesh, fabric(1000.0, 1e-5, element::BendingModel::discrete_shell, floor), pins);
   };
   c.configure = [](ClothProblem& p) { p.loads.gravity = {0.0, 0.0, -gravity}; };
+  return c;
+}
+
+TEST(DesignSensitivity, HangingSheetMembrane) {
+  const Case c = hanging_sheet();
   // Wider at the hem, longer on one side: a non-affine pattern change.
   const auto delta = per_vertex(c.mesh, [](const Eigen::Vector2d& uv, int) {
     return Eigen::Vector2d(0.1 * uv.x() * (0.5 - uv.y()), 0.05 * uv.y() * (1.0 + uv.x()));
   });
   EXPECT_LT(sensitivity_error(c, delta, "hanging sheet"), 1e-5);
+}
+
+// The same sheet flared: its two hem corners pulled out and down
+// symmetrically, the interior following by mean value coordinates.
+TEST(DesignSensitivity, HangingSheetOutlineEdit) {
+  const Case c = hanging_sheet();
+  const std::vector<Eigen::Vector2d> outline = {
+      Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(0.5, 0.0), Eigen::Vector2d(0.5, 0.5),
+      Eigen::Vector2d(0.0, 0.5)};
+  const std::vector<Eigen::Vector2d> edit =
+      garment::symmetric_edit({Eigen::Vector2d(-0.05, -0.02), Eigen::Vector2d::Zero(),
+                               Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()},
+                              {1, -1, -1, -1}, Eigen::Vector2d(0.0, 1.0));
+  const auto delta = per_vertex(c.mesh, [&](const Eigen::Vector2d& uv, int) {
+    return garment::outline_edit(outline, edit, {uv}).front();
+  });
+  EXPECT_LT(sensitivity_error(c, delta, "hanging sheet, flared outline"), 1e-5);
 }
 
 // A 15 cm x 3 cm strip clamped at one end (two columns of pinned vertices),
