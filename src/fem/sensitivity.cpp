@@ -89,6 +89,19 @@ PetscErrorCode copy_problem_state(ClothProblem& from, ClothProblem& to) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode transfer_vector(ClothProblem& from, Vec v, ClothProblem& to, Vec w) {
+  PetscFunctionBeginUser;
+  std::vector<Eigen::Vector3d> values;
+  PetscCall(from.gather_positions(v, &values));
+  auto count = static_cast<unsigned long>(values.size());
+  PetscCallMPI(MPI_Bcast(&count, 1, MPI_UNSIGNED_LONG, 0, from.comm()));
+  values.resize(count);
+  PetscCallMPI(
+      MPI_Bcast(values.data()->data(), PetscMPIInt(3 * count), MPI_DOUBLE, 0, from.comm()));
+  PetscCall(to.set_solution(values, w));
+  PetscFunctionReturn(0);
+}
+
 DesignSensitivity::DesignSensitivity(ClothProblem& problem, Vec x, ProblemFactory factory,
                                      SensitivityOptions options)
     : problem_(problem), factory_(std::move(factory)), options_(options) {
@@ -121,7 +134,14 @@ PetscErrorCode DesignSensitivity::residual_of_moved(const RestChange& change, do
   if (size != moved->global_dof_count()) {
     throw std::logic_error("sensitivity: the problem factory built a problem of another size");
   }
-  PetscCall(moved->residual(x_, f));
+  Vec moved_x = nullptr, moved_f = nullptr;
+  PetscCall(moved->create_solution(&moved_x));
+  PetscCall(VecDuplicate(moved_x, &moved_f));
+  PetscCall(transfer_vector(problem_, x_, *moved, moved_x));
+  PetscCall(moved->residual(moved_x, moved_f));
+  PetscCall(transfer_vector(*moved, moved_f, problem_, f));
+  PetscCall(VecDestroy(&moved_x));
+  PetscCall(VecDestroy(&moved_f));
   PetscFunctionReturn(0);
 }
 
@@ -153,10 +173,17 @@ PetscErrorCode DesignSensitivity::factorise_tangent(ClothProblem& problem, bool*
   PetscCall(KSPDestroy(&ksp_));
   PetscCall(MatDestroy(&tangent_));
   PetscCall(problem.create_jacobian(&tangent_));
+  tangent_problem_ = &problem;
+  // The state in this problem's layout (a rebuilt problem may distribute
+  // the vertices differently).
+  Vec x = nullptr;
+  PetscCall(problem.create_solution(&x));
+  PetscCall(transfer_vector(problem_, x_, problem, x));
   const bool exact = problem.exact_hessian;
   problem.exact_hessian = true;
-  const PetscErrorCode assembled = problem.jacobian(x_, tangent_);
+  const PetscErrorCode assembled = problem.jacobian(x, tangent_);
   problem.exact_hessian = exact;
+  PetscCall(VecDestroy(&x));
   PetscCall(assembled);
   PetscCall(KSPCreate(problem.comm(), &ksp_));
   PetscCall(KSPSetOptionsPrefix(ksp_, "sensitivity_"));
@@ -209,17 +236,23 @@ PetscErrorCode DesignSensitivity::stabilise() {
 
 PetscErrorCode DesignSensitivity::solve(Vec rhs, Vec dx, bool* ok) {
   PetscFunctionBeginUser;
-  PetscCall(KSPSolve(ksp_, rhs, dx));
+  // In the tangent's layout: the stabilised problem's may differ.
+  Vec b = nullptr, y = nullptr, check = nullptr;
+  PetscCall(MatCreateVecs(tangent_, &y, &b));
+  PetscCall(transfer_vector(problem_, rhs, *tangent_problem_, b));
+  PetscCall(KSPSolve(ksp_, b, y));
   KSPConvergedReason reason;
   PetscCall(KSPGetConvergedReason(ksp_, &reason));
-  Vec check = nullptr;
-  PetscCall(VecDuplicate(rhs, &check));
-  PetscCall(MatMult(tangent_, dx, check));
-  PetscCall(VecAXPY(check, -1.0, rhs));
+  PetscCall(VecDuplicate(b, &check));
+  PetscCall(MatMult(tangent_, y, check));
+  PetscCall(VecAXPY(check, -1.0, b));
   PetscReal misfit = 0.0, size = 0.0;
   PetscCall(VecNorm(check, NORM_2, &misfit));
-  PetscCall(VecNorm(rhs, NORM_2, &size));
+  PetscCall(VecNorm(b, NORM_2, &size));
+  PetscCall(transfer_vector(*tangent_problem_, y, problem_, dx));
   PetscCall(VecDestroy(&check));
+  PetscCall(VecDestroy(&b));
+  PetscCall(VecDestroy(&y));
   last_solve_residual_ = size > 0.0 ? misfit / size : misfit;
   *ok = reason >= 0 && std::isfinite(last_solve_residual_) &&
         last_solve_residual_ <= options_.solve_tolerance;

@@ -69,6 +69,13 @@ struct SensitivityOptions {
 // from `from` to `to`, problems of meshes of the same topology. Collective.
 PetscErrorCode copy_problem_state(ClothProblem& from, ClothProblem& to);
 
+// Collective. Copies a vector of three values per vertex (positions,
+// forces, changes) from the layout of one problem to that of another on a
+// mesh of the same vertices: problems on different rest coordinates may
+// distribute their vertices differently over the ranks. Pinned vertices of
+// `to` are left out.
+PetscErrorCode transfer_vector(ClothProblem& from, Vec v, ClothProblem& to, Vec w);
+
 class DesignSensitivity {
 public:
   // Collective. `problem` is at equilibrium at `x` (kept, not owned; the
@@ -106,6 +113,7 @@ private:
   ProblemFactory factory_;
   SensitivityOptions options_;
   Mat tangent_ = nullptr;
+  ClothProblem* tangent_problem_ = nullptr; // whose tangent_ is: problem_ or the stabilised one
   KSP ksp_ = nullptr;
   bool factorised_ = false;
   bool stabilised_ = false;
