@@ -520,6 +520,9 @@ TEST(DesignSensitivity, StabilisedWhenTheTangentIsSingular) {
   EXPECT_TRUE(sensitivity.stabilised());
   std::vector<Eigen::Vector3d> moved;
   ASSERT_EQ(problem->gather_positions(dx, &moved), 0); // dx as if positions
+  VecDestroy(&x);
+  VecDestroy(&dx);
+  if (moved.empty()) return; // the comparison is on rank 0
   double error = 0.0, scale = 0.0;
   for (std::size_t v = 0; v < moved.size(); ++v) {
     if (std::find(pins.begin(), pins.end(), int(v)) != pins.end()) continue;
@@ -528,8 +531,6 @@ TEST(DesignSensitivity, StabilisedWhenTheTangentIsSingular) {
     scale = std::max(scale, expected.norm());
   }
   EXPECT_LT(error, 1e-6 * scale);
-  VecDestroy(&x);
-  VecDestroy(&dx);
 }
 
 } // namespace
