@@ -66,7 +66,9 @@ struct SensitivityOptions {
 
 // The state of the equilibrium that a rebuilt problem must share (loads,
 // load factor, contact settings and anchors, creep state, sewing): copied
-// from `from` to `to`, problems of meshes of the same topology. Collective.
+// from `from` to `to`, problems of meshes of the same topology. Pins moved
+// by set_pin_position are not carried over (their places come from the
+// mesh, pin_motion and pin_groups). Collective.
 PetscErrorCode copy_problem_state(ClothProblem& from, ClothProblem& to);
 
 // Collective. Copies a vector of three values per vertex (positions,
