@@ -68,6 +68,10 @@ inline Dual expm1(Dual a) {
 inline Dual log1p(Dual a) {
   return {std::log1p(a.value), a.derivative / (1.0 + a.value)};
 }
+inline Dual sqrt(Dual a) {
+  const double root = std::sqrt(a.value);
+  return {root, 0.5 * a.derivative / root};
+}
 inline Dual abs(Dual a) {
   return a.value < 0.0 ? -a : a;
 }

@@ -359,4 +359,59 @@ MembraneCreepSensitivity membrane_creep_sensitivity(MembraneModel model,
   return s;
 }
 
+namespace {
+
+// [du1 - du0, du2 - du0; dv1 - dv0, dv2 - dv0]: the change of the material
+// edge matrix M.
+Eigen::Matrix2d edge_matrix(const std::array<Eigen::Vector2d, 3>& uv) {
+  Eigen::Matrix2d m;
+  m << uv[1] - uv[0], uv[2] - uv[0];
+  return m;
+}
+
+// Corner weights (c, d) of the columns a, b from B = M^-1 diag(1/(1 + n)).
+void corner_weights(const Eigen::Matrix2d& b_matrix, Vector3d* c, Vector3d* d) {
+  *c << -(b_matrix(0, 0) + b_matrix(1, 0)), b_matrix(0, 0), b_matrix(1, 0);
+  *d << -(b_matrix(0, 1) + b_matrix(1, 1)), b_matrix(0, 1), b_matrix(1, 1);
+}
+
+} // namespace
+
+double triangle_area_derivative(const std::array<Eigen::Vector2d, 3>& uv,
+                                const std::array<Eigen::Vector2d, 3>& delta_uv) {
+  const TriangleRest rest = triangle_rest(uv);
+  return rest.area * (rest.inverse_material * edge_matrix(delta_uv)).trace();
+}
+
+Vector9 membrane_rest_derivative(MembraneModel model, const MembraneMaterial& material,
+                                 const std::array<Eigen::Vector2d, 3>& uv,
+                                 const NonelasticStrain& nonelastic, const Vector9& x,
+                                 const std::array<Eigen::Vector2d, 3>& delta_uv) {
+  const TriangleRest rest = triangle_rest(uv);
+  const Columns k = columns(rest, nonelastic, x);
+  const Density w = density(model, material, k.a, k.b);
+  const Eigen::Matrix2d unloaded =
+      Eigen::Vector2d(1.0 / (1.0 + nonelastic.warp), 1.0 / (1.0 + nonelastic.weft)).asDiagonal();
+  const Eigen::Matrix2d delta_m = edge_matrix(delta_uv);
+  const Eigen::Matrix2d delta_b =
+      -rest.inverse_material * delta_m * rest.inverse_material * unloaded;
+  Vector3d dc, dd;
+  corner_weights(delta_b, &dc, &dd);
+  const Vector3d da = dc(0) * x.segment<3>(0) + dc(1) * x.segment<3>(3) + dc(2) * x.segment<3>(6);
+  const Vector3d db = dd(0) * x.segment<3>(0) + dd(1) * x.segment<3>(3) + dd(2) * x.segment<3>(6);
+  // The density's gradient moves with the columns: d(dW/da), d(dW/db).
+  const Vector3d d_grad_a = w.haa * da + w.hab * db;
+  const Vector3d d_grad_b = w.hab.transpose() * da + w.hbb * db;
+  const double scale = (1.0 + nonelastic.warp) * (1.0 + nonelastic.weft);
+  const double unloaded_area = rest.area * scale;
+  const double d_unloaded_area = scale * rest.area * (rest.inverse_material * delta_m).trace();
+  Vector9 derivative;
+  for (int i = 0; i < 3; ++i) {
+    derivative.segment<3>(3 * i) = d_unloaded_area * (k.c(i) * w.grad_a + k.d(i) * w.grad_b) +
+                                   unloaded_area * (dc(i) * w.grad_a + dd(i) * w.grad_b +
+                                                    k.c(i) * d_grad_a + k.d(i) * d_grad_b);
+  }
+  return derivative;
+}
+
 } // namespace sartor::element

@@ -101,4 +101,21 @@ MembraneCreepSensitivity membrane_creep_sensitivity(MembraneModel model,
                                                     const NonelasticStrain& nonelastic,
                                                     const Vector9& x);
 
+// The design sensitivity's mixed derivative (docs/sensitivity.md): the change
+// of the element's force (the energy gradient of membrane()) when its
+// material coordinates `uv` move by `delta_uv`, at fixed positions and
+// non-elastic strains, d/de grad E(x; uv + e delta_uv) at e = 0. Exact: the
+// columns of F_e, the area and the density's derivatives by the chain rule
+// (d M^-1 = -M^-1 dM M^-1, dA = A tr(M^-1 dM)).
+Vector9 membrane_rest_derivative(MembraneModel model, const MembraneMaterial& material,
+                                 const std::array<Eigen::Vector2d, 3>& uv,
+                                 const NonelasticStrain& nonelastic, const Vector9& x,
+                                 const std::array<Eigen::Vector2d, 3>& delta_uv);
+
+// The change of a triangle's material area when its corners move by
+// `delta_uv` (the lumped masses' and so gravity's dependence on the
+// pattern), m^2.
+double triangle_area_derivative(const std::array<Eigen::Vector2d, 3>& uv,
+                                const std::array<Eigen::Vector2d, 3>& delta_uv);
+
 } // namespace sartor::element

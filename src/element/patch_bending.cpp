@@ -248,19 +248,8 @@ PatchRest patch_rest(const std::array<Vector2d, 3>& triangle,
   return rest;
 }
 
-namespace {
-
-// Energy density (J/m^2), moments (dW/ds) and tangent (d2W/ds2) at the
-// bending strain s = k - k_rest: the quadratic form of the rigidity matrix,
-// or the curves' energies with its Poisson coupling.
-struct Response {
-  double energy_density = 0.0;
-  Vector3d moment = Vector3d::Zero();
-  Matrix3d tangent = Matrix3d::Zero();
-};
-
-Response respond(const PatchRest& rest, const Vector3d& strain) {
-  Response r;
+PatchResponse patch_response(const PatchRest& rest, const Vector3d& strain) {
+  PatchResponse r;
   if (!rest.curves) {
     r.tangent = rest.rigidity;
     r.moment = rest.rigidity * strain;
@@ -280,8 +269,6 @@ Response respond(const PatchRest& rest, const Vector3d& strain) {
   }
   return r;
 }
-
-} // namespace
 
 Result<36> patch_bending(const PatchRest& rest, const Vector36& x, Want want) {
   Result<36> result;
@@ -305,7 +292,7 @@ Result<36> patch_bending(const PatchRest& rest, const Vector36& x, Want want) {
   for (int i = 1; i < nodes; ++i)
     h += (x.segment<3>(3 * i) - x0) * rest.weights.col(i).transpose();
   const Vector3d strain = voigt.cwiseProduct(h.transpose() * n) - rest.rest_curvature;
-  const Response response = respond(rest, strain);
+  const PatchResponse response = patch_response(rest, strain);
   const Vector3d& moment = response.moment;
   result.energy = rest.area * response.energy_density;
   if (want == Want::energy) return result;

@@ -130,6 +130,16 @@ Eigen::Vector2d node_across(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
                             const Eigen::Vector2d& c, const Eigen::Vector2d& a_other,
                             const Eigen::Vector2d& b_other, const Eigen::Vector2d& p_other);
 
+// Energy density (J/m^2), moments (dW/ds) and tangent (d2W/ds2) at the
+// bending strain s = k - k_rest: the quadratic form of the rigidity matrix,
+// or the curves' energies with its Poisson coupling.
+struct PatchResponse {
+  double energy_density = 0.0;
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d tangent = Eigen::Matrix3d::Zero();
+};
+PatchResponse patch_response(const PatchRest& rest, const Eigen::Vector3d& strain);
+
 // Energy, gradient and Hessian over the twelve nodes' positions. A triangle
 // collapsed to zero area (no normal) contributes nothing.
 Result<36> patch_bending(const PatchRest& rest, const Vector36& x, Want want);
