@@ -137,14 +137,18 @@ double ClothProblem::vertex_step_bound(std::size_t body, const Eigen::Vector3d& 
   const double level = std::min(0.5 * distance, 0.1 * contact.offset);
   // Conservative advancement: the distance falls by at most slope * |motion|
   // per unit of t, so t may advance by (distance - level) / (slope |motion|)
-  // at a time without crossing the level.
+  // at a time without crossing the level. The advances shrink towards the
+  // first time the level is reached; stopping only once they are below
+  // round-off, or after a fixed count, keeps t a continuous function of the
+  // position and the motion (a coarser stopping rule would make the step
+  // jump where a vertex needs one advance more, and so the iterates of two
+  // machines part at round-off).
   double t = 0.0;
   for (int k = 0; k < 50; ++k) {
-    const double room = (distance - level) / (slope * length);
+    const double room = std::max(0.0, distance - level) / (slope * length);
     if (t + room >= 1.0) return 1.0;
-    // Close to the level the advances shrink: stop at a tenth of it.
-    if (distance - level < 0.1 * level) return t;
     t += room;
+    if (room <= 1e-14) break;
     distance = b.query(p + t * motion, contact_clock()).distance;
   }
   return t;
