@@ -182,6 +182,17 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
   PetscInt iteration = 0;
   result->reason = SNESConvergedReasons[SNES_DIVERGED_MAX_IT];
   for (;; ++iteration) {
+    if (progress_interval > 0.0) {
+      const auto now = std::chrono::steady_clock::now();
+      if (std::chrono::duration<double>(now - progress_last).count() >= progress_interval) {
+        progress_last = now;
+        PetscCall(PetscPrintf(
+            problem_.comm(),
+            "minimiser: %s, iteration %" PetscInt_FMT ", |F| %.3e N (to %.3e), %.1f s\n",
+            progress_label.c_str(), iteration, double(current.residual_norm), double(tolerance),
+            std::chrono::duration<double>(now - progress_origin).count()));
+      }
+    }
     if (monitor) {
       PetscCall(PetscPrintf(problem_.comm(),
                             "  %3" PetscInt_FMT " Minimiser |F| %14.12e  Phi %.10e  mu %.3e  "
