@@ -89,11 +89,14 @@ CertifiedState certify_case(const Options& options, ClothProblem& problem, Vec x
     SartorPetscCall(VecCopy(x, saddle));
     if (!push_off_saddle(problem, x, settings, state.push_size)) break;
     ++state.escapes;
-    // Re-solve at the load reached: no ramp, and no cutbacks (the load stays).
+    // Re-solve at the load reached: no ramp, and no cutbacks (the load stays),
+    // with the seams as sewn (re-sewing from slack seams would undo the
+    // garment and take a long, round-off-sensitive way back).
     StaticOptions again = *solve;
     again.start_load_factor = problem.load_factor;
     again.load_steps = 1;
     again.max_cutbacks = 0;
+    again.sewing_stages = 1;
     StaticReport resolved;
     SartorPetscCall(solve_static(problem, x, again, &resolved));
     add_solve(resolved, report);

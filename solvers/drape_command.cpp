@@ -445,6 +445,9 @@ int run_drape(const Invocation& invocation) {
   const std::vector<double> gravity = option_numbers(options, "gravity", 3);
   const Eigen::Vector3d weight = mass * Eigen::Vector3d(gravity[0], gravity[1], gravity[2]);
   if (dynamic) SartorPetscCall(set_default_option("-snes_rtol", "1e-4"));
+  // The minimiser's last stage may crawl for a while where the garment
+  // slides along a soft direction (the T-shirt needs about 150 iterations).
+  if (!dynamic) SartorPetscCall(set_default_option("-snes_max_it", "300"));
   if (weight.norm() > 0.0)
     SartorPetscCall(set_default_option("-snes_atol", format_number(1e-6 * weight.norm()).c_str()));
   labels.fabrics = cloth.fabrics;

@@ -652,6 +652,8 @@ StaticOptions static_options(const Options& options, const ClothProblem& problem
   }
   solve.max_offset_depth = options.nonnegative_real("contact-max-depth");
   if (solve.max_offset_depth == 0.0) solve.max_contact_rounds = 0;
+  // A static solve that runs long says where it is (docs/drape.md).
+  solve.progress_interval = 10.0;
   return solve;
 }
 

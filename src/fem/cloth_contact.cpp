@@ -137,14 +137,18 @@ double ClothProblem::vertex_step_bound(std::size_t body, const Eigen::Vector3d& 
   const double level = std::min(0.5 * distance, 0.1 * contact.offset);
   // Conservative advancement: the distance falls by at most slope * |motion|
   // per unit of t, so t may advance by (distance - level) / (slope |motion|)
-  // at a time without crossing the level.
+  // at a time without crossing the level. The advances shrink towards the
+  // first time the level is reached; stopping only once they are below
+  // round-off, or after a fixed count, keeps t a continuous function of the
+  // position and the motion (a coarser stopping rule would make the step
+  // jump where a vertex needs one advance more, and so the iterates of two
+  // machines part at round-off).
   double t = 0.0;
   for (int k = 0; k < 50; ++k) {
-    const double room = (distance - level) / (slope * length);
+    const double room = std::max(0.0, distance - level) / (slope * length);
     if (t + room >= 1.0) return 1.0;
-    // Close to the level the advances shrink: stop at a tenth of it.
-    if (distance - level < 0.1 * level) return t;
     t += room;
+    if (room <= 1e-14) break;
     distance = b.query(p + t * motion, contact_clock()).distance;
   }
   return t;
@@ -184,6 +188,12 @@ PetscErrorCode ClothProblem::contact_step_bound(Vec x, Vec direction, double* bo
   PetscFunctionReturn(0);
 }
 
+namespace {
+// The fraction of its stretch an anchor must slide by to count as sliding
+// (far above round-off, far below the certificate's 5 % cone tolerance).
+constexpr double sliding_margin = 1e-3;
+} // namespace
+
 PetscErrorCode ClothProblem::update_contact(Vec x) {
   const PetscScalar* values = nullptr;
   PetscFunctionBeginUser;
@@ -212,12 +222,18 @@ PetscErrorCode ClothProblem::update_contact(Vec x) {
       Eigen::Vector3d place = q.closest; // a new contact sticks where it touched
       if (anchor.active) {
         const double k = contact_stiffness(v);
+        const Eigen::Vector3d held = body.to_world(anchor.point, contact_clock());
+        const Eigen::Vector3d normal = body.direction_to_world(anchor.normal, contact_clock());
         const contact::AnchorUpdate update = contact::slide_anchor(
-            k, p, body.to_world(anchor.point, contact_clock()),
-            body.direction_to_world(anchor.normal, contact_clock()), k * gap * slope,
-            body.friction.static_coefficient, body.friction.kinetic_coefficient);
+            k, p, held, normal, k * gap * slope, body.friction.static_coefficient,
+            body.friction.kinetic_coefficient);
         if (!update.slid) continue;
-        ++sliding_[b];
+        // An anchor that slid last time sits on the cone (mu_k = mu_s): it
+        // slides again by round-off. It moves (continuously), but counts as
+        // sliding, and so asks for another contact round, only when it moved
+        // by more than sliding_margin of its spring's stretch.
+        const Eigen::Vector3d stretch = (p - held) - normal.dot(p - held) * normal;
+        if ((update.anchor - held).norm() > sliding_margin * stretch.norm()) ++sliding_[b];
         place = body.query(update.anchor, contact_clock()).closest; // back onto the surface
       }
       anchor.active = true;

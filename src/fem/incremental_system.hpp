@@ -25,6 +25,8 @@
 
 #include <petscsnes.h>
 
+#include <chrono>
+
 #include <string>
 #include <vector>
 
@@ -74,6 +76,13 @@ public:
     PetscInt exact_steps = 0; // with the unprojected Hessian
   };
   MinimiserStatistics minimiser_statistics;
+  // Progress lines of the minimiser on stdout (what is solved, iteration,
+  // |F| against its tolerance, wall time since progress_origin), at most one
+  // every progress_interval seconds of wall time; 0: none.
+  double progress_interval = 0.0;
+  std::string progress_label;
+  std::chrono::steady_clock::time_point progress_origin = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point progress_last = progress_origin; // the last line
   // Whether solve() uses the minimiser for the system as it is now.
   bool minimises() const;
 

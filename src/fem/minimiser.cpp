@@ -26,7 +26,7 @@ constexpr double energy_resolution = 1e-10;
 constexpr int max_halvings = 20;
 // mu grows tenfold after a failed factorisation, a non-descent direction or a
 // line search that had to cut the step below a quarter; it shrinks tenfold
-// after a full step, to zero once it falls below its floor.
+// after a full step, to zero once below its floor.
 constexpr double mu_growth = 10.0;
 constexpr double full_step_fraction = 0.25;
 
@@ -166,17 +166,39 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
     current.potential_scale = magnitude(energy);
   }
   const PetscReal tolerance = std::max(atol, rtol * initial_norm);
-  double mu = 0.0, mu_floor = -1.0, bound = 1.0;
+  // Every solve starts regularised at mu's floor, and leaves it for mu = 0
+  // only after a full Newton step: started at 0, a Hessian singular along a free
+  // panel's rigid motions would leave the step along them to round-off.
+  // mu is kept as a power of ten of the floor (level -1: zero), so that its
+  // state is exact.
+  double mu_floor = 0.0, bound = 1.0;
+  PetscCall(jacobian(x, jacobian_));
+  PetscCall(regularisation_scale(&mu_floor));
+  int mu_level = 0;
+  const auto mu_at = [&](int level) {
+    return level < 0 ? 0.0 : mu_floor * std::pow(mu_growth, level);
+  };
   int failed_searches = 0, exact_pause = 0;
   PetscInt iteration = 0;
   result->reason = SNESConvergedReasons[SNES_DIVERGED_MAX_IT];
   for (;; ++iteration) {
+    if (progress_interval > 0.0) {
+      const auto now = std::chrono::steady_clock::now();
+      if (std::chrono::duration<double>(now - progress_last).count() >= progress_interval) {
+        progress_last = now;
+        PetscCall(PetscPrintf(
+            problem_.comm(),
+            "minimiser: %s, iteration %" PetscInt_FMT ", |F| %.3e N (to %.3e), %.1f s\n",
+            progress_label.c_str(), iteration, double(current.residual_norm), double(tolerance),
+            std::chrono::duration<double>(now - progress_origin).count()));
+      }
+    }
     if (monitor) {
       PetscCall(PetscPrintf(problem_.comm(),
                             "  %3" PetscInt_FMT " Minimiser |F| %14.12e  Phi %.10e  mu %.3e  "
                             "step bound %.3e\n",
-                            iteration, double(current.residual_norm), current.potential, mu,
-                            bound));
+                            iteration, double(current.residual_norm), current.potential,
+                            mu_at(mu_level), bound));
     }
     if (current.residual_norm <= tolerance) {
       result->converged = true;
@@ -191,7 +213,7 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
     // it gives descent directions that the line search takes at least half
     // of, then left for five iterations.
     bool solved = false, exact = false;
-    if (problem_.projects_hessians() && mu == 0.0 && exact_pause == 0 && iteration > 0) {
+    if (problem_.projects_hessians() && mu_level < 0 && exact_pause == 0 && iteration > 0) {
       problem_.exact_hessian = true;
       PetscCall(
           newton_direction(x, residual_, 0.0, direction_, &exact, &result->linear_iterations));
@@ -201,12 +223,11 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
     }
     exact_pause = std::max(0, exact_pause - 1);
     for (int attempt = 0; attempt < 12 && !solved; ++attempt) {
-      PetscCall(
-          newton_direction(x, residual_, mu, direction_, &solved, &result->linear_iterations));
-      if (mu_floor < 0.0) PetscCall(regularisation_scale(&mu_floor));
+      PetscCall(newton_direction(x, residual_, mu_at(mu_level), direction_, &solved,
+                                 &result->linear_iterations));
       if (solved) break;
       ++minimiser_statistics.failed_factorisations;
-      mu = mu > 0.0 ? mu * mu_growth : mu_floor;
+      mu_level = std::max(0, mu_level + 1);
     }
     if (!solved) {
       result->reason = SNESConvergedReasons[SNES_DIVERGED_LINEAR_SOLVE];
@@ -223,21 +244,22 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
         result->reason = SNESConvergedReasons[SNES_DIVERGED_LINE_SEARCH];
         break;
       }
-      mu = mu > 0.0 ? mu * mu_growth : mu_floor;
+      mu_level = std::max(0, mu_level + 1);
       continue;
     }
     failed_searches = 0;
-    if (mu > 0.0) ++minimiser_statistics.regularised_steps;
+    if (mu_level >= 0) ++minimiser_statistics.regularised_steps;
     if (exact) ++minimiser_statistics.exact_steps;
     PetscCall(VecCopy(trial_x_, x));
     PetscCall(VecCopy(trial_f_, residual_));
     current = next;
-    // A full step: the regularisation is not needed as much; a step cut
-    // below a quarter by the line search (not by the bound): it is.
+    // A full step: the regularisation is not needed as much (none at all
+    // once Newton's own step is taken whole, not cut by the bodies); a step
+    // cut below a quarter by the line search (not by the bound): it is.
     if (next.length >= bound) {
-      mu = mu / mu_growth < mu_floor ? 0.0 : mu / mu_growth;
+      mu_level = std::max(next.length >= 1.0 ? -1 : 0, mu_level - 1);
     } else if (next.length < full_step_fraction * bound) {
-      mu = mu > 0.0 ? mu * mu_growth : mu_floor;
+      mu_level = std::max(0, mu_level + 1);
     }
   }
   result->newton_iterations = iteration;

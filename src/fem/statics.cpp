@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <string>
 
 namespace sartor {
 
@@ -183,6 +184,7 @@ PetscErrorCode contact_rounds(IncrementalSystem& system, Vec x, const StaticOpti
     const double scale = problem.contact.stiffness_scale;
     if (!stiffen_contact(problem, options, *report) && report->sliding_vertices == 0) break;
     ++report->contact_rounds;
+    system.progress_label = "contact round " + std::to_string(report->contact_rounds);
     const double solved_residual = report->steps.back().residual_norm;
     bool solved = false;
     PetscCall(solve_again(system, x, last, report, &solved));
@@ -221,6 +223,8 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
   system.damping_weight = 0.0;
   system.minimise_statics = options.minimise;
   system.minimiser_statistics = {};
+  system.progress_interval = options.progress_interval;
+  system.progress_origin = system.progress_last = started;
   report->minimised = system.minimises();
   for (Vec* v : {&f, &last})
     PetscCall(VecDuplicate(x, v));
@@ -245,6 +249,7 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
       PetscCall(VecNorm(f, NORM_2, &report->initial_residual_norm));
     }
     report->sewing_stages = stage + 1;
+    system.progress_label = "stage " + std::to_string(stage + 1) + " of " + std::to_string(stages);
     if (!final_stage) {
       // A stage before the last only starts the next: its iterate is kept
       // even where it did not reach the loose tolerance in its budget.

@@ -58,6 +58,9 @@ struct StaticOptions {
   int stage_max_iterations = 30; // of the stages before the last
   int max_contact_rounds = 4;
   double max_offset_depth = 0.5; // fraction of the contact offset
+  // The minimiser's progress lines (stage or round, iteration, |F|, elapsed
+  // wall time), one every this many seconds; 0: none.
+  double progress_interval = 0.0;
 };
 
 struct LoadStepReport {
