@@ -544,7 +544,7 @@ double ray_to_surface(const Design& d, const Eigen::Vector3d& centre,
     outside += 0.004;
     if (outside > 1.0) return inside;
   }
-  for (int i = 0; i < 30; ++i) {
+  for (int i = 0; i < 22; ++i) {
     const double middle = 0.5 * (inside + outside);
     (body_field<false>(d, centre + middle * direction).value < 0.0 ? inside : outside) = middle;
   }
@@ -556,7 +556,7 @@ double ray_to_surface(const Design& d, const Eigen::Vector3d& centre,
 // (the part of the section seen from `centre`), m.
 double girth(const Design& d, const Eigen::Vector3d& centre, const Eigen::Vector3d& u,
              const Eigen::Vector3d& v) {
-  constexpr int rays = 256;
+  constexpr int rays = 160;
   std::vector<Eigen::Vector2d> points;
   for (int i = 0; i < rays; ++i) {
     const double angle = 2.0 * pi * i / rays;
@@ -625,9 +625,6 @@ double below_waist(const Measurements& m, const std::string& name) {
 // The girths the fit adjusts, as sizing measures them, mm.
 Measurements measure_girths(const Design& d, const Measurements& m, const VerticalMap& map) {
   const Limbs& l = d.left;
-  // FreeSewing's upper-leg level is the crotch's; the tape goes round the
-  // thigh just below it, where the legs part.
-  const double upper_leg = std::min(below_waist(m, "waistToUpperLeg"), crotch_height(d) - 0.025);
   const double knee = below_waist(m, "waistToKnee");
   const TaperedCapsule& knee_piece = knee > l.thigh.b.z() ? l.thigh : l.shin;
   const Eigen::Vector3d neck = axis_at_height(d.neck, map(default_neck_level));
@@ -639,7 +636,6 @@ Measurements measure_girths(const Design& d, const Measurements& m, const Vertic
       {"neck", 1e3 * horizontal_girth(d, neck)},
       {"biceps", 1e3 * limb_girth(d, l.upper_arm, 0.45)},
       {"wrist", 1e3 * limb_girth(d, l.forearm, 1.0 - 0.02 / l.forearm.length)},
-      {"upperLeg", 1e3 * horizontal_girth(d, axis_at_height(l.thigh, upper_leg))},
       {"knee", 1e3 * horizontal_girth(d, axis_at_height(knee_piece, knee))},
   };
 }
@@ -663,7 +659,15 @@ using GirthFactors = std::map<std::string, double>;
 void widen_left(Limbs& l, const GirthFactors& f) {
   widen(l.upper_arm, f.at("biceps"), f.at("biceps"));
   widen(l.forearm, f.at("wrist"), f.at("wrist"));
-  widen(l.thigh, f.at("upperLeg"), f.at("knee"));
+  // The thigh's top, a sphere at the hip joint, carries the hips too: the
+  // hips' factor scales it and the legs' spacing.
+  const Eigen::Vector3d out((f.at("hips") - 1.0) * l.thigh.a.x(), 0.0, 0.0);
+  for (TaperedCapsule* c : {&l.thigh, &l.shin})
+    *c = TaperedCapsule(c->a + out, c->b + out, c->ra, c->rb);
+  for (Ellipsoid* e : {&l.calf, &l.foot})
+    e->centre += out;
+  l.toes += out;
+  widen(l.thigh, f.at("hips"), f.at("knee"));
   widen(l.shin, f.at("knee"), 1.0);
   widen(l.calf, f.at("knee"));
   widen(l.buttock, f.at("seat"));
@@ -693,6 +697,10 @@ Design stretched_design(const Measurements& m, const VerticalMap& map) {
   // left_limbs places these at the default's heights.
   for (Ellipsoid* e : {&d.left.calf, &d.left.foot, &d.left.buttock})
     map_heights(map, *e);
+  // The pieces that carry the hips and the seat follow their levels (the
+  // default's are 2 cm from them), or the fit would widen one to mend the other.
+  d.hips.centre.z() = below_waist(m, "waistToHips") - 0.02;
+  d.left.buttock.centre.z() = below_waist(m, "waistToSeat") + 0.02;
   return d;
 }
 
@@ -711,24 +719,27 @@ Design widened_design(const Design& stretched, const GirthFactors& f) {
 // ratio of the requested girth to the measured one until every girth is
 // within 0.2 % (the pieces interact through their fillets, weakly).
 Design sized_design(const Measurements& m) {
-  const VerticalMap map = vertical_map(m, crotch_height(default_design()));
-  Design stretched = stretched_design(m, map);
-  stretched.right = mirrored(stretched.left);
+  const double default_crotch = crotch_height(default_design());
+  // The crotch knot is corrected as well: wider hips and seat fill the crotch.
+  Measurements knots = m;
   GirthFactors factors;
-  for (const auto& [name, value] : measure_girths(stretched, m, map))
-    factors[name] = 1.0;
+  for (const MeasurementUse& use : mannequin_measurements())
+    if (use.girth) factors[use.name] = 1.0;
   double worst = 0.0;
   std::string worst_name;
-  for (int iteration = 0; iteration < 20; ++iteration) {
-    const Design d = widened_design(stretched, factors);
-    worst = 0.0;
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    const VerticalMap map = vertical_map(knots, default_crotch);
+    const Design d = widened_design(stretched_design(knots, map), factors);
+    worst = std::abs(1e3 * crotch_height(d) - m.at("inseam")) / m.at("inseam");
+    worst_name = "inseam";
+    knots["inseam"] += m.at("inseam") - 1e3 * crotch_height(d);
     for (const auto& [name, measured] : measure_girths(d, m, map)) {
-      const double ratio = m.at(name) / measured;
-      if (std::abs(ratio - 1.0) > worst) {
-        worst = std::abs(ratio - 1.0);
+      const double error = std::abs(m.at(name) / measured - 1.0);
+      if (error > worst) {
+        worst = error;
         worst_name = name;
       }
-      factors[name] *= ratio;
+      factors[name] *= std::clamp(m.at(name) / measured, 0.85, 1.15);
     }
     if (worst < 2e-3) return d;
   }
@@ -875,8 +886,7 @@ Measurements compute_default_measurements() {
                     {"shoulderToShoulder", 1e3 * default_shoulder_width},
                     {"shoulderToWrist", 1e3 * default_arm_length},
                     {"waistToHips", 120.0},
-                    {"waistToSeat", 200.0},
-                    {"waistToUpperLeg", 1e3 * default_waist - inseam + 25.0}};
+                    {"waistToSeat", 200.0}};
   for (const auto& [name, value] : measure_girths(d, m, identity_map()))
     m[name] = value;
   return m;
@@ -918,26 +928,23 @@ void check_plausible(const Measurements& m) {
 
 const std::vector<MeasurementUse>& mannequin_measurements() {
   static const std::vector<MeasurementUse> uses = {
-      {"height", "the crown's height above the floor"},
-      {"waistToFloor", "the waist's height: where the waist girth is taken"},
-      {"hpsToWaistBack", "the neck's base (high point of the shoulder) above the waist"},
-      {"inseam", "the crotch's height"},
-      {"waistToKnee", "the knee joint below the waist"},
-      {"shoulderToShoulder", "between the shoulder joints"},
-      {"shoulderToWrist", "shoulder joint to wrist joint (the arm's length)"},
-      {"waistToHips", "the hips girth's level below the waist"},
-      {"waistToSeat", "the seat girth's level below the waist"},
-      {"waistToUpperLeg", "the upper-leg girth's level below the waist (at most 25 mm above the "
-                          "crotch)"},
-      {"chest", "girth at the chest (horizontal, 190 mm above the default waist, mapped)"},
-      {"waist", "girth at waistToFloor"},
-      {"hips", "girth at waistToHips below the waist"},
-      {"seat", "girth at waistToSeat below the waist"},
-      {"neck", "girth of the neck 60 mm above its base (mapped)"},
-      {"biceps", "girth across the upper arm, 45 % of the way to the elbow"},
-      {"wrist", "girth across the forearm 20 mm above the wrist joint"},
-      {"upperLeg", "girth of the thigh at waistToUpperLeg"},
-      {"knee", "girth of the leg at waistToKnee"},
+      {"height", "the crown's height above the floor", false},
+      {"waistToFloor", "the waist's height: where the waist girth is taken", false},
+      {"hpsToWaistBack", "the neck's base (high point of the shoulder) above the waist", false},
+      {"inseam", "the crotch's height", false},
+      {"waistToKnee", "the knee joint below the waist", false},
+      {"shoulderToShoulder", "between the shoulder joints", false},
+      {"shoulderToWrist", "shoulder joint to wrist joint (the arm's length)", false},
+      {"waistToHips", "the hips girth's level below the waist", false},
+      {"waistToSeat", "the seat girth's level below the waist", false},
+      {"chest", "girth at the chest (horizontal, 190 mm above the default waist, mapped)", true},
+      {"waist", "girth at waistToFloor", true},
+      {"hips", "girth at waistToHips below the waist", true},
+      {"seat", "girth at waistToSeat below the waist", true},
+      {"neck", "girth of the neck 60 mm above its base (mapped)", true},
+      {"biceps", "girth across the upper arm, 45 % of the way to the elbow", true},
+      {"wrist", "girth across the forearm 20 mm above the wrist joint", true},
+      {"knee", "girth of the leg at waistToKnee", true},
   };
   return uses;
 }
@@ -1072,6 +1079,10 @@ MannequinModel::MannequinModel(const Measurements& requested, const Pose& pose) 
     requested_[name] = value;
     is_default = is_default && value == default_measurements().at(name);
   }
+  // Without a height the head keeps its size on top of the neck's base.
+  if (!requested.count("height"))
+    requested_["height"] = requested_.at("waistToFloor") + requested_.at("hpsToWaistBack") +
+                           1e3 * (default_crown - default_hps);
   check_plausible(requested_);
   if (!is_default) {
     sized_ = std::make_shared<Parts>(Parts{sized_design(requested_)});

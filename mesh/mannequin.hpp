@@ -77,6 +77,7 @@ using Measurements = std::map<std::string, double>;
 struct MeasurementUse {
   std::string name;
   std::string meaning;
+  bool girth; // fitted by widening pieces; otherwise a height, length or level
 };
 const std::vector<MeasurementUse>& mannequin_measurements();
 // The default mannequin's value of each of them, measured on it, mm.
