@@ -161,8 +161,8 @@ struct BodyCrossing {
   double depth = 0.0;
 };
 
-std::map<std::string, BodyCrossing> seams_crossing_body(const SewableGarment& garment) {
-  const auto body = contact::make_mannequin_shape();
+std::map<std::string, BodyCrossing> seams_crossing_body(const SewableGarment& garment,
+                                                        const contact::Shape* body) {
   std::map<std::string, BodyCrossing> crossing;
   for (const Seam& seam : garment.seams) {
     const std::size_t na = seam.a.size(), nb = seam.b.size();
@@ -188,12 +188,13 @@ std::map<std::string, BodyCrossing> seams_crossing_body(const SewableGarment& ga
 // How the drape ended (solvers/drape_outcome.hpp), on the mannequin whose
 // feet stand on the floor; classified on rank 0, which has the final
 // positions, and broadcast.
-DrapeOutcome drape_outcome(const CaseResult& result, const DrapeEndLimits& limits) {
+DrapeOutcome drape_outcome(const CaseResult& result, const DrapeEndLimits& limits,
+                           const contact::GarmentBody& garment_body) {
   std::array<double, 8> packed{};
   if (is_root()) {
-    const auto body = contact::make_mannequin_shape();
+    const contact::Shape* body = garment_body.distance.get();
     double floor = std::numeric_limits<double>::infinity();
-    for (const Eigen::Vector3d& v : default_mannequin().mesh.vertices)
+    for (const Eigen::Vector3d& v : garment_body.mannequin.mesh.vertices)
       floor = std::min(floor, v.z());
     const DrapeOutcome o = classify_drape_end(
         result.mesh.positions, result.positions, floor,
@@ -336,24 +337,26 @@ int run_drape(const Invocation& invocation) {
     }
   }
   const std::string body = options.text("body");
-  if (body.rfind("mannequin", 0) != 0) {
-    throw InputError("option --body: sartor drape constructs the garment around the built-in "
-                     "mannequin, so the body must be it (\"mannequin mu=...\"), got '" +
+  if (body.rfind("mannequin", 0) != 0 &&
+      (body.rfind("mesh", 0) != 0 || body.find("skeleton=") == std::string::npos)) {
+    throw InputError("option --body: sartor drape constructs the garment around its body, so the "
+                     "body must have a skeleton: \"mannequin [measurements=FILE.json] "
+                     "[pose=...] mu=...\" or \"mesh file=BODY.obj skeleton=SKELETON.json "
+                     "mu=...\", got '" +
                      body + "'");
   }
 
   // 1. The garment, constructed and written as `sartor construct` writes it.
   const std::string user_seams = options.is_set("seams-file") ? options.text("seams-file") : "";
-  const ConstructedGarment constructed =
-      construct_garment(path, panel_mesh_options(options), user_seams, !options.flag("no-prefold"));
+  const ConstructedGarment constructed = construct_garment(
+      path, panel_mesh_options(options), user_seams, !options.flag("no-prefold"), body);
   print_construction(constructed);
   const auto constructed_at = Clock::now();
   write_construction(directory, constructed,
                      construction_summary(invocation, "drape", path, constructed));
   if (is_root()) {
-    const Mannequin& mannequin = default_mannequin();
-    write_body_obj(directory + "/body.obj", mannequin.mesh,
-                   {"Sartor body: built-in mannequin, generated procedurally by Sartor",
+    write_body_obj(directory + "/body.obj", constructed.body->mannequin.mesh,
+                   {"Sartor body: " + constructed.body->source,
                     "the body sartor drape draped " + path + " on; metres"});
   }
 
@@ -366,7 +369,8 @@ int run_drape(const Invocation& invocation) {
   }
   // A crossing deeper than 1 cm is more than the curvature of the body
   // between two seam vertices: the spring will pull cloth through it.
-  const std::map<std::string, BodyCrossing> crossing = seams_crossing_body(sewable);
+  const std::map<std::string, BodyCrossing> crossing =
+      seams_crossing_body(sewable, constructed.body->distance.get());
   nlohmann::json crossing_json = nlohmann::json::object();
   for (const auto& [seam, entry] : crossing) {
     crossing_json[seam] = {{"pairs", entry.pairs}, {"depth_m", entry.depth}};
@@ -485,7 +489,7 @@ int run_drape(const Invocation& invocation) {
   const bool equilibrium = residual >= 0.0 && residual <= 1e-3 * weight.norm();
   DrapeEndLimits end_limits;
   end_limits.drop_tolerance = options.nonnegative_real("drop-tolerance");
-  const DrapeOutcome outcome = drape_outcome(result, end_limits);
+  const DrapeOutcome outcome = drape_outcome(result, end_limits, *constructed.body);
   const bool converged =
       result.converged && (residual < 0.0 || equilibrium) && outcome.end == DrapeEnd::on_body;
   const double construction_seconds =
