@@ -269,7 +269,7 @@ const CommandSpec& drape_command() {
       "`sartor run` writes (result.h5 + result.xmf, final.obj = the draped\n"
       "garment, petsc_options.txt; dynamics: series.h5 + series.xmf, dynamics.csv);\n"
       "body.obj\n"
-      "(the mannequin); summary.json (the run's summary and \"drape\": timings,\n"
+      "(the body: the mannequin, sized/posed by --body, or the --body mesh); summary.json (the run's summary and \"drape\": timings,\n"
       "seam gap, penetration, body reaction against the garment's weight); and\n"
       "drape.png (front, side and back views coloured by strain, with a colour bar,\n"
       "postproc/plot_drape.py; not with --no-plot).\n\n"
@@ -298,6 +298,10 @@ const CommandSpec& drape_command() {
                           "[the pattern's]";
           }
           if (option.name == "seams-file") option = seams_file_option_spec();
+          if (option.name == "body")
+            option.help = "the body, with a skeleton: \"mannequin [measurements=FILE.json] "
+                          "[pose=JOINT:DEG,...] mu=...\" or \"mesh file=BODY.obj "
+                          "skeleton=SKELETON.json mu=...\" (docs/bodies.md)";
           if (is_mesh_option(option.name)) {
             option.fallback.clear();
             option.help = "sartor run only: the pattern gives the mesh and seams";
