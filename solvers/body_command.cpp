@@ -122,8 +122,9 @@ nlohmann::json mannequin_summary(const std::string& spec) {
     for (const MeasurementUse& use : mannequin_measurements()) {
       const double asked = model.requested().at(use.name);
       const double taken = model.achieved().at(use.name);
-      result["measurements_mm"][use.name] = {
-          {"requested", asked}, {"achieved", taken}, {"error_percent", 100.0 * (taken / asked - 1.0)}};
+      result["measurements_mm"][use.name] = {{"requested", asked},
+                                             {"achieved", taken},
+                                             {"error_percent", 100.0 * (taken / asked - 1.0)}};
     }
     if (!file.defaulted.empty()) {
       std::string names;
