@@ -82,6 +82,8 @@ ConstructedGarment construct_garment(const std::string& path, const PanelMeshOpt
   const auto body_start = Clock::now();
   constructed.body =
       std::make_shared<const contact::GarmentBody>(contact::garment_body(body_spec, where));
+  for (const std::string& note : constructed.body->notes)
+    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "body: %s\n", note.c_str()));
   const Mannequin& body = constructed.body->mannequin;
   // Shared with the construction, which places points later too (the
   // levels of a progressive drape mesh it again).

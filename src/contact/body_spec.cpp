@@ -152,6 +152,23 @@ MannequinModel sized_mannequin(const std::string& path) {
       .first->second;
 }
 
+std::vector<std::string> measurement_notes(const std::string& path) {
+  const MeasurementFile file = read_measurement_file(path);
+  std::vector<std::string> notes;
+  const auto listed = [](const std::vector<std::string>& names) {
+    std::string text;
+    for (const std::string& name : names)
+      text += (text.empty() ? "" : ", ") + name;
+    return text;
+  };
+  if (!file.defaulted.empty())
+    notes.push_back(path + " lacks " + listed(file.defaulted) +
+                    ": the default mannequin's values are used");
+  if (!file.unused.empty())
+    notes.push_back(path + ": " + listed(file.unused) + " not used by the mannequin");
+  return notes;
+}
+
 // mannequin [measurements=FILE.json] [pose=JOINT:DEG,...]
 MannequinModel mannequin_model(Fields& fields) {
   MannequinModel model;
@@ -283,6 +300,7 @@ GarmentBody garment_body(const std::string& spec, const std::string& where) {
         return body;
       }
       body.mannequin = model.generate();
+      if (fields.has("measurements")) body.notes = measurement_notes(fields.text("measurements"));
       body.source = "built-in mannequin sized and posed by Sartor (" + spec + ")";
     } else if (fields.kind() == "mesh") {
       const std::string file = fields.text_required("file");

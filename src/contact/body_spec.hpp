@@ -27,6 +27,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace sartor::contact {
 
@@ -42,6 +43,9 @@ struct GarmentBody {
   Mannequin mannequin; // mesh and skeleton
   std::shared_ptr<const Shape> distance;
   std::string source; // for logs and OBJ headers
+  // What the user should know: measurements that kept their defaults,
+  // FreeSewing names the mannequin does not use.
+  std::vector<std::string> notes;
 };
 GarmentBody garment_body(const std::string& spec, const std::string& where);
 
