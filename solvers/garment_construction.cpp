@@ -131,7 +131,7 @@ nlohmann::json construction_summary(const Invocation& invocation, const std::str
   nlohmann::json summary = run_metadata(invocation, command);
   summary["pattern"] = pattern_path;
   if (!constructed.seams_file.empty()) summary["seams_file"] = constructed.seams_file;
-  summary["body"] = constructed.body->source;
+  summary["body"] = constructed.body->is_default ? "default" : constructed.body->source;
   summary["units"] = "m";
   const garment::Pattern& pattern = constructed.pattern;
   const garment::TagconOptions& tagcon = constructed.tagcon;

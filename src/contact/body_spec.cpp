@@ -297,6 +297,7 @@ GarmentBody garment_body(const std::string& spec, const std::string& where) {
         body.mannequin = default_mannequin();
         body.distance = make_mannequin_shape();
         body.source = "built-in mannequin, generated procedurally by Sartor";
+        body.is_default = true;
         return body;
       }
       body.mannequin = model.generate();

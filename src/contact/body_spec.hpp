@@ -42,7 +42,8 @@ Body parse_body(const std::string& spec, const std::string& where, const std::st
 struct GarmentBody {
   Mannequin mannequin; // mesh and skeleton
   std::shared_ptr<const Shape> distance;
-  std::string source; // for logs and OBJ headers
+  std::string source;      // for logs and OBJ headers
+  bool is_default = false; // the built-in mannequin as it stands
   // What the user should know: measurements that kept their defaults,
   // FreeSewing names the mannequin does not use.
   std::vector<std::string> notes;
