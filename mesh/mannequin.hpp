@@ -18,6 +18,8 @@
 
 #include <Eigen/Core>
 
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -63,5 +65,83 @@ struct MannequinFieldValue {
   Eigen::Matrix3d hessian;  // 1/m
 };
 MannequinFieldValue mannequin_field_derivatives(const Eigen::Vector3d& p);
+
+// --- sizing and posing (docs/bodies.md#sizing-and-posing) ---------------------
+
+// Body measurements in mm under FreeSewing's names (camelCase: "waist",
+// "seat", "shoulderToWrist", ...; plus "height").
+using Measurements = std::map<std::string, double>;
+
+// The measurements the mannequin is sized to, in a fixed order, with what
+// each sets.
+struct MeasurementUse {
+  std::string name;
+  std::string meaning;
+  bool girth; // fitted by widening pieces; otherwise a height, length or level
+};
+const std::vector<MeasurementUse>& mannequin_measurements();
+// The default mannequin's value of each of them, measured on it, mm.
+const Measurements& default_measurements();
+// Whether `name` is a measurement FreeSewing's models hold (or "height"):
+// such names are accepted even where the mannequin does not use them.
+bool is_known_measurement(const std::string& name);
+
+// Joint angles in degrees, flexion in the sagittal plane: hip, shoulder,
+// elbow and neck forward, knee backward. Joints: neck, shoulder_l/r,
+// elbow_l/r, hip_l/r, knee_l/r; a joint not named is straight (0).
+struct Pose {
+  std::map<std::string, double> degrees;
+  double angle(const std::string& joint) const;
+  bool neutral() const;
+};
+// The joints with their allowed range of angles, degrees.
+struct JointRange {
+  std::string name;
+  double least;
+  double most;
+};
+const std::vector<JointRange>& pose_joints();
+// "knee_l:90,hip_l:45"; throws InputError naming the joint or the word.
+Pose parse_pose(const std::string& text);
+// Throws InputError for an unknown joint or an angle out of its range.
+void check_pose(const Pose& pose);
+
+// The mannequin sized to a measurement set and posed. Sizing fits the
+// pieces' radii until each girth, measured on the body, is within 0.2 % of
+// the request (a few tenths of a second); posing turns the limbs about their
+// joints (microseconds). The default-constructed model is the built-in
+// mannequin, bit for bit, and so is a model asked for its default values.
+class MannequinModel {
+public:
+  MannequinModel();
+  // Measurements not given keep default_measurements(); unknown or
+  // implausible values and impossible poses throw InputError naming them.
+  explicit MannequinModel(const Measurements& requested, const Pose& pose = {});
+  // The same sizing in another pose.
+  MannequinModel posed(const Pose& pose) const;
+
+  double field(const Eigen::Vector3d& p) const;
+  MannequinFieldValue field_derivatives(const Eigen::Vector3d& p) const;
+  // A bound on |gradient| outside the body (8 for the default's hands).
+  double slope_bound() const;
+  // Polygonised as default_mannequin() is (about 0.4 s).
+  Mannequin generate() const;
+  std::vector<Bone> skeleton() const;
+  bool is_default() const;
+  const Pose& pose() const;
+  // The measurements it was sized to (defaults filled in), mm.
+  const Measurements& requested() const;
+  // Those measurements taken on the unposed body as sizing takes them, mm.
+  const Measurements& achieved() const;
+
+  struct Parts; // the pieces of the body (mesh/mannequin.cpp)
+
+private:
+  std::shared_ptr<const Parts> sized_;
+  std::shared_ptr<const Parts> posed_;
+  Pose pose_;
+  Measurements requested_;
+  Measurements achieved_;
+};
 
 } // namespace sartor

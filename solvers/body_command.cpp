@@ -3,8 +3,10 @@
 
 #include "common/error.hpp"
 #include "common/output.hpp"
+#include "contact/body_spec.hpp"
 #include "contact/mesh_shape.hpp"
 #include "fem/petsc_call.hpp"
+#include "mesh/body_files.hpp"
 #include "mesh/body_obj.hpp"
 #include "mesh/mannequin.hpp"
 #include "solvers/commands.hpp"
@@ -14,28 +16,42 @@
 
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 namespace sartor {
 
 const CommandSpec& body_command() {
   static const CommandSpec spec{
       "body",
-      "check and describe a body: the built-in mannequin or a closed OBJ mesh",
-      "sartor body [--body default|FILE.obj] [--output DIR]",
+      "check and describe a body: the mannequin (sized, posed) or a closed OBJ mesh",
+      "sartor body [--body default|FILE.obj|SPEC] [--measurements FILE.json] [--pose POSE] "
+      "[--output DIR]",
       "Loads a rigid body as the contact code does and reports what it is. The\n"
-      "default is Sartor's built-in mannequin (1.75 m, standing, arms 27 degrees\n"
+      "default is Sartor's built-in mannequin (1.75 m, standing, arms 45 degrees\n"
       "away from the torso, facing -y, feet on z = 0), generated procedurally with\n"
-      "its skeleton. A FILE.obj body must be a closed, 2-manifold, consistently\n"
-      "and outward-oriented triangle mesh; anything else is an error naming the\n"
-      "file, the line and the problem.\n\n"
-      "Output in DIR: body.obj (v and f lines), skeleton.json (mannequin only),\n"
-      "summary.json (size, bounding box, area, volume, topology, timings) and\n"
-      "body.png (postproc/plot_body.py). Formats: docs/bodies.md.\n\n"
+      "its skeleton; --measurements sizes it to a measurement set (FreeSewing's\n"
+      "names, mm) and --pose bends its joints. A FILE.obj body must be a closed,\n"
+      "2-manifold, consistently and outward-oriented triangle mesh; anything else\n"
+      "is an error naming the file, the line and the problem. A SPEC is a body\n"
+      "with a skeleton as construct and drape take it: \"mannequin\n"
+      "measurements=FILE.json pose=knee_l:90\" or \"mesh file=BODY.obj\n"
+      "skeleton=SKELETON.json\".\n\n"
+      "Output in DIR: body.obj (v and f lines), skeleton.json (bodies with one),\n"
+      "summary.json (size, bounding box, area, volume, topology, timings; for a\n"
+      "sized mannequin the measurements asked for and taken on it) and body.png\n"
+      "(postproc/plot_body.py). Formats: docs/bodies.md.\n\n"
       "examples:\n"
       "  sartor body\n"
+      "  sartor body --measurements me.json --pose knee_l:90,hip_l:45 --output out/me\n"
       "  sartor body --body scan.obj --output out/scan",
       {
-          {"body", "SPEC", "default", "default (the built-in mannequin) or FILE.obj"},
+          {"body", "SPEC", "default",
+           "default (the built-in mannequin), FILE.obj, or a body with a skeleton "
+           "(\"mannequin measurements=FILE.json pose=...\", \"mesh file=BODY.obj "
+           "skeleton=SKELETON.json\")"},
+          {"measurements", "FILE", "",
+           "size the mannequin to this measurement set (JSON, mm, FreeSewing's names)"},
+          {"pose", "POSE", "", "bend the mannequin's joints: JOINT:DEG,... (e.g. knee_l:90)"},
           {"output", "DIR", "out/body", "output folder (created; files in it are replaced)"},
           {"no-plot", "", "", "write data only, no PNG"},
       },
@@ -87,44 +103,89 @@ double mean_query_microseconds(const contact::Shape& shape, const BodyMesh& mesh
   return std::isfinite(checksum) ? 1e6 * elapsed / static_cast<double>(samples) : NAN;
 }
 
+// What the sized mannequin was asked for and what it measures, with the
+// measurements the file left to the default and those it does not use.
+nlohmann::json mannequin_summary(const std::string& spec) {
+  nlohmann::json result;
+  std::istringstream words(spec);
+  std::string word;
+  while (words >> word) {
+    if (word.rfind("pose=", 0) == 0) result["pose"] = word.substr(5);
+    if (word.rfind("measurements=", 0) != 0) continue;
+    const std::string path = word.substr(13);
+    const MeasurementFile file = read_measurement_file(path);
+    const MannequinModel model(file.measurements);
+    result["measurement_file"] = path;
+    result["measurement_set"] = file.name;
+    result["defaulted"] = file.defaulted;
+    result["unused"] = file.unused;
+    for (const MeasurementUse& use : mannequin_measurements()) {
+      const double asked = model.requested().at(use.name);
+      const double taken = model.achieved().at(use.name);
+      result["measurements_mm"][use.name] = {{"requested", asked},
+                                             {"achieved", taken},
+                                             {"error_percent", 100.0 * (taken / asked - 1.0)}};
+    }
+    if (!file.defaulted.empty()) {
+      std::string names;
+      for (const std::string& name : file.defaulted)
+        names += (names.empty() ? "" : ", ") + name;
+      SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                                  "sartor body: %s lacks %s: the default mannequin's values\n",
+                                  path.c_str(), names.c_str()));
+    }
+  }
+  return result;
+}
+
 } // namespace
 
 int run_body(const Invocation& invocation) {
   const Options& options = invocation.options;
   const auto started = std::chrono::steady_clock::now();
-  const std::string spec = options.text("body");
-  const bool is_mannequin = spec == "default";
+  std::string spec = options.text("body");
+  if (options.is_set("measurements") || options.is_set("pose")) {
+    if (spec != "default" && spec.rfind("mannequin", 0) != 0)
+      throw InputError("options --measurements and --pose size and pose the mannequin, not '" +
+                       spec + "'");
+    spec = spec == "default" ? "mannequin" : spec;
+    if (options.is_set("measurements")) spec += " measurements=" + options.text("measurements");
+    if (options.is_set("pose")) spec += " pose=" + options.text("pose");
+  }
+  const bool is_file = spec != "default" && spec.find(' ') == std::string::npos &&
+                       spec != "mannequin" && spec.rfind("mesh", 0) != 0;
+  const bool is_mannequin = spec == "default" || spec.rfind("mannequin", 0) == 0;
 
   BodyMesh mesh;
   std::vector<Bone> skeleton;
+  std::string source = "file " + spec;
   const auto load_started = std::chrono::steady_clock::now();
-  if (is_mannequin) {
-    const Mannequin& mannequin = default_mannequin();
-    mesh = mannequin.mesh;
-    skeleton = mannequin.skeleton;
-  } else {
+  if (is_file) {
     mesh = read_body_obj(spec);
+  } else {
+    contact::GarmentBody body = contact::garment_body(spec, "option --body");
+    mesh = std::move(body.mannequin.mesh);
+    skeleton = std::move(body.mannequin.skeleton);
+    source = body.source;
   }
   const double load_seconds = seconds_since(load_started);
   const BodyMeasures measures = measure_body(mesh);
 
   const auto tree_started = std::chrono::steady_clock::now();
   const std::unique_ptr<contact::Shape> shape =
-      contact::make_mesh_shape(mesh.vertices, mesh.faces, is_mannequin ? "mannequin" : spec);
+      contact::make_mesh_shape(mesh.vertices, mesh.faces, is_mannequin ? "mannequin" : source);
   const double tree_seconds = seconds_since(tree_started);
   const double query_microseconds = mean_query_microseconds(*shape, mesh);
 
   const std::string directory = options.text("output");
   if (is_root()) make_output_directory(directory);
-  const std::string source =
-      is_mannequin ? "built-in mannequin, generated procedurally by Sartor" : "file " + spec;
   if (is_root()) {
     write_body_obj(directory + "/body.obj", mesh,
                    {"Sartor body: " + source,
                     std::to_string(measures.used_vertices) + " vertices, " +
                         std::to_string(mesh.faces.size()) +
                         " triangles, metres, faces counter-clockwise seen from outside"});
-    if (is_mannequin) write_json(directory + "/skeleton.json", skeleton_json(skeleton));
+    if (!skeleton.empty()) write_json(directory + "/skeleton.json", skeleton_json(skeleton));
   }
 
   nlohmann::json summary = run_metadata(invocation, "body");
@@ -132,7 +193,7 @@ int run_body(const Invocation& invocation) {
       {"source", source},
       {"kind", is_mannequin ? "mannequin" : "file"},
       {"obj", "body.obj"},
-      {"skeleton", is_mannequin ? nlohmann::json("skeleton.json") : nlohmann::json()},
+      {"skeleton", skeleton.empty() ? nlohmann::json() : nlohmann::json("skeleton.json")},
       {"describe", shape->describe()},
       {"vertices", measures.used_vertices},
       {"triangles", mesh.faces.size()},
@@ -153,6 +214,9 @@ int run_body(const Invocation& invocation) {
       {"longest_edge_m", measures.longest_edge},
       {"smallest_angle_deg", measures.smallest_angle_deg},
   };
+  if (options.is_set("measurements") || spec.find("measurements=") != std::string::npos ||
+      spec.find("pose=") != std::string::npos)
+    summary["mannequin"] = mannequin_summary(spec);
   summary["timings"] = {{"load_or_generate_s", load_seconds},
                         {"aabb_tree_build_s", tree_seconds},
                         {"query_mean_us", query_microseconds}};

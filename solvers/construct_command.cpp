@@ -15,7 +15,7 @@ const CommandSpec& construct_command() {
   static const CommandSpec spec{
       "construct",
       "TAGCON: place a tagged, packed pattern around the body and find its seams",
-      "sartor construct PATTERN.json [--body default] [--output DIR] [--edge-length M] "
+      "sartor construct PATTERN.json [--body SPEC] [--output DIR] [--edge-length M] "
       "[--min-angle DEG] [--seams-file FILE]",
       "Constructs a garment from a pattern (docs/pattern-format.md) as the thesis'\n"
       "TAGCON does (ch. 3; docs/tagcon.md): cylinders fitted to the body's skeleton\n"
@@ -43,7 +43,10 @@ const CommandSpec& construct_command() {
       "      --seams-file out/tshirt/seams.json --body mannequin ...",
       [] {
         std::vector<OptionSpec> options{
-            {"body", "NAME", "default", "the body: default (the built-in mannequin)"},
+            {"body", "SPEC", "default",
+             "the body: default (the built-in mannequin), \"mannequin measurements=FILE.json "
+             "pose=JOINT:DEG,...\" (sized, posed) or \"mesh file=BODY.obj "
+             "skeleton=SKELETON.json\" (docs/bodies.md)"},
             {"output", "DIR", "out/construct",
              "output folder (created; files in it are replaced)"}};
         options.insert(options.end(), panel_mesh_option_specs().begin(),
@@ -59,12 +62,10 @@ int run_construct(const Invocation& invocation) {
   const Options& options = invocation.options;
   const std::string path = invocation.command_line.positionals.at(0);
   const std::string directory = options.text("output");
-  if (options.text("body") != "default")
-    throw InputError("option --body: unknown body '" + options.text("body") +
-                     "' (expected: default, the built-in mannequin)");
-  const ConstructedGarment constructed = construct_garment(
-      path, panel_mesh_options(options),
-      options.is_set("seams-file") ? options.text("seams-file") : "", !options.flag("no-prefold"));
+  const ConstructedGarment constructed =
+      construct_garment(path, panel_mesh_options(options),
+                        options.is_set("seams-file") ? options.text("seams-file") : "",
+                        !options.flag("no-prefold"), options.text("body"));
   print_construction(constructed);
   write_construction(directory, constructed,
                      construction_summary(invocation, "construct", path, constructed));

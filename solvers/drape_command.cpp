@@ -161,8 +161,8 @@ struct BodyCrossing {
   double depth = 0.0;
 };
 
-std::map<std::string, BodyCrossing> seams_crossing_body(const SewableGarment& garment) {
-  const auto body = contact::make_mannequin_shape();
+std::map<std::string, BodyCrossing> seams_crossing_body(const SewableGarment& garment,
+                                                        const contact::Shape* body) {
   std::map<std::string, BodyCrossing> crossing;
   for (const Seam& seam : garment.seams) {
     const std::size_t na = seam.a.size(), nb = seam.b.size();
@@ -188,12 +188,13 @@ std::map<std::string, BodyCrossing> seams_crossing_body(const SewableGarment& ga
 // How the drape ended (solvers/drape_outcome.hpp), on the mannequin whose
 // feet stand on the floor; classified on rank 0, which has the final
 // positions, and broadcast.
-DrapeOutcome drape_outcome(const CaseResult& result, const DrapeEndLimits& limits) {
+DrapeOutcome drape_outcome(const CaseResult& result, const DrapeEndLimits& limits,
+                           const contact::GarmentBody& garment_body) {
   std::array<double, 8> packed{};
   if (is_root()) {
-    const auto body = contact::make_mannequin_shape();
+    const contact::Shape* body = garment_body.distance.get();
     double floor = std::numeric_limits<double>::infinity();
-    for (const Eigen::Vector3d& v : default_mannequin().mesh.vertices)
+    for (const Eigen::Vector3d& v : garment_body.mannequin.mesh.vertices)
       floor = std::min(floor, v.z());
     const DrapeOutcome o = classify_drape_end(
         result.mesh.positions, result.positions, floor,
@@ -268,7 +269,8 @@ const CommandSpec& drape_command() {
       "`sartor run` writes (result.h5 + result.xmf, final.obj = the draped\n"
       "garment, petsc_options.txt; dynamics: series.h5 + series.xmf, dynamics.csv);\n"
       "body.obj\n"
-      "(the mannequin); summary.json (the run's summary and \"drape\": timings,\n"
+      "(the body: the mannequin, sized/posed by --body, or the --body mesh); summary.json (the "
+      "run's summary and \"drape\": timings,\n"
       "seam gap, penetration, body reaction against the garment's weight); and\n"
       "drape.png (front, side and back views coloured by strain, with a colour bar,\n"
       "postproc/plot_drape.py; not with --no-plot).\n\n"
@@ -297,6 +299,10 @@ const CommandSpec& drape_command() {
                           "[the pattern's]";
           }
           if (option.name == "seams-file") option = seams_file_option_spec();
+          if (option.name == "body")
+            option.help = "the body, with a skeleton: \"mannequin [measurements=FILE.json] "
+                          "[pose=JOINT:DEG,...] mu=...\" or \"mesh file=BODY.obj "
+                          "skeleton=SKELETON.json mu=...\" (docs/bodies.md)";
           if (is_mesh_option(option.name)) {
             option.fallback.clear();
             option.help = "sartor run only: the pattern gives the mesh and seams";
@@ -336,24 +342,26 @@ int run_drape(const Invocation& invocation) {
     }
   }
   const std::string body = options.text("body");
-  if (body.rfind("mannequin", 0) != 0) {
-    throw InputError("option --body: sartor drape constructs the garment around the built-in "
-                     "mannequin, so the body must be it (\"mannequin mu=...\"), got '" +
+  if (body.rfind("mannequin", 0) != 0 &&
+      (body.rfind("mesh", 0) != 0 || body.find("skeleton=") == std::string::npos)) {
+    throw InputError("option --body: sartor drape constructs the garment around its body, so the "
+                     "body must have a skeleton: \"mannequin [measurements=FILE.json] "
+                     "[pose=...] mu=...\" or \"mesh file=BODY.obj skeleton=SKELETON.json "
+                     "mu=...\", got '" +
                      body + "'");
   }
 
   // 1. The garment, constructed and written as `sartor construct` writes it.
   const std::string user_seams = options.is_set("seams-file") ? options.text("seams-file") : "";
-  const ConstructedGarment constructed =
-      construct_garment(path, panel_mesh_options(options), user_seams, !options.flag("no-prefold"));
+  const ConstructedGarment constructed = construct_garment(
+      path, panel_mesh_options(options), user_seams, !options.flag("no-prefold"), body);
   print_construction(constructed);
   const auto constructed_at = Clock::now();
   write_construction(directory, constructed,
                      construction_summary(invocation, "drape", path, constructed));
   if (is_root()) {
-    const Mannequin& mannequin = default_mannequin();
-    write_body_obj(directory + "/body.obj", mannequin.mesh,
-                   {"Sartor body: built-in mannequin, generated procedurally by Sartor",
+    write_body_obj(directory + "/body.obj", constructed.body->mannequin.mesh,
+                   {"Sartor body: " + constructed.body->source,
                     "the body sartor drape draped " + path + " on; metres"});
   }
 
@@ -366,7 +374,8 @@ int run_drape(const Invocation& invocation) {
   }
   // A crossing deeper than 1 cm is more than the curvature of the body
   // between two seam vertices: the spring will pull cloth through it.
-  const std::map<std::string, BodyCrossing> crossing = seams_crossing_body(sewable);
+  const std::map<std::string, BodyCrossing> crossing =
+      seams_crossing_body(sewable, constructed.body->distance.get());
   nlohmann::json crossing_json = nlohmann::json::object();
   for (const auto& [seam, entry] : crossing) {
     crossing_json[seam] = {{"pairs", entry.pairs}, {"depth_m", entry.depth}};
@@ -488,7 +497,7 @@ int run_drape(const Invocation& invocation) {
   const bool equilibrium = residual >= 0.0 && residual <= 1e-3 * weight.norm();
   DrapeEndLimits end_limits;
   end_limits.drop_tolerance = options.nonnegative_real("drop-tolerance");
-  const DrapeOutcome outcome = drape_outcome(result, end_limits);
+  const DrapeOutcome outcome = drape_outcome(result, end_limits, *constructed.body);
   const bool converged =
       result.converged && (residual < 0.0 || equilibrium) && outcome.end == DrapeEnd::on_body;
   const double construction_seconds =

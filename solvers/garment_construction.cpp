@@ -65,7 +65,8 @@ OptionSpec seams_file_option_spec() {
 }
 
 ConstructedGarment construct_garment(const std::string& path, const PanelMeshOptions& mesh_options,
-                                     const std::string& seams_file, bool prefold) {
+                                     const std::string& seams_file, bool prefold,
+                                     const std::string& body_spec, const std::string& where) {
   ConstructedGarment constructed;
   constructed.path = path;
   constructed.seams_file = seams_file;
@@ -79,10 +80,14 @@ ConstructedGarment construct_garment(const std::string& path, const PanelMeshOpt
   check_panel_mesh_size(constructed.pattern, mesh_options.edge_length);
   using Clock = std::chrono::steady_clock;
   const auto body_start = Clock::now();
-  const Mannequin& body = default_mannequin();
+  constructed.body =
+      std::make_shared<const contact::GarmentBody>(contact::garment_body(body_spec, where));
+  for (const std::string& note : constructed.body->notes)
+    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "body: %s\n", note.c_str()));
+  const Mannequin& body = constructed.body->mannequin;
   // Shared with the construction, which places points later too (the
   // levels of a progressive drape mesh it again).
-  const std::shared_ptr<const contact::Shape> shape = contact::make_mannequin_shape();
+  const std::shared_ptr<const contact::Shape> shape = constructed.body->distance;
   constructed.body_seconds = std::chrono::duration<double>(Clock::now() - body_start).count();
   const garment::BodyDistance distance = [shape](const Eigen::Vector3d& p,
                                                  Eigen::Vector3d* gradient) {
@@ -126,7 +131,7 @@ nlohmann::json construction_summary(const Invocation& invocation, const std::str
   nlohmann::json summary = run_metadata(invocation, command);
   summary["pattern"] = pattern_path;
   if (!constructed.seams_file.empty()) summary["seams_file"] = constructed.seams_file;
-  summary["body"] = "default";
+  summary["body"] = constructed.body->is_default ? "default" : constructed.body->source;
   summary["units"] = "m";
   const garment::Pattern& pattern = constructed.pattern;
   const garment::TagconOptions& tagcon = constructed.tagcon;
@@ -272,7 +277,7 @@ void write_construction(const std::string& directory, const ConstructedGarment& 
   const garment::Pattern& pattern = constructed.pattern;
   const garment::Construction& construction = constructed.construction;
   const garment::GarmentMesh& garment = constructed.garment;
-  const Mannequin& body = default_mannequin();
+  const Mannequin& body = constructed.body->mannequin;
   make_output_directory(directory);
   garment::write_garment_obj(directory + "/garment.obj", garment, pattern);
   write_seams(directory + "/seams.json", garment.seams);

@@ -4,6 +4,7 @@
 // its packs and find its seams (src/garment/tagcon), mesh the panels
 // (src/garment/garment_mesh), and report and write the result.
 
+#include "contact/body_spec.hpp"
 #include "garment/garment_mesh.hpp"
 #include "garment/pattern.hpp"
 #include "garment/tagcon.hpp"
@@ -13,6 +14,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,8 +28,9 @@ struct ConstructedGarment {
   PanelMeshOptions mesh_options;
   garment::Construction construction;
   garment::GarmentMesh garment;
-  double body_seconds = 0.0; // the mannequin and its distance queries, s
-  double mesh_seconds = 0.0; // meshing the panels, s
+  std::shared_ptr<const contact::GarmentBody> body; // what the garment is placed on
+  double body_seconds = 0.0;                        // the body and its distance queries, s
+  double mesh_seconds = 0.0;                        // meshing the panels, s
 };
 
 // --edge-length and --min-angle: how finely the panels are meshed;
@@ -41,8 +44,12 @@ PanelMeshOptions panel_mesh_options(const Options& options);
 // empty) retags panels before TAGCON and overrides or completes its seams
 // after. Throws InputError for a bad pattern or seams file, or a pattern
 // TAGCON cannot construct.
+// `body_spec`: "default" or a body with a skeleton (contact::garment_body),
+// e.g. "mannequin measurements=me.json"; `where` names it in errors.
 ConstructedGarment construct_garment(const std::string& path, const PanelMeshOptions& mesh_options,
-                                     const std::string& seams_file = "", bool prefold = true);
+                                     const std::string& seams_file = "", bool prefold = true,
+                                     const std::string& body_spec = "default",
+                                     const std::string& where = "option --body");
 
 // --seams-file of construct and drape.
 OptionSpec seams_file_option_spec();

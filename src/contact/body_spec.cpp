@@ -4,10 +4,13 @@
 #include "contact/analytic_shapes.hpp"
 #include "contact/mannequin_surface.hpp"
 #include "contact/mesh_shape.hpp"
+#include "mesh/body_files.hpp"
+#include "mesh/body_obj.hpp"
 
 #include <cmath>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -137,6 +140,49 @@ private:
   std::set<std::string> used_;
 };
 
+// Sizing takes a few tenths of a second; a process asks for the same
+// measurement file for contact and for garment construction.
+MannequinModel sized_mannequin(const std::string& path) {
+  static std::mutex mutex;
+  static std::map<std::string, MannequinModel> sized;
+  const std::lock_guard<std::mutex> lock(mutex);
+  const auto found = sized.find(path);
+  if (found != sized.end()) return found->second;
+  return sized.emplace(path, MannequinModel(read_measurement_file(path).measurements))
+      .first->second;
+}
+
+std::vector<std::string> measurement_notes(const std::string& path) {
+  const MeasurementFile file = read_measurement_file(path);
+  std::vector<std::string> notes;
+  const auto listed = [](const std::vector<std::string>& names) {
+    std::string text;
+    for (const std::string& name : names)
+      text += (text.empty() ? "" : ", ") + name;
+    return text;
+  };
+  if (!file.defaulted.empty())
+    notes.push_back(path + " lacks " + listed(file.defaulted) +
+                    ": the default mannequin's values are used");
+  if (!file.unused.empty())
+    notes.push_back(path + ": " + listed(file.unused) + " not used by the mannequin");
+  return notes;
+}
+
+// mannequin [measurements=FILE.json] [pose=JOINT:DEG,...]
+MannequinModel mannequin_model(Fields& fields) {
+  MannequinModel model;
+  if (fields.has("measurements")) model = sized_mannequin(fields.text("measurements"));
+  if (fields.has("pose")) {
+    try {
+      model = model.posed(parse_pose(fields.text("pose")));
+    } catch (const InputError& error) {
+      fields.fail(error.what());
+    }
+  }
+  return model;
+}
+
 // The shape a spec names and its pivot (the point motions turn and scale about).
 std::pair<std::shared_ptr<const Shape>, Vector3d> make_shape(Fields& fields) {
   const std::string& kind = fields.kind();
@@ -182,10 +228,14 @@ std::pair<std::shared_ptr<const Shape>, Vector3d> make_shape(Fields& fields) {
   }
   if (kind == "mesh") {
     std::shared_ptr<const Shape> shape = load_mesh_shape(fields.text_required("file"));
+    // Garment construction reads it (garment_body); contact checks it only.
+    if (fields.has("skeleton"))
+      read_skeleton_file(fields.text("skeleton"), read_body_obj(fields.text("file")));
     return {shape, origin};
   }
   if (kind == "mannequin") {
-    return {std::shared_ptr<const Shape>(make_smooth_mannequin_shape()), origin};
+    const MannequinModel model = mannequin_model(fields);
+    return {std::shared_ptr<const Shape>(make_posed_mannequin_shape(model, model.pose())), origin};
   }
   fields.fail("unknown body '" + kind +
               "' (plane, sphere, capsule, cylinder, disk, box, mesh, mannequin)");
@@ -233,6 +283,45 @@ Body parse_body(const std::string& spec, const std::string& where,
     return s;
   });
   fields.finish();
+  return body;
+}
+
+GarmentBody garment_body(const std::string& spec, const std::string& where) {
+  if (spec == "default") return garment_body("mannequin", where);
+  Fields fields(spec, where);
+  GarmentBody body;
+  try {
+    if (fields.kind() == "mannequin") {
+      const MannequinModel model = mannequin_model(fields);
+      if (model.is_default()) {
+        body.mannequin = default_mannequin();
+        body.distance = make_mannequin_shape();
+        body.source = "built-in mannequin, generated procedurally by Sartor";
+        body.is_default = true;
+        return body;
+      }
+      body.mannequin = model.generate();
+      if (fields.has("measurements")) body.notes = measurement_notes(fields.text("measurements"));
+      body.source = "built-in mannequin sized and posed by Sartor (" + spec + ")";
+    } else if (fields.kind() == "mesh") {
+      const std::string file = fields.text_required("file");
+      body.mannequin.mesh = read_body_obj(file);
+      body.mannequin.skeleton =
+          read_skeleton_file(fields.text_required("skeleton"), body.mannequin.mesh);
+      body.source = "file " + file + " with skeleton " + fields.text("skeleton");
+    } else {
+      fields.fail("garment construction needs a body with a skeleton: 'mannequin "
+                  "[measurements=FILE.json] [pose=...]' or 'mesh file=BODY.obj "
+                  "skeleton=SKELETON.json', got '" +
+                  fields.kind() + "'");
+    }
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    if (message.rfind(where, 0) == 0) throw;
+    fields.fail(message);
+  }
+  body.distance =
+      make_mesh_shape(body.mannequin.mesh.vertices, body.mannequin.mesh.faces, fields.kind());
   return body;
 }
 

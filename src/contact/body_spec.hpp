@@ -10,7 +10,10 @@
 //             direction=D (0,0,1, the top face's normal)
 //   box       center=C  size=SX,SY,SZ (full extents)  rounding=R (0)
 //   mesh      file=BODY.obj (a closed triangle mesh, mesh/body_obj.hpp)
+//             skeleton=SKELETON.json (for garment construction; checked here)
 //   mannequin (the built-in one, mesh/mannequin.hpp: feet on z = 0, facing -y)
+//             measurements=FILE.json (sized to them, mesh/body_files.hpp)
+//             pose=JOINT:DEG,... (e.g. knee_l:90,hip_l:45; mesh/mannequin.hpp)
 // Every body also takes
 //   name=NAME (body, body2, ...: the option's name), mu=MU (static and kinetic),
 //   mu_s=, mu_k= (separately; mu_k <= mu_s), pivot=P (the fixed point of
@@ -20,12 +23,31 @@
 //   scale=T:S;...  (piecewise-linear motions; no spaces inside a value)
 
 #include "contact/body.hpp"
+#include "mesh/mannequin.hpp"
 
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace sartor::contact {
 
 // Throws InputError naming `where` (e.g. "option --body2") and what is wrong.
 Body parse_body(const std::string& spec, const std::string& where, const std::string& default_name);
+
+// A body garment construction (TAGCON) can dress: a mesh with a skeleton
+// and the distance to that mesh. From `spec`: "default" or "mannequin
+// [measurements=FILE.json] [pose=...]" (other keys, e.g. mu=, are left to
+// parse_body), or "mesh file=BODY.obj skeleton=SKELETON.json". Throws
+// InputError naming `where` for any other body or a bad file.
+struct GarmentBody {
+  Mannequin mannequin; // mesh and skeleton
+  std::shared_ptr<const Shape> distance;
+  std::string source;      // for logs and OBJ headers
+  bool is_default = false; // the built-in mannequin as it stands
+  // What the user should know: measurements that kept their defaults,
+  // FreeSewing names the mannequin does not use.
+  std::vector<std::string> notes;
+};
+GarmentBody garment_body(const std::string& spec, const std::string& where);
 
 } // namespace sartor::contact
