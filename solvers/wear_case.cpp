@@ -1,5 +1,6 @@
 #include "solvers/wear_case.hpp"
 
+#include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
 #include "fem/petsc_call.hpp"
@@ -27,8 +28,9 @@ const std::vector<OptionSpec>& wear_option_specs() {
       {"take-off-times", "T,...", "",
        "(wear) wear times at which the garment is also taken off and recovers, s [the wear time]"},
       {"recovery-time", "S", "3600", "(wear) time the taken-off garment hangs recovering, s"},
-      {"hold-band", "M", "0.02",
-       "(wear) the garment is hung by its vertices within M of its highest draped vertex, m"},
+      {"hold-band", "M", "0.03",
+       "(wear) the garment is hung by its boundary vertices within M of its highest draped "
+       "vertex (the waistband), m"},
       {"hem-band", "M", "0.02",
        "(wear) the hem: boundary vertices within M of the lowest draped vertex, m"},
       {"bagging-box", "X0,X1,Y0,Y1,Z0,Z1", "",
@@ -85,7 +87,7 @@ void select_vertices(const Options& options, const TriangleMesh& mesh,
   if (options.is_set("bagging-box")) box = option_numbers(options, "bagging-box", 6);
   for (std::size_t v = 0; v < draped.size(); ++v) {
     const Eigen::Vector3d& p = draped[v];
-    if (p.z() >= top - hold) garment->held.push_back(int(v));
+    if (boundary[v] && p.z() >= top - hold) garment->held.push_back(int(v));
     if (boundary[v] && p.z() <= bottom + hem) garment->hem.push_back(int(v));
     if (!box.empty() && p.x() >= box[0] && p.x() <= box[1] && p.y() >= box[2] && p.y() <= box[3] &&
         p.z() >= box[4] && p.z() <= box[5])
@@ -120,6 +122,14 @@ WearOptions wear_options(const Options& options) {
     wear.take_off_times = option_numbers(options, "take-off-times", 0);
   } else {
     wear.take_off_times = {wear.wear.time_end};
+  }
+  double last = 0.0;
+  for (double t : wear.take_off_times) {
+    if (!(t > last) || t > wear.wear.time_end) {
+      throw InputError("option --take-off-times: the times must increase within (0, --wear-time " +
+                       format_number(wear.wear.time_end) + "] s, got " + format_number(t));
+    }
+    last = t;
   }
   wear.certify_steps = !options.flag("no-step-certificate");
   return wear;

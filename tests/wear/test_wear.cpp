@@ -184,7 +184,7 @@ StepStudy step_study(CreepScheme scheme) {
   for (double dt : {1.0, 0.5, 0.25, 0.125}) {
     KneeCase knee;
     knee.fixed_step = dt;
-    knee.recovery_time = 20.0;
+    knee.recovery_time = 10.0;
     knee.creep.lambda_unload = 0.05;
     knee.scheme = scheme;
     study.heights.push_back(bagging(knee));
