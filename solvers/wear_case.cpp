@@ -35,6 +35,9 @@ const std::vector<OptionSpec>& wear_option_specs() {
        "(wear) the hem: boundary vertices within M of the lowest draped vertex, m"},
       {"bagging-box", "X0,X1,Y0,Y1,Z0,Z1", "",
        "(wear) the bagging height is measured on the vertices draped in this box, m [all]"},
+      {"wear-contact-rounds", "N", "0",
+       "(wear) contact rounds of each step's solve (friction anchors updated and the penalty "
+       "adapted within the step; 0: anchors lagged by a step, drape's penalty kept)"},
       {"no-step-certificate", "", "",
        "(wear) do not certify every wear step (the final states are certified)"},
   };
@@ -115,8 +118,10 @@ WearOptions wear_options(const Options& options) {
   wear.wear.print_progress = true;
   const std::string solver = options.text("static-solver");
   wear.wear.equilibrium.minimise = solver == "minimise";
-  wear.wear.equilibrium.max_offset_depth = options.nonnegative_real("contact-max-depth");
-  if (wear.wear.equilibrium.max_offset_depth == 0.0) wear.wear.equilibrium.max_contact_rounds = 0;
+  // No contact rounds within a wear step: the friction anchors are lagged by
+  // one step (updated when it is accepted), and the contact penalty stays
+  // where the drape left it, so that it does not depend on the step size.
+  wear.wear.equilibrium.max_contact_rounds = int(options.integer_in("wear-contact-rounds", 0, 100));
   wear.recovery_time = options.positive_real("recovery-time");
   if (options.is_set("take-off-times")) {
     wear.take_off_times = option_numbers(options, "take-off-times", 0);
