@@ -250,8 +250,6 @@ public:
     PetscFunctionReturn(0);
   }
 
-  const TriangleMesh& mesh() const { return mesh_; }
-
 private:
   static TriangleMesh with_positions(const TriangleMesh& mesh,
                                      const std::vector<Eigen::Vector3d>& positions) {
@@ -290,7 +288,6 @@ PetscErrorCode measure_step(ClothProblem& worn, Vec x, const CreepCoupling& cree
     Certificate certificate;
     PetscCall(certify(worn, x, options, &certificate));
     step->certified = certificate.certified();
-    step->verdict = certificate.verdict();
   }
   PetscFunctionReturn(0);
 }

@@ -133,7 +133,6 @@ struct WearStep {
   double max_viscoelastic = 0.0;
   double max_permanent = 0.0;
   bool certified = false; // the step's certificate (without the inertia check)
-  std::string verdict;
 };
 
 struct WearReport {
