@@ -96,6 +96,13 @@ using CaseStepObserver = std::function<void(ClothProblem& problem, Vec x, const 
 struct CaseCloth {
   TriangleMesh mesh;
   std::vector<std::string> fabrics;
+  // When set, called collectively after a converged static solve, once the
+  // results are gathered (drape's wear, solvers/wear_case.hpp), with the
+  // problem, its materials (per mesh material id), its seam springs and the
+  // solved positions x, which it may advance.
+  std::function<void(ClothProblem&, const std::vector<ClothMaterial>&,
+                     const std::vector<SeamSpring>&, Vec)>
+      after_statics;
 };
 CaseResult solve_case(const Options& options, int extra_refinements = 0,
                       const CaseStepObserver& observe = {},

@@ -19,6 +19,7 @@
 #include "solvers/drape_outcome.hpp"
 #include "solvers/garment_construction.hpp"
 #include "solvers/progressive_drape.hpp"
+#include "solvers/wear_case.hpp"
 
 #include <nlohmann/json.hpp>
 #include <petscsys.h>
@@ -303,6 +304,8 @@ const CommandSpec& drape_command() {
             option.help = "the body, with a skeleton: \"mannequin [measurements=FILE.json] "
                           "[pose=JOINT:DEG,...] mu=...\" or \"mesh file=BODY.obj "
                           "skeleton=SKELETON.json mu=...\" (docs/bodies.md)";
+          // The creep options also steer drape's wear, after a static drape.
+          if (option.help.rfind("creep: ", 0) == 0) option.help.insert(5, ", wear");
           if (is_mesh_option(option.name)) {
             option.fallback.clear();
             option.help = "sartor run only: the pattern gives the mesh and seams";
@@ -319,6 +322,8 @@ const CommandSpec& drape_command() {
         options.push_back(
             {"output", "DIR", "out/drape", "output folder (created; files in it are replaced)"});
         options.push_back({"no-plot", "", "", "write data only, no PNG"});
+        for (const OptionSpec& option : wear_option_specs())
+          options.push_back(option);
         options.push_back({"drop-tolerance", "M", "0.1",
                            "m the garment's centroid may end below its start: a larger drop is "
                            "reported as slid down"});
@@ -424,6 +429,11 @@ int run_drape(const Invocation& invocation) {
   };
   for (const auto& [name, value] : drape_defaults())
     set_default(name, value);
+  // --analysis creep: the static drape, then wear (docs/wear.md).
+  if (options.text("analysis") == "creep") {
+    SartorPetscCall(PetscOptionsSetValue(nullptr, "-analysis", "static"));
+    set_default("wear-time", "28800");
+  }
   // A time-stepping option asks for dynamics (drape's default before the
   // static minimiser; such command lines keep their meaning).
   if (!options.is_set("analysis")) {
@@ -460,6 +470,11 @@ int run_drape(const Invocation& invocation) {
   if (weight.norm() > 0.0)
     SartorPetscCall(set_default_option("-snes_atol", format_number(1e-6 * weight.norm()).c_str()));
   labels.fabrics = cloth.fabrics;
+  const auto wear = std::make_shared<WearRun>();
+  if (wear_requested(options)) {
+    if (dynamic) throw InputError("option --wear-time: wear follows a static drape, not dynamics");
+    attach_wear(options, directory, labels, &cloth, wear);
+  }
   // Progressive refinement (solvers/progressive_drape.hpp): coarser levels
   // first when --edge-length allows them; one level is the drape above.
   const DrapeLevel finest{constructed.mesh_options.edge_length, cloth, sewable.mesh.material_ids,
@@ -553,6 +568,10 @@ int run_drape(const Invocation& invocation) {
         {"drape_setup", result.setup_seconds},
         {"total", total_seconds}}},
       {"levels", levels_json(levels)}};
+  if (wear->ran) {
+    add_wear_summary(*wear, labels, summary);
+    write_wear_tables(directory, *wear);
+  }
   write_case_results(directory, result, summary, labels);
   // The seams file is drape's own (the pattern's seams, written above): the
   // echoed options re-run the job, and drape refuses a --seams-file given to it.
@@ -594,6 +613,7 @@ int run_drape(const Invocation& invocation) {
     throw SolveFailure("the drape did not drape the garment: it ended " + outcome.description() +
                        "; " + directory + " holds its state (summary.json: drape.outcome)");
   }
+  if (wear->ran) print_wear(*wear);
   if (!converged) {
     throw SolveFailure("the drape is not in equilibrium: the final static solve stopped with a "
                        "residual force of " +
@@ -601,6 +621,11 @@ int run_drape(const Invocation& invocation) {
                        format_number(weight.norm()) + " N; " + directory +
                        " holds its state. Look for seams across the body (warnings above) or "
                        "penetration (summary.json)");
+  }
+  if (wear_requested(options) && !(wear->ran && wear->report.wear.completed)) {
+    throw SolveFailure("the wear did not complete (" +
+                       (wear->ran ? wear->report.wear.reason : std::string("no converged drape")) +
+                       "); " + directory + " holds the states reached (wear.csv)");
   }
   return 0;
 }

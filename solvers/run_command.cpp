@@ -853,6 +853,12 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   SartorPetscCall(problem.gather_positions(x, &result.positions));
   SartorPetscCall(problem.gather_strains(x, &result.strains));
   result.contact = measure_contact(options, problem, x, result.positions);
+  if (cloth && cloth->after_statics && !dynamic && !creep && result.converged) {
+    const bool springs = !seams.empty() && !(result.seams && result.seams->merged);
+    cloth->after_statics(
+        problem, materials,
+        springs ? case_seam_springs(options, mesh, seams, material) : std::vector<SeamSpring>{}, x);
+  }
   SartorPetscCall(VecDestroy(&x));
 
   // Rank 0 holds the positions: it measures, everybody learns.

@@ -1,0 +1,237 @@
+// Wear and take-off (fem/wear.hpp): a square sheet held in a frame (its
+// border), pushed up 2 cm by a ball (a knee) over the first 5 s and held
+// there, then freed (the ball removed) and recovering. The creep law says
+// what the bagging must do, reasoned here without the code under test:
+//  * the permanent strain grows towards alpha sigma / E at rate lambda_load
+//    and never shrinks, so a longer wear, a faster lambda_load or a smaller
+//    creep modulus E (the elastic stiffness held) leaves more permanent
+//    elongation, and the freed sheet, longer than its frame, bulges more;
+//  * with alpha = 0 and a fast lambda_unload the viscoelastic strain decays
+//    to what the freed sheet's tension sustains (none: it is flat again) and
+//    nothing remains: no bulge;
+//  * the staggered coupling lags the tension by one step: the bagging height
+//    converges at first order in the time step; the monolithic one at
+//    second, to the same height.
+
+#include "contact/analytic_shapes.hpp"
+#include "contact/body.hpp"
+#include "fem/wear.hpp"
+#include "mesh/generators.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <vector>
+
+namespace sartor {
+namespace {
+
+constexpr double side = 0.2;            // m
+constexpr double elastic_modulus = 6e4; // N/m, the same for every fabric here
+constexpr double ball_radius = 0.06;    // m
+constexpr double push = 0.02;           // m the ball rises above the frame's plane
+constexpr double push_time = 5.0;       // s
+
+struct KneeCase {
+  CreepParameters creep{32600, 0.9, 0.0886, 0.002}; // cotton twill's warp (Table 5.1)
+  std::vector<double> take_off_times{20.0};
+  double recovery_time = 60.0;
+  double fixed_step = 0.0; // s; 0: adaptive
+  CreepScheme scheme = CreepScheme::staggered;
+};
+
+WearReport wear_knee(const KneeCase& knee) {
+  // The sheet's membrane forces (~1e4 N) leave ~1e-8 N of round-off in the
+  // residual, and the minimiser stalls at a few 1e-7 N; without a weight to
+  // scale a tolerance by, Newton stops at 1e-6 N (the
+  // residual relative to a small step's first one would sit at round-off).
+  EXPECT_EQ(PetscOptionsSetValue(nullptr, "-snes_atol", "1e-6"), 0);
+  const TriangleMesh mesh = mesh::rectangle(side, side, 8, 8);
+  ClothMaterial material({TensionCurve::linear(elastic_modulus, "test"),
+                          TensionCurve::linear(elastic_modulus, "test"), 0.0, 0.0});
+  material.membrane.shear_modulus = 0.1 * elastic_modulus;
+  material.bending_stiffness = 1e-5;
+  std::vector<int> frame;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const Eigen::Vector3d& p = mesh.positions[v];
+    const bool border = std::min({p.x(), p.y(), side - p.x(), side - p.y()}) < 1e-9;
+    if (border) frame.push_back(int(v));
+  }
+  ClothProblem problem(PETSC_COMM_WORLD, mesh, material, frame);
+  const Eigen::Vector3d centre(0.5 * side, 0.5 * side, -ball_radius - 0.01);
+  contact::Body ball("knee", std::make_shared<contact::Sphere>(centre, ball_radius), centre);
+  ball.motion.translation.add(0.0, Eigen::Vector3d::Zero());
+  ball.motion.translation.add(push_time, Eigen::Vector3d(0.0, 0.0, 0.01 + push));
+  problem.bodies.push_back(ball);
+
+  WearGarment garment;
+  garment.materials = {material};
+  garment.creep = {{knee.creep, knee.creep}};
+  garment.held = frame;
+  WearOptions options;
+  options.wear.time_end = knee.take_off_times.back();
+  options.wear.time_step = knee.fixed_step > 0.0 ? knee.fixed_step : 0.5;
+  options.wear.max_step = knee.fixed_step;
+  options.wear.creep_tolerance = knee.fixed_step > 0.0 ? 1.0 : 2e-3;
+  options.wear.scheme = knee.scheme;
+  options.wear.equilibrium.minimise = knee.scheme == CreepScheme::staggered;
+  // A fixed contact penalty: the adaptive one stiffens by the history of
+  // the solves (more steps, more chances), which is not the physics.
+  options.wear.equilibrium.max_contact_rounds = 0;
+  options.take_off_times = knee.take_off_times;
+  options.recovery_time = knee.recovery_time;
+  options.certify_steps = false;
+  Vec x = nullptr;
+  EXPECT_EQ(problem.create_solution(&x), 0);
+  WearReport report;
+  EXPECT_EQ(solve_wear(problem, x, garment, options, &report), 0);
+  EXPECT_EQ(VecDestroy(&x), 0);
+  EXPECT_TRUE(report.wear.completed) << report.wear.reason;
+  std::printf("wear: %zu states, %ld rejected, %ld Newton iterations\n", report.steps.size(),
+              report.wear.rejected_steps, long(report.wear.newton_iterations));
+  for (const TakeOffReport& taken : report.take_offs)
+    std::printf("  take-off at %g s: %ld recovery steps (%ld rejected), %ld Newton iterations\n",
+                taken.wear_time, taken.recovery_steps, taken.rejected_steps,
+                long(taken.newton_iterations));
+  EXPECT_EQ(report.take_offs.size(), knee.take_off_times.size());
+  for (const TakeOffReport& taken : report.take_offs)
+    EXPECT_TRUE(taken.converged) << taken.reason;
+  return report;
+}
+
+double bagging(const KneeCase& knee) {
+  return wear_knee(knee).take_offs.back().bagging_height;
+}
+
+TEST(Wear, KneeBagsAndTheFreedSheetIsCertified) {
+  const WearReport report = wear_knee(KneeCase{});
+  const TakeOffReport& taken = report.take_offs.back();
+  // The push stretches the sheet by about (push / half side)^2 / 2 ~ 2 %:
+  // a permanent strain of a good fraction of alpha times that, a bulge of
+  // millimetres (sqrt of the extra length times the span), not metres.
+  EXPECT_GT(taken.max_permanent, 1e-3);
+  EXPECT_LT(taken.max_permanent, 0.05);
+  EXPECT_GT(taken.bagging_height, 1e-3);
+  EXPECT_LT(taken.bagging_height, push);
+  EXPECT_TRUE(taken.certificate.equilibrium()) << taken.certificate.verdict();
+  EXPECT_FALSE(taken.certificate.saddle()) << taken.certificate.verdict();
+  EXPECT_TRUE(report.final_certificate.equilibrium()) << report.final_certificate.verdict();
+}
+
+TEST(Wear, MoreBaggingForFasterLoadingAndSofterCreep) {
+  KneeCase base;
+  base.take_off_times = {8.0}; // before the permanent strain saturates (1 / lambda_load ~ 11 s)
+  KneeCase fast = base;
+  fast.creep.lambda_load = 4.0 * base.creep.lambda_load;
+  KneeCase soft = base;
+  soft.creep.creep_modulus = 0.5 * base.creep.creep_modulus;
+  const double b = bagging(base), f = bagging(fast), s = bagging(soft);
+  std::printf("bagging height: base %.4e m, lambda_load x4 %.4e m, E / 2 %.4e m\n", b, f, s);
+  EXPECT_GT(f, 1.1 * b);
+  EXPECT_GT(s, 1.1 * b);
+}
+
+TEST(Wear, PurelyElasticFabricRecoversCompletely) {
+  KneeCase elastic;
+  elastic.creep = {32600, 0.0, 0.0886, 5.0}; // alpha = 0, lambda_unload 5/s
+  KneeCase creeping;
+  const WearReport report = wear_knee(elastic);
+  const double reference = bagging(creeping);
+  const TakeOffReport& taken = report.take_offs.back();
+  EXPECT_EQ(taken.max_permanent, 0.0);
+  EXPECT_LT(taken.max_viscoelastic, 1e-8);
+  EXPECT_LT(taken.bagging_height, 1e-3 * reference);
+}
+
+TEST(Wear, BaggingGrowsWithWearTime) {
+  KneeCase knee;
+  // A recovery long enough for the viscoelastic part to decay (e^-15): what
+  // remains is permanent, which never shrinks.
+  knee.creep.lambda_unload = 0.05;
+  knee.recovery_time = 300.0;
+  knee.take_off_times = {6.0, 10.0, 20.0, 60.0, 600.0};
+  const WearReport report = wear_knee(knee);
+  for (std::size_t k = 1; k < report.take_offs.size(); ++k) {
+    const TakeOffReport& before = report.take_offs[k - 1];
+    const TakeOffReport& after = report.take_offs[k];
+    std::printf("worn %6.0f s: bagging %.6e m, permanent %.6e\n", after.wear_time,
+                after.bagging_height, after.max_permanent);
+    EXPECT_GE(after.max_permanent, before.max_permanent);
+    // Saturated (after a minute) the heights agree to the solver's
+    // tolerance, far below this margin.
+    EXPECT_GE(after.bagging_height, before.bagging_height - 1e-6);
+  }
+  EXPECT_GT(report.take_offs[2].bagging_height, 1.05 * report.take_offs[0].bagging_height);
+}
+
+// The bagging height at fixed steps halved three times, and the observed
+// orders from successive differences (their ratio is 2^order). The steps
+// divide the push (5 s) and the wear (20 s).
+struct StepStudy {
+  std::vector<double> heights;
+  std::vector<double> orders;
+  // Richardson's extrapolation of the two finest with the expected order.
+  double limit(double order) const {
+    const double h1 = heights[heights.size() - 2], h2 = heights.back();
+    return h2 + (h2 - h1) / (std::pow(2.0, order) - 1.0);
+  }
+};
+
+StepStudy step_study(CreepScheme scheme) {
+  StepStudy study;
+  for (double dt : {1.0, 0.5, 0.25, 0.125}) {
+    KneeCase knee;
+    knee.fixed_step = dt;
+    knee.recovery_time = 10.0;
+    knee.creep.lambda_unload = 0.05;
+    knee.scheme = scheme;
+    study.heights.push_back(bagging(knee));
+  }
+  const std::vector<double>& h = study.heights;
+  for (std::size_t k = 2; k < h.size(); ++k)
+    study.orders.push_back(std::log2(std::abs(h[k - 2] - h[k - 1]) / std::abs(h[k - 1] - h[k])));
+  std::printf("%s: bagging heights %.8e %.8e %.8e %.8e m; observed orders %.3f %.3f\n",
+              scheme == CreepScheme::staggered ? "staggered" : "monolithic", h[0], h[1], h[2], h[3],
+              study.orders[0], study.orders[1]);
+  return study;
+}
+
+// The staggered coupling lags the tension by a step (first order); the
+// monolithic one integrates the law exactly for a tension linear over the
+// step (second order). Both converge to one bagging height.
+TEST(Wear, BaggingConvergesInTheTimeStep) {
+  const StepStudy staggered = step_study(CreepScheme::staggered);
+  const StepStudy monolithic = step_study(CreepScheme::monolithic);
+  EXPECT_GT(staggered.orders.back(), 0.7);
+  EXPECT_LT(staggered.orders.back(), 1.3);
+  EXPECT_GT(monolithic.orders.back(), 1.7);
+  EXPECT_LT(monolithic.orders.back(), 2.3);
+  const double limit = monolithic.limit(2.0);
+  std::printf("extrapolated: staggered %.8e m, monolithic %.8e m\n", staggered.limit(1.0), limit);
+  EXPECT_NEAR(staggered.limit(1.0), limit, 1e-4 * limit);
+}
+
+TEST(BentLimb, FollowsItsAngleOnTheProblemsClock) {
+  // An elbow at the origin, the upper arm along -x, the forearm along +x
+  // when straight, bent about z by 90 degrees over 10 s.
+  const auto limb = std::make_shared<BentLimb>(
+      Eigen::Vector3d(-0.3, 0, 0), Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), 0.25, 0.04,
+      Eigen::Vector3d::UnitZ(),
+      std::vector<std::pair<double, double>>{{0.0, 0.0}, {10.0, M_PI / 2}});
+  double clock = 0.0;
+  const ShapeOnClock shape(limb, &clock);
+  const Eigen::Vector3d hand_straight(0.25, 0.0, 0.0), hand_bent(0.0, 0.25, 0.0);
+  EXPECT_NEAR(shape.query(hand_straight).distance, -0.04, 1e-12);
+  EXPECT_NEAR(shape.query(hand_bent).distance, 0.25 - 0.04, 1e-12);
+  clock = 10.0;
+  EXPECT_NEAR(shape.query(hand_bent).distance, -0.04, 1e-12);
+  clock = 5.0; // 45 degrees: the forearm's end at 0.25 (cos, sin) 45
+  const Eigen::Vector3d half(0.25 * std::sqrt(0.5), 0.25 * std::sqrt(0.5), 0.0);
+  EXPECT_NEAR(shape.query(half).distance, -0.04, 1e-12);
+  EXPECT_EQ(limb->knots(), (std::vector<double>{0.0, 10.0}));
+}
+
+} // namespace
+} // namespace sartor
