@@ -62,6 +62,9 @@ bool is_root();
 
 // The comma-separated numbers of option --NAME; `count` of them unless it is
 // 0. Throws InputError naming the option and the item that is not a number.
+// "warning: TEXT" on rank 0's standard error for each (plausibility
+// warnings of the fabric readers).
+void print_warnings(const std::vector<std::string>& warnings);
 std::vector<double> option_numbers(const Options& options, const std::string& name,
                                    std::size_t count);
 

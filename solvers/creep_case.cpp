@@ -48,6 +48,7 @@ std::vector<CreepMaterial> creep_materials(const Options& options) {
     return {material};
   }
   const Fabric fabric = resolve_fabrics(options.text("fabric")).front().fabric;
+  print_warnings(fabric.warnings);
   fabric.check_creep();
   material.warp = fabric.in(Direction::warp).creep;
   material.weft = fabric.in(Direction::weft).creep;

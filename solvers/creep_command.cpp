@@ -130,8 +130,10 @@ int run_creep(const Invocation& invocation) {
   const Options& options = invocation.options;
   const auto started = std::chrono::steady_clock::now();
   std::vector<MaterialChoice> choices = resolve_fabrics(options.text("fabric"));
-  for (const auto& choice : choices)
+  for (const auto& choice : choices) {
+    print_warnings(choice.fabric.warnings);
     choice.fabric.check_creep();
+  }
   if (options.is_set("elastic-modulus")) {
     const double modulus = options.positive_real("elastic-modulus");
     for (auto& choice : choices) {

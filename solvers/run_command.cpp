@@ -363,6 +363,7 @@ void set_bending(const Options& options, const Fabric& fabric, ClothMaterial& ma
 ClothMaterial build_material(const Options& options, const std::string& fabric_spec) {
   const auto choices = resolve_fabrics(fabric_spec);
   const Fabric& fabric = choices.front().fabric;
+  print_warnings(fabric.warnings);
   const element::MembraneModel model = membrane_model(options, fabric);
   const auto curve = [&](const char* option, Direction direction) {
     if (options.is_set(option)) {
@@ -670,6 +671,11 @@ DynamicOptions dynamic_options(const Options& options) {
   check_time_divisions(dynamic.time_end, "time-end", dynamic.output_interval, "output-interval");
   dynamic.settle = options.flag("settle");
   dynamic.print_progress = true;
+  if (dynamic.time_step > 1.0 || dynamic.time_end > 600.0) {
+    print_warnings({"--time-step " + options.text("time-step") + " s, --time-end " +
+                    options.text("time-end") +
+                    " s: a cloth swings in seconds with steps of milliseconds (times in ms?)"});
+  }
   return dynamic;
 }
 

@@ -15,6 +15,11 @@ extern char** environ;
 
 namespace sartor {
 
+void print_warnings(const std::vector<std::string>& warnings) {
+  for (const std::string& warning : warnings)
+    PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "warning: %s\n", warning.c_str());
+}
+
 std::vector<double> option_numbers(const Options& options, const std::string& name,
                                    std::size_t count) {
   const std::string text = options.text(name);

@@ -21,6 +21,13 @@ PetscErrorCode form_objective(SNES, Vec x, PetscReal* value, void* context) {
   return static_cast<IncrementalSystem*>(context)->objective(x, value);
 }
 
+PetscErrorCode converged(SNES snes, PetscInt iteration, PetscReal position_norm,
+                         PetscReal step_norm, PetscReal residual_norm, SNESConvergedReason* reason,
+                         void* context) {
+  return static_cast<IncrementalSystem*>(context)->converged(snes, iteration, position_norm,
+                                                             step_norm, residual_norm, reason);
+}
+
 // Rigid-body modes of the free dofs, for algebraic multigrid.
 PetscErrorCode attach_near_null_space(Vec x, Mat J) {
   MatNullSpace modes = nullptr;
@@ -39,8 +46,8 @@ IncrementalSystem::IncrementalSystem(ClothProblem& problem, Vec like) : problem_
   SartorPetscCall(set_default_option("-pc_factor_mat_solver_type", "mumps"));
   SartorPetscCall(problem.create_jacobian(&jacobian_));
   SartorPetscCall(attach_near_null_space(like, jacobian_));
-  for (Vec* v :
-       {&residual_, &mass_, &predicted_, &previous_, &work_, &direction_, &trial_x_, &trial_f_})
+  for (Vec* v : {&residual_, &mass_, &predicted_, &previous_, &work_, &switch_point_, &direction_,
+                 &trial_x_, &trial_f_})
     SartorPetscCall(VecDuplicate(like, v));
   SartorPetscCall(problem.lumped_mass(mass_));
   // Keeps the residual norms of each solve (the first is the initial one).
@@ -61,6 +68,7 @@ PetscErrorCode IncrementalSystem::create_snes(bool with_objective, SNES* snes) {
   // of the membrane forces counts as converged.
   PetscCall(SNESSetTolerances(*snes, 1e-12 * problem_.force_scale(), 1e-10, 1e-14, 100, -1));
   PetscCall(SNESSetFromOptions(*snes));
+  PetscCall(SNESSetConvergenceTest(*snes, sartor::converged, this, nullptr));
   PetscCall(SNESSetConvergenceHistory(*snes, norms_.data(), nullptr, PetscInt(norms_.size()),
                                       PETSC_TRUE));
   PetscFunctionReturn(0);
@@ -79,8 +87,8 @@ IncrementalSystem::~IncrementalSystem() {
   SNESDestroy(&snes_);
   SNESDestroy(&snes_without_potential_);
   MatDestroy(&jacobian_);
-  for (Vec* v :
-       {&residual_, &mass_, &predicted_, &previous_, &work_, &direction_, &trial_x_, &trial_f_})
+  for (Vec* v : {&residual_, &mass_, &predicted_, &previous_, &work_, &switch_point_, &direction_,
+                 &trial_x_, &trial_f_})
     VecDestroy(v);
 }
 
@@ -92,43 +100,80 @@ PetscErrorCode IncrementalSystem::solve(Vec x, Solve* result) {
   }
   PetscCall(problem_.hold(x));
   const SNES snes_now = snes();
-  PetscCall(run_snes(snes_now, x, result));
   PetscErrorCode (*line_search_objective)(SNES, Vec, PetscReal*, void*) = nullptr;
   PetscCall(SNESGetObjective(snes_now, &line_search_objective, nullptr));
+  PetscBool newton_line_search = PETSC_FALSE;
+  PetscCall(PetscObjectTypeCompare(PetscObject(snes_now), SNESNEWTONLS, &newton_line_search));
+  solving_time_step_ = false;
+  if (!line_search_objective || !newton_line_search) {
+    PetscCall(run_snes(snes_now, x, result));
+    PetscFunctionReturn(0);
+  }
   // Close to the solution a Newton step lowers Phi by less than its
-  // round-off, and a line search on Phi fails although Newton converges.
-  // Once the residual has dropped by 1e-3, or Newton's correction is below
-  // 1e-6 of the positions (the iterate is in Newton's basin, Phi minimised
-  // to round-off), the solve is finished by a few full Newton steps, which
-  // converge quadratically from there and need no merit function.
+  // round-off, and a line search on Phi then decides on round-off (another
+  // CPU's BLAS takes other steps, and a time step may fail on one machine
+  // only). So the line search on Phi runs while the residual is above
+  // `basin_fraction` of its start, where Phi's decrease is still measurable
+  // (|F| |dx| far above Phi's round-off), and full Newton steps finish the
+  // solve from there: they converge quadratically in Newton's basin and need
+  // no merit function.
+  // Every solve with a potential, statics with SNES included (the creep
+  // cases differ by up to 0.6 m under Prescott's rounding otherwise).
+  const bool time_step = true;
+  solving_time_step_ = time_step;
+  switched_ = false;
+  switch_at_fraction_ = time_step ? basin_fraction : 0.0;
+  PetscCall(run_snes(snes_now, x, result));
+  switch_at_fraction_ = 0.0;
+  if (!time_step) first_norm_ = norms_[0];
+  // A solve that starts near its solution (|F_0| itself small) may stall in
+  // Phi's round-off before that: where Newton's correction is below 1e-6 of
+  // the positions the iterate is in Newton's basin too.
   SNESLineSearch line_search = nullptr;
   PetscReal position_norm = 0.0, residual_norm = 0.0, correction_norm = 0.0;
   PetscCall(SNESGetLineSearch(snes_now, &line_search));
   PetscCall(SNESLineSearchGetNorms(line_search, &position_norm, &residual_norm, &correction_norm));
-  const bool in_newton_basin =
-      result->residual_norm <= 1e-3 * norms_[0] || correction_norm <= 1e-6 * position_norm;
-  if (result->reason == SNESConvergedReasons[SNES_DIVERGED_LINE_SEARCH] && line_search_objective &&
-      in_newton_basin) {
-    PetscCall(PetscInfo(snes_now,
-                        "line search on the potential stalled at |F| = %g; "
-                        "finishing with full Newton steps\n",
-                        result->residual_norm));
+  const bool stalled = result->reason == SNESConvergedReasons[SNES_DIVERGED_LINE_SEARCH] &&
+                       (correction_norm <= 1e-6 * position_norm ||
+                        (!time_step && result->residual_norm <= basin_fraction * first_norm_));
+  if ((result->reason == SNESConvergedReasons[SNES_CONVERGED_ITS] && switched_) || stalled) {
     const Solve first = *result;
-    SNESLineSearchType type = nullptr;
-    PetscCall(SNESLineSearchGetType(line_search, &type));
-    const std::string line_search_type = type;
-    PetscReal atol = 0.0, rtol = 0.0, stol = 0.0;
-    PetscInt max_iterations = 0, max_evaluations = 0;
-    PetscCall(SNESGetTolerances(snes_now, &atol, &rtol, &stol, &max_iterations, &max_evaluations));
-    PetscCall(SNESLineSearchSetType(line_search, SNESLINESEARCHBASIC));
-    PetscCall(SNESSetTolerances(snes_now, atol, rtol, stol, 10, max_evaluations));
-    PetscCall(run_snes(snes_now, x, result));
-    PetscCall(SNESSetTolerances(snes_now, atol, rtol, stol, max_iterations, max_evaluations));
-    PetscCall(SNESLineSearchSetType(line_search, line_search_type.c_str()));
-    PetscCall(SNESLineSearchSetFromOptions(line_search)); // the type's own options again
-    result->newton_iterations += first.newton_iterations;
-    result->linear_iterations += first.linear_iterations;
+    PetscCall(finish_with_newton(snes_now, x, result));
+    if (!result->converged) {
+      // Not in Newton's basin after all: the line search on Phi to the end.
+      PetscCall(PetscInfo(snes_now,
+                          "full Newton steps from |F| = %g failed (%s); line search "
+                          "on the potential to the tolerance\n",
+                          first.residual_norm, result->reason.c_str()));
+      PetscCall(VecCopy(switch_point_, x));
+      PetscCall(run_snes(snes_now, x, result));
+    }
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode IncrementalSystem::finish_with_newton(SNES snes, Vec x, Solve* result) {
+  PetscFunctionBeginUser;
+  const Solve first = *result;
+  PetscCall(VecCopy(x, switch_point_)); // where the line search on Phi stopped
+  SNESLineSearch line_search = nullptr;
+  PetscCall(SNESGetLineSearch(snes, &line_search));
+  SNESLineSearchType type = nullptr;
+  PetscCall(SNESLineSearchGetType(line_search, &type));
+  const std::string line_search_type = type;
+  PetscReal atol = 0.0, rtol = 0.0, stol = 0.0;
+  PetscInt max_iterations = 0, max_evaluations = 0;
+  PetscCall(SNESGetTolerances(snes, &atol, &rtol, &stol, &max_iterations, &max_evaluations));
+  // The tolerance of the whole solve: rtol relative to the first residual.
+  PetscCall(SNESLineSearchSetType(line_search, SNESLINESEARCHBASIC));
+  PetscCall(SNESSetTolerances(snes, std::max(atol, rtol * first_norm_), 0.0, stol,
+                              newton_finish_iterations, max_evaluations));
+  PetscCall(run_snes(snes, x, result));
+  PetscCall(SNESSetTolerances(snes, atol, rtol, stol, max_iterations, max_evaluations));
+  PetscCall(SNESLineSearchSetType(line_search, line_search_type.c_str()));
+  PetscCall(SNESLineSearchSetFromOptions(line_search)); // the type's own options again
+  result->newton_iterations += first.newton_iterations;
+  result->linear_iterations += first.linear_iterations;
   PetscFunctionReturn(0);
 }
 
@@ -141,7 +186,37 @@ PetscErrorCode IncrementalSystem::run_snes(SNES snes, Vec x, Solve* result) {
   PetscCall(SNESGetLinearSolveIterations(snes, &result->linear_iterations));
   PetscCall(SNESGetFunctionNorm(snes, &result->residual_norm));
   result->reason = SNESConvergedReasons[reason];
-  result->converged = reason > 0;
+  // SNES ends on CONVERGED_SNORM_RELATIVE when a failed line search leaves
+  // a step below -snes_stol of the positions: the residual is above the
+  // tolerance (else the residual test would have stopped it first), and
+  // whether the shrunk step falls below stol is round-off. Not a solution.
+  result->converged =
+      reason > 0 && !(reason == SNES_CONVERGED_SNORM_RELATIVE && solving_time_step_);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode IncrementalSystem::converged(SNES snes, PetscInt iteration, PetscReal position_norm,
+                                            PetscReal step_norm, PetscReal residual_norm,
+                                            SNESConvergedReason* reason) {
+  PetscFunctionBeginUser;
+  if (iteration == 0 && switch_at_fraction_ > 0.0) {
+    first_norm_ = residual_norm;
+    switched_ = false;
+  }
+  PetscCall(SNESConvergedDefault(snes, iteration, position_norm, step_norm, residual_norm, reason,
+                                 nullptr));
+  // A step below -snes_stol of the positions (a line search shrunk to
+  // nothing) is no solution while the residual is above the tolerance:
+  // whether the step falls below stol or the line search gives up first is
+  // round-off; the line search's own failure or max_it ends the solve.
+  if (*reason == SNES_CONVERGED_SNORM_RELATIVE && solving_time_step_) {
+    *reason = SNES_CONVERGED_ITERATING;
+  }
+  if (*reason == SNES_CONVERGED_ITERATING && switch_at_fraction_ > 0.0 && iteration > 0 &&
+      residual_norm <= switch_at_fraction_ * first_norm_) {
+    switched_ = true;
+    *reason = SNES_CONVERGED_ITS; // to the full Newton steps (solve)
+  }
   PetscFunctionReturn(0);
 }
 

@@ -91,6 +91,17 @@ public:
   PetscErrorCode residual(Vec x, Vec f);
   PetscErrorCode jacobian(Vec x, Mat J);
   PetscErrorCode objective(Vec x, PetscReal* value);
+  // SNES's convergence test (SNESConvergedDefault), which also ends the line
+  // search on Phi once the residual is below the fraction of solve() (the
+  // reason then is SNES_CONVERGED_ITS).
+  PetscErrorCode converged(SNES snes, PetscInt iteration, PetscReal position_norm,
+                           PetscReal step_norm, PetscReal residual_norm,
+                           SNESConvergedReason* reason);
+  // Where solve() leaves the line search on Phi for full Newton steps: the
+  // residual below this fraction of its start, and at most this many of
+  // them before it goes back to the line search.
+  static constexpr double basin_fraction = 1e-3;
+  static constexpr PetscInt newton_finish_iterations = 20;
 
 private:
   PetscErrorCode create_snes(bool with_objective, SNES* snes);
@@ -105,6 +116,11 @@ private:
   Vec trial_x_ = nullptr;
   Vec trial_f_ = nullptr;
   PetscErrorCode run_snes(SNES snes, Vec x, Solve* result);
+  PetscErrorCode finish_with_newton(SNES snes, Vec x, Solve* result);
+  double switch_at_fraction_ = 0.0; // of the first residual; 0: no switch
+  double first_norm_ = 0.0;         // the first residual of the solve
+  bool switched_ = false;           // the last solve stopped at switch_at_fraction_
+  bool solving_time_step_ = false;  // a solve with inertia or damping is under way
 
   ClothProblem& problem_;
   SNES snes_ = nullptr;
@@ -116,6 +132,7 @@ private:
   Vec predicted_ = nullptr;
   Vec previous_ = nullptr;
   Vec work_ = nullptr;
+  Vec switch_point_ = nullptr;   // where the line search on Phi handed over to Newton
   std::vector<PetscReal> norms_; // residual norms of the last SNES solve
 };
 

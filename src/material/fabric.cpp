@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 
 namespace sartor {
 
@@ -213,10 +214,18 @@ public:
                    "a 'measured' table");
       (*d)->elastic_given = true; // the presets' rule, elastic modulus 2E
     }
-    if (root["density"]) fabric.areal_density = positive(root["density"], "density (kg/m^2)");
-    if (root["shear_modulus"])
+    if (root["density"]) {
+      fabric.areal_density = positive(root["density"], "density (kg/m^2)");
+      plausible(root["density"], "density", *fabric.areal_density, 0.005, 5.0, "kg/m^2",
+                "fabrics weigh 0.02 to 1 kg/m^2: given in g/m^2?");
+    }
+    if (root["shear_modulus"]) {
       fabric.shear_modulus = positive(root["shear_modulus"], "shear_modulus (N/m)");
+      plausible(root["shear_modulus"], "shear_modulus", *fabric.shear_modulus, 1.0, 1e7, "N/m",
+                "given in kN/m or N/mm?");
+    }
     if (root["bending"]) fabric.bending = bending(root["bending"], fabric);
+    fabric.warnings = std::move(warnings_);
     return fabric;
   }
 
@@ -253,6 +262,18 @@ private:
     fail(node, "'" + key + "' must be a number, got '" + text + "'");
   }
 
+  // A warning (not an error) when `value` lies outside [low, high]: the
+  // range spans what woven fabrics measure with two orders of margin.
+  void plausible(const YAML::Node& node, const std::string& key, double value, double low,
+                 double high, const char* unit, const char* hint) {
+    if (value >= low && value <= high) return;
+    std::ostringstream text;
+    text << path_ << ":" << node.Mark().line + 1 << ": '" << key << "' = " << value << " " << unit
+         << " is outside the plausible " << low << " to " << high << " " << unit << " (" << hint
+         << ")";
+    warnings_.push_back(text.str());
+  }
+
   double positive(const YAML::Node& node, const std::string& key) const {
     const double value = number(node, key);
     if (!(value > 0.0) || !std::isfinite(value)) fail(node, "'" + key + "' must be > 0");
@@ -260,7 +281,7 @@ private:
   }
 
   // Creep parameters: all four or none (a fabric that does not creep).
-  DirectionalMaterial direction(const YAML::Node& node, const std::string& context) const {
+  DirectionalMaterial direction(const YAML::Node& node, const std::string& context) {
     if (!node.IsMap()) fail(node, context + " must be a mapping of parameters");
     check_keys(node,
                {"E", "alpha", "lambda_load", "lambda_unload", "elastic_modulus", "elastic_curve"});
@@ -278,12 +299,22 @@ private:
       creep.lambda_load = number(node["lambda_load"], "lambda_load");
       creep.lambda_unload = number(node["lambda_unload"], "lambda_unload");
       validate(creep, where);
+      // Table 5.1: E 1e4 to 1e5 N/m, rates 0.0016 to 0.31 1/s.
+      plausible(node["E"], context + ": E", creep.creep_modulus, 100.0, 1e7, "N/m",
+                "given in kN/m?");
+      for (const char* key : {"lambda_load", "lambda_unload"}) {
+        plausible(node[key], context + ": " + key, number(node[key], key), 1e-7, 10.0, "1/s",
+                  "a time constant under 0.1 s: times in ms?");
+      }
     }
     if (node["elastic_modulus"] && node["elastic_curve"]) {
       fail(node, context + ": give elastic_modulus or elastic_curve, not both");
     }
     if (node["elastic_curve"]) return {creep, curve(node["elastic_curve"], where), true, any_creep};
     if (node["elastic_modulus"]) {
+      plausible(node["elastic_modulus"], context + ": elastic_modulus",
+                number(node["elastic_modulus"], "elastic_modulus"), 100.0, 1e7, "N/m",
+                "given in kN/m?");
       return {creep,
               TensionCurve::linear(number(node["elastic_modulus"], "elastic_modulus"), where), true,
               any_creep};
@@ -338,6 +369,7 @@ private:
   }
 
   std::string path_;
+  std::vector<std::string> warnings_;
 };
 
 } // namespace

@@ -47,6 +47,10 @@ struct Fabric {
   std::optional<double> shear_modulus;     // N/m
   std::optional<FabricBending> bending;
   std::shared_ptr<const MeasuredStretching> stretching; // measured table, or none
+  // Values that read as a unit mistake ("FILE:LINE: ..."): a creep modulus
+  // of 32.6 N/m (kN/m?), rates of 1000/s (times in ms?), 200 kg/m^2 (g/m^2?).
+  // They are kept, not refused: the caller prints them (docs/fabrics.md).
+  std::vector<std::string> warnings;
   bool has(Direction direction) const {
     return direction == Direction::warp ? warp.has_value() : weft.has_value();
   }
