@@ -104,7 +104,7 @@ PetscErrorCode IncrementalSystem::solve(Vec x, Solve* result) {
   PetscCall(SNESGetObjective(snes_now, &line_search_objective, nullptr));
   PetscBool newton_line_search = PETSC_FALSE;
   PetscCall(PetscObjectTypeCompare(PetscObject(snes_now), SNESNEWTONLS, &newton_line_search));
-  solving_time_step_ = false;
+  handing_over_ = false;
   if (!line_search_objective || !newton_line_search) {
     PetscCall(run_snes(snes_now, x, result));
     PetscFunctionReturn(0);
@@ -119,13 +119,11 @@ PetscErrorCode IncrementalSystem::solve(Vec x, Solve* result) {
   // no merit function.
   // Every solve with a potential, statics with SNES included (the creep
   // cases differ by up to 0.6 m under Prescott's rounding otherwise).
-  const bool time_step = true;
-  solving_time_step_ = time_step;
+  handing_over_ = true;
   switched_ = false;
-  switch_at_fraction_ = time_step ? basin_fraction : 0.0;
+  switch_at_fraction_ = basin_fraction;
   PetscCall(run_snes(snes_now, x, result));
   switch_at_fraction_ = 0.0;
-  if (!time_step) first_norm_ = norms_[0];
   // A solve that starts near its solution (|F_0| itself small) may stall in
   // Phi's round-off before that: where Newton's correction is below 1e-6 of
   // the positions the iterate is in Newton's basin too.
@@ -134,8 +132,7 @@ PetscErrorCode IncrementalSystem::solve(Vec x, Solve* result) {
   PetscCall(SNESGetLineSearch(snes_now, &line_search));
   PetscCall(SNESLineSearchGetNorms(line_search, &position_norm, &residual_norm, &correction_norm));
   const bool stalled = result->reason == SNESConvergedReasons[SNES_DIVERGED_LINE_SEARCH] &&
-                       (correction_norm <= 1e-6 * position_norm ||
-                        (!time_step && result->residual_norm <= basin_fraction * first_norm_));
+                       correction_norm <= 1e-6 * position_norm;
   if ((result->reason == SNESConvergedReasons[SNES_CONVERGED_ITS] && switched_) || stalled) {
     const Solve first = *result;
     PetscCall(finish_with_newton(snes_now, x, result));
@@ -191,7 +188,7 @@ PetscErrorCode IncrementalSystem::run_snes(SNES snes, Vec x, Solve* result) {
   // tolerance (else the residual test would have stopped it first), and
   // whether the shrunk step falls below stol is round-off. Not a solution.
   result->converged =
-      reason > 0 && !(reason == SNES_CONVERGED_SNORM_RELATIVE && solving_time_step_);
+      reason > 0 && !(reason == SNES_CONVERGED_SNORM_RELATIVE && handing_over_);
   PetscFunctionReturn(0);
 }
 
@@ -209,7 +206,7 @@ PetscErrorCode IncrementalSystem::converged(SNES snes, PetscInt iteration, Petsc
   // nothing) is no solution while the residual is above the tolerance:
   // whether the step falls below stol or the line search gives up first is
   // round-off; the line search's own failure or max_it ends the solve.
-  if (*reason == SNES_CONVERGED_SNORM_RELATIVE && solving_time_step_) {
+  if (*reason == SNES_CONVERGED_SNORM_RELATIVE && handing_over_) {
     *reason = SNES_CONVERGED_ITERATING;
   }
   if (*reason == SNES_CONVERGED_ITERATING && switch_at_fraction_ > 0.0 && iteration > 0 &&

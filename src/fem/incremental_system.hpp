@@ -120,7 +120,7 @@ private:
   double switch_at_fraction_ = 0.0; // of the first residual; 0: no switch
   double first_norm_ = 0.0;         // the first residual of the solve
   bool switched_ = false;           // the last solve stopped at switch_at_fraction_
-  bool solving_time_step_ = false;  // a solve with inertia or damping is under way
+  bool handing_over_ = false;       // a solve with a potential: line search, then Newton
 
   ClothProblem& problem_;
   SNES snes_ = nullptr;

@@ -260,8 +260,11 @@ TEST(ContactProblem, StepBoundKeepsEveryVertexOutsideABall) {
     ASSERT_EQ(problem.contact_step_bound(x, d, &bound), 0);
     EXPECT_GT(bound, 0.0);
     EXPECT_LE(bound, 1.0);
-    if (!cut) EXPECT_EQ(bound, 1.0);
-    if (cut) EXPECT_LT(bound, 1.0);
+    if (cut) {
+      EXPECT_LT(bound, 1.0);
+    } else {
+      EXPECT_EQ(bound, 1.0);
+    }
     for (int k = 0; k <= 1000; ++k) {
       const double t = bound * k / 1000.0;
       for (std::size_t v = 0; v < moved.size(); ++v) {
