@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Every output file of a small dynamic run, a creep run, a short drape and a
 # sheet on a plane, read with meshio and h5py (check_outputs.py) and ParaView
-# (check_paraview.py): units, ids, material uv,
+# (check_paraview.py), the OBJ files imported into Blender (check_blender.py):
+# units, ids, material uv,
 # clean times, the moving geometry of the time series, OBJ groups; and
 # the pictures the commands draw by default; the contact pressure of the
 # sheet on the plane (check_vertex_loads.py).
@@ -30,3 +31,7 @@ done
 # ParaView (Debian's python3-paraview) opens them too.
 /usr/bin/python3 "$here/check_paraview.py" run:"$work/run" creep:"$work/creep" \
   drape:"$work/drape" contact:"$work/plane"
+# Blender (Debian's blender) imports the OBJ files: vertices, UVs, panels.
+blender -b --factory-startup --python-exit-code 1 --python "$here/check_blender.py" -- \
+  "$work"/run/final.obj "$work"/creep/final.obj "$work"/drape/*.obj > "$work/blender.log" 2>&1 ||
+  { cat "$work/blender.log" >&2; exit 1; }
