@@ -59,6 +59,8 @@ struct CaseResult {
   std::optional<CaseProbe> probe;  // when --probe is given
   CaseContact contact;             // bodies, reactions, drape (solvers/contact_case.hpp)
   std::optional<SeamReport> seams; // when the case has seams
+  // Contact pressure, friction and seam forces per vertex (rank 0; result.h5).
+  std::vector<ClothNodeField> vertex_loads;
   // The final state's certificate (statics, or a settle; not with
   // --no-certificate) and the saddle escapes taken.
   std::optional<CertifiedState> certified;

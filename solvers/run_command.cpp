@@ -858,6 +858,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   SartorPetscCall(problem.pin_reaction(x, &result.pin_reaction));
   SartorPetscCall(problem.gather_positions(x, &result.positions));
   SartorPetscCall(problem.gather_strains(x, &result.strains));
+  SartorPetscCall(problem.gather_vertex_loads(x, &result.vertex_loads));
   result.contact = measure_contact(options, problem, x, result.positions);
   if (cloth && cloth->after_statics && !dynamic && !creep && result.converged) {
     const bool springs = !seams.empty() && !(result.seams && result.seams->merged);
@@ -1048,7 +1049,8 @@ void add_case_summary(const CaseResult& result, nlohmann::json& summary) {
 void write_case_results(const std::string& directory, const CaseResult& result,
                         const nlohmann::json& summary, const ClothOutputLabels& labels) {
   if (!is_root()) return;
-  write_cloth_results(directory, result.mesh, result.positions, result.strains, labels);
+  write_cloth_results(directory, result.mesh, result.positions, result.strains, labels,
+                      result.vertex_loads);
   if (result.dynamics) write_file_atomically(directory + "/dynamics.csv", dynamics_csv(result));
   if (result.creep) write_file_atomically(directory + "/creep.csv", result.creep->history_csv);
   write_json(directory + "/summary.json", summary);

@@ -100,7 +100,8 @@ std::string data_item(const std::string& h5, const std::string& set, std::size_t
 // (then also with the positions as a node field, see the header).
 std::string grid_text(const std::string& h5, const std::string& group, std::size_t vertices,
                       std::size_t triangles, bool has_panels, const double* time,
-                      const std::vector<std::string>& extra_cell_fields = {}) {
+                      const std::vector<std::string>& extra_cell_fields = {},
+                      const std::vector<std::string>& extra_node_fields = {}) {
   std::ostringstream x;
   const auto attribute = [&](const std::string& name, const char* kind, const char* center,
                              const std::string& item) {
@@ -119,6 +120,10 @@ std::string grid_text(const std::string& h5, const std::string& group, std::size
   }
   attribute("displacement", "Vector", "Node",
             data_item(h5, group + "/fields/displacement", vertices, 3, "Float"));
+  for (const std::string& field : extra_node_fields) {
+    attribute(field, "Scalar", "Node",
+              data_item(h5, group + "/fields/" + field, vertices, 1, "Float"));
+  }
   std::vector<std::string> cell_fields;
   for (const CellFieldUnits& field : membrane_fields)
     cell_fields.push_back(field.name);
@@ -230,8 +235,10 @@ std::vector<std::string> obj_groups(const TriangleMesh& mesh, const ClothOutputL
 void write_cloth_results(const std::string& directory, const TriangleMesh& mesh,
                          const std::vector<Eigen::Vector3d>& positions,
                          const std::vector<element::MembraneStrain>& strains,
-                         const ClothOutputLabels& labels) {
+                         const ClothOutputLabels& labels,
+                         const std::vector<ClothNodeField>& node_fields) {
   make_output_directory(directory);
+  std::vector<std::string> node_names;
   const std::string h5 = directory + "/result.h5";
   const std::string temporary = h5 + ".tmp";
   {
@@ -240,12 +247,21 @@ void write_cloth_results(const std::string& directory, const TriangleMesh& mesh,
     if (file.get() < 0) throw InputError(h5 + ": cannot create HDF5 file");
     write_mesh(file.get(), mesh, labels, h5);
     write_state(file.get(), "", mesh, positions, strains, h5);
+    for (const ClothNodeField& field : node_fields) {
+      if (field.values.size() != mesh.vertex_count()) {
+        throw std::logic_error("write_cloth_results: node field " + field.name +
+                               " does not have one value per vertex");
+      }
+      write_dataset(file.get(), "/fields/" + field.name, H5T_NATIVE_DOUBLE, field.values.data(),
+                    {mesh.vertex_count()}, field.units.c_str(), h5);
+      node_names.push_back(field.name);
+    }
   }
   if (std::rename(temporary.c_str(), h5.c_str()) != 0) throw InputError(h5 + ": cannot write");
   write_file_atomically(
       directory + "/result.xmf",
       xdmf_document(grid_text("result.h5", "", mesh.vertex_count(), mesh.triangle_count(),
-                              has_panels(mesh, labels), nullptr)));
+                              has_panels(mesh, labels), nullptr, {}, node_names)));
   TriangleMesh deformed = mesh;
   deformed.positions = positions;
   write_obj(directory + "/final.obj", deformed, obj_groups(mesh, labels));

@@ -26,10 +26,20 @@ struct ClothOutputLabels {
   std::vector<int> panel_of_triangle; // per triangle; empty: no panels
 };
 
+// A per-vertex scalar field of the final state beyond positions and
+// displacements (contact pressure, friction, seam forces: ClothProblem::
+// gather_vertex_loads), written as /fields/NAME with its `units`.
+struct ClothNodeField {
+  std::string name;
+  std::vector<double> values; // per mesh vertex
+  std::string units = "1";
+};
+
 void write_cloth_results(const std::string& directory, const TriangleMesh& mesh,
                          const std::vector<Eigen::Vector3d>& positions,
                          const std::vector<element::MembraneStrain>& strains,
-                         const ClothOutputLabels& labels = {});
+                         const ClothOutputLabels& labels = {},
+                         const std::vector<ClothNodeField>& node_fields = {});
 
 // A time series for ParaView, written state by state (rank 0):
 //   series.h5   the mesh (/mesh as in result.h5), then one group per state,

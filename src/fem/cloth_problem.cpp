@@ -680,20 +680,28 @@ PetscErrorCode ClothProblem::attach_element_scatter(const fem::BlockLayout& layo
 }
 
 PetscErrorCode ClothProblem::gather_positions(Vec x, std::vector<Eigen::Vector3d>* positions) {
+  const PetscScalar* values = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(to_local(x));
+  PetscCall(VecGetArrayRead(local_x_, &values));
+  PetscCall(gather_vertex_triples(values, positions));
+  PetscCall(VecRestoreArrayRead(local_x_, &values));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::gather_vertex_triples(const PetscScalar* local,
+                                                   std::vector<Eigen::Vector3d>* triples) {
   Vec natural = nullptr, root = nullptr;
   VecScatter to_root = nullptr;
   const PetscScalar* values = nullptr;
   PetscFunctionBeginUser;
-  PetscCall(to_local(x));
   const auto n = PetscInt(mesh_.vertex_count());
   PetscCall(VecCreateMPI(comm_, PETSC_DECIDE, 3 * n, &natural));
-  PetscCall(VecGetArrayRead(local_x_, &values));
   for (std::size_t v = 0; v < mesh_.vertex_count(); ++v) {
     if (!vertex_owned_[v]) continue;
     const PetscInt rows[3] = {3 * PetscInt(v), 3 * PetscInt(v) + 1, 3 * PetscInt(v) + 2};
-    PetscCall(VecSetValues(natural, 3, rows, values + vertex_dof_[v], INSERT_VALUES));
+    PetscCall(VecSetValues(natural, 3, rows, local + vertex_dof_[v], INSERT_VALUES));
   }
-  PetscCall(VecRestoreArrayRead(local_x_, &values));
   PetscCall(VecAssemblyBegin(natural));
   PetscCall(VecAssemblyEnd(natural));
   PetscCall(VecScatterCreateToZero(natural, &to_root, &root));
@@ -701,10 +709,10 @@ PetscErrorCode ClothProblem::gather_positions(Vec x, std::vector<Eigen::Vector3d
   PetscCall(VecScatterEnd(to_root, natural, root, INSERT_VALUES, SCATTER_FORWARD));
   PetscInt size = 0;
   PetscCall(VecGetLocalSize(root, &size));
-  positions->clear();
+  triples->clear();
   PetscCall(VecGetArrayRead(root, &values));
   for (PetscInt v = 0; v < size / 3; ++v) {
-    positions->emplace_back(values[3 * v], values[3 * v + 1], values[3 * v + 2]);
+    triples->emplace_back(values[3 * v], values[3 * v + 1], values[3 * v + 2]);
   }
   PetscCall(VecRestoreArrayRead(root, &values));
   PetscCall(VecScatterDestroy(&to_root));

@@ -17,6 +17,7 @@
 #include "element/bending.hpp"
 #include "element/membrane.hpp"
 #include "element/patch_bending.hpp"
+#include "fem/cloth_output.hpp"
 #include "fem/pin_motion.hpp"
 #include "fem/seam_coupling.hpp"
 #include "mesh/triangle_mesh.hpp"
@@ -220,6 +221,12 @@ public:
   // Per body, the forces on the cloth and the contact state at x, the
   // friction forces from the anchors the solve used (before the last update).
   PetscErrorCode contact_report(Vec x, std::vector<BodyContact>* report);
+  // Collective. Per-vertex loads at x, in mesh numbering, on rank 0 (empty
+  // elsewhere), for the result files (fem/cloth_vertex_loads.cpp): with bodies,
+  // contact_pressure (Pa), contact_normal_force and friction_force (N) and
+  // friction_utilisation |f_t| / (mu_s |f_n|) (1: on the Coulomb cone); with
+  // seams, seam_force (N).
+  PetscErrorCode gather_vertex_loads(Vec x, std::vector<ClothNodeField>* fields);
   // Collective. The largest t in (0, 1] such that no vertex moving from x
   // towards x + t d comes closer to a body than the smaller of half its
   // distance at x and a tenth of the contact offset, found by conservative advancement
@@ -310,6 +317,10 @@ public:
   PetscInt global_dof_count() const { return global_dofs_; }
 
 private:
+  // The per-vertex triples of `local` (laid out as the local vector of
+  // positions) in mesh numbering, on rank 0. Collective.
+  PetscErrorCode gather_vertex_triples(const PetscScalar* local,
+                                       std::vector<Eigen::Vector3d>* triples);
   struct LocalTriangle {
     std::array<PetscInt, 9> dofs; // local-vector indices, corner by corner
     element::TriangleRest rest;

@@ -25,7 +25,9 @@ UNITS = {"position": "m", "displacement": "m", "initial_position": "m", "materia
          "strain_warp": "1", "strain_weft": "1", "strain_shear": "1",
          "tension_warp": "N/m", "tension_weft": "N/m", "time": "s", "triangles": "1",
          "fabric_id": "1", "panel_id": "1", "viscoelastic_warp": "1", "permanent_warp": "1",
-         "viscoelastic_weft": "1", "permanent_weft": "1"}
+         "viscoelastic_weft": "1", "permanent_weft": "1", "contact_pressure": "Pa",
+         "contact_normal_force": "N", "friction_force": "N", "friction_utilisation": "1",
+         "seam_force": "N"}
 failures = []
 
 
@@ -63,7 +65,7 @@ def check_h5(path, fabrics, panels):
         return nt, f["/mesh/material_uv"][:], f["/mesh/triangles"][:]
 
 
-def check_result_xmf(path, nt, panels):
+def check_result_xmf(path, nt, panels, drape):
     mesh = meshio.read(path)
     check(sum(len(c.data) for c in mesh.cells) == nt, f"{path}: {len(mesh.cells)} cell blocks")
     fields = set(mesh.cell_data)
@@ -71,6 +73,11 @@ def check_result_xmf(path, nt, panels):
     check(wanted <= fields, f"{path}: cell fields {sorted(fields)} lack {sorted(wanted - fields)}")
     check(mesh.cell_data["material_uv"][0].shape == (nt, 6), f"{path}: material_uv as read")
     check("displacement" in mesh.point_data, f"{path}: no displacement")
+    if drape:
+        loads = {"contact_pressure", "contact_normal_force", "friction_force",
+                 "friction_utilisation", "seam_force"}
+        check(loads <= set(mesh.point_data),
+              f"{path}: node fields {sorted(mesh.point_data)} lack {sorted(loads - set(mesh.point_data))}")
 
 
 def check_series(path, creep):
@@ -133,7 +140,7 @@ def check_directory(kind, directory):
         check(name in files, f"{directory}: no {name}")
     nt, uv, triangles = check_h5(os.path.join(directory, "result.h5"), fabrics, panels)
     check_h5(os.path.join(directory, "series.h5"), fabrics, panels)
-    check_result_xmf(os.path.join(directory, "result.xmf"), nt, panels)
+    check_result_xmf(os.path.join(directory, "result.xmf"), nt, panels, kind == "drape")
     check_series(os.path.join(directory, "series.xmf"), kind == "creep")
     check_obj(os.path.join(directory, "final.obj"), uv, triangles, max(len(panels), 1))
     if kind == "drape":

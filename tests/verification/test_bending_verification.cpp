@@ -159,18 +159,6 @@ double observed_order(double coarse, double fine) {
 
 constexpr double gravity = 9.80665;
 
-const char* label(element::BendingModel model) {
-  switch (model) {
-  case element::BendingModel::patch:
-    return "patch";
-  case element::BendingModel::discrete_shell:
-    return "discrete shell";
-  case element::BendingModel::quadratic:
-    return "quadratic";
-  }
-  return "";
-}
-
 // --- Simply supported strip, linear range ---------------------------------
 
 // Largest deflection of a 1 m strip on supports at both ends under its
