@@ -63,7 +63,7 @@ PetscErrorCode finalize_petsc() {
 
 // PETSc starts once per process, without its signal handlers (Python keeps
 // Ctrl-C); it ends when the interpreter exits. A host that initialised
-// PETSc itself (petsc4py) keeps it: then the options database is shared.
+// PETSc itself (petsc4py) keeps it, and finalises it.
 void ensure_petsc() {
   PetscBool initialized = PETSC_FALSE;
   SartorPetscCall(PetscInitialized(&initialized));
@@ -76,7 +76,6 @@ void ensure_petsc() {
   if (PetscInitialize(&count, &argv, nullptr, nullptr) != 0) {
     throw std::runtime_error("sartor: PETSc did not initialise");
   }
-  SartorPetscCall(PetscPushErrorHandler(keep_petsc_error, nullptr));
   py::module_::import("atexit").attr("register")(py::cpp_function([] { finalize_petsc(); }));
 }
 
@@ -276,6 +275,7 @@ Outcome run_in_process(const sartor::Command& command, const std::vector<std::st
   Outcome outcome;
   const std::string& name = command.spec().name;
   last_petsc_message().clear();
+  SartorPetscCall(PetscPushErrorHandler(keep_petsc_error, nullptr));
   try {
     sartor::ParsedCommandLine parsed = sartor::parse_command_line(command.spec(), "sartor", words);
     load_options(parsed);
@@ -301,7 +301,11 @@ Outcome run_in_process(const sartor::Command& command, const std::vector<std::st
                    (input ? "PETSc rejected an option or input: " + last_petsc_message()
                           : std::string(error.what())),
                input ? "InputError" : "Error"};
+  } catch (const std::exception& error) {
+    // A bug, as the executable's "internal error" says.
+    outcome = {std::nullopt, "sartor " + name + ": internal error: " + error.what(), "Error"};
   }
+  SartorPetscCall(PetscPopErrorHandler());
   if (outcome.result) (*outcome.result)["unused_options"] = unused_options();
   std::fflush(stdout);
   std::fflush(stderr);

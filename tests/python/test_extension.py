@@ -8,9 +8,9 @@
    within 1 %; the arrays agree with the summary and with each other;
 2. the same process runs it again, with another modulus in between, and gets
    the same numbers (no state carried from call to call);
-3. a bad option value, an unknown option and a missing PETSc options file
-   raise sartor InputError (a ValueError) with the option named, and the
-   process runs on;
+3. a bad option value, an unknown option, a PETSc type PETSc does not know
+   and a missing PETSc options file raise sartor InputError (a ValueError)
+   with the option named, and the process runs on;
 4. PETSc options set once (set_petsc_options) reach every later run: an
    option nothing reads comes back in unused_options until cleared;
 5. a run that fails raises SolveFailure with what it reached in .result.
@@ -86,6 +86,11 @@ for options, named in [({"mesh_nx": "six"}, "mesh-nx"), ({"mesh_nq": 6}, "mesh-n
     except sartor.InputError as error:
         check(isinstance(error, ValueError) and named in str(error),
               f"{options}: InputError: {error}")
+try:
+    _sartor.run(strip, output(), petsc={"pc_type": "no_such_preconditioner"})
+    check(False, "an unknown PETSc preconditioner raised nothing")
+except sartor.InputError as error:
+    check("no_such_preconditioner" in str(error), f"unknown PETSc type: InputError: {error}")
 try:
     _sartor.run(strip, output(), petsc={"options_file_yaml": "no/such/file.yaml"})
     check(False, "a missing options file raised nothing")
