@@ -5,7 +5,8 @@
    tension T, given as a dict case with a linear warp modulus K and no
    Poisson coupling: the tension is uniform, so the free edge moves by
    L T / K and every triangle's warp tension is T (this test's closed form),
-   within 1 %; the arrays agree with the summary and with each other;
+   within 1 %; the arrays agree with the summary and with each other, and
+   are the numbers the run wrote to result.h5 and summary.json;
 2. the same process runs it again, with another modulus in between, and gets
    the same numbers (no state carried from call to call);
 3. a bad option value, an unknown option, a PETSc type PETSc does not know
@@ -53,7 +54,9 @@ strip = {"mesh": "rectangle", "mesh_width": length, "mesh_height": width, "mesh_
 
 
 def stretch(modulus):
-    result = _sartor.run(strip, output(), options={"warp_modulus": modulus})
+    folder = output()
+    result = _sartor.run(strip, folder, options={"warp_modulus": modulus})
+    result["directory"] = folder
     return result, result["summary"]["probe"]["displacement_m"][0]
 
 
@@ -74,6 +77,14 @@ check(np.allclose(result["positions"] - result["initial_positions"], result["dis
       "displacement = positions - initial_positions")
 check(result["units"]["fields/position"] == "m" and
       result["units"]["cell_fields/tension_warp"] == "N/m", "units as result.h5 names them")
+
+written = sartor.Result(result["directory"])  # what the same run wrote, read back
+check(all(np.array_equal(result[name], getattr(written, name))
+          for name in ["positions", "initial_positions", "triangles", "material_uv", "fabric_ids"])
+      and all(np.array_equal(result["cell_fields"][name], written.cell_fields[name])
+              for name in written.cell_fields)
+      and result["units"] == written.units and result["summary"] == written.summary,
+      "the arrays in memory are those result.h5 and summary.json hold")
 
 stretch(8000.0)
 _, again = stretch(5000.0)
