@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "fem/incremental_system.hpp"
+#include "fem/progress_clock.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -80,7 +81,7 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
   double dt = options.time_step;
   double next_output = options.output_interval > 0.0 ? start + options.output_interval : 0.0;
   double previous_kinetic = initial.kinetic_energy;
-  double next_progress = 0.05;
+  ProgressClock progress;
   PetscInt step_index = 0;
   report->completed = true;
   while (options.time_end - t > tiny) {
@@ -162,16 +163,15 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
     }
     report->steps.push_back(step);
     if (observe) PetscCall(observe(step, x, v));
-    if (options.print_progress &&
-        ((t - start) >= next_progress * span - tiny || options.time_end - t <= tiny)) {
+    const bool finished = at_rest || options.time_end - t <= tiny;
+    if (options.print_progress && progress.due(finished)) {
       PetscCall(PetscPrintf(problem.comm(),
                             "  t = %.4g s (%3.0f%%): %" PetscInt_FMT " steps, %" PetscInt_FMT
                             " Newton iterations, %" PetscInt_FMT
-                            " rejected; kinetic %.3e J, potential %.6e J\n",
+                            " rejected; kinetic %.3e J, potential %.6e J; %s\n",
                             t, 100.0 * (t - start) / span, step_index, report->newton_iterations,
-                            report->rejected_steps, step.kinetic_energy, step.potential_energy));
-      while (next_progress * span <= t - start + tiny)
-        next_progress += 0.05;
+                            report->rejected_steps, step.kinetic_energy, step.potential_energy,
+                            progress.timing(finished ? 1.0 : (t - start) / span).c_str()));
     }
     if (at_rest) break;
   }
