@@ -86,6 +86,23 @@ CornerMove read_move(const std::string& path, const YAML::Node& node, const std:
   return move;
 }
 
+// The outline corners a move moves, as (panel, corner) with corner i the
+// start of line i.
+std::vector<std::pair<std::size_t, std::size_t>> moved_corners(const garment::Pattern& pattern,
+                                                               const CornerMove& move) {
+  std::vector<std::pair<std::size_t, std::size_t>> corners;
+  for (std::size_t panel = 0; panel < pattern.panels.size(); ++panel) {
+    const auto& outline = pattern.panels[panel].outline;
+    for (std::size_t i = 0; i < outline.size(); ++i) {
+      if (outline[i].id != move.line) continue;
+      if (move.which != CornerMove::Which::end) corners.emplace_back(panel, i);
+      if (move.which != CornerMove::Which::start)
+        corners.emplace_back(panel, (i + 1) % outline.size());
+    }
+  }
+  return corners;
+}
+
 } // namespace
 
 std::vector<EditStep> read_edit_file(const std::string& path, const garment::Pattern& pattern) {
@@ -113,9 +130,20 @@ std::vector<EditStep> read_edit_file(const std::string& path, const garment::Pat
     if (!moves) edit_error(path, step, key + ".moves", "missing: the list of moves");
     if (!moves.IsSequence() || moves.size() == 0)
       edit_error(path, moves, key + ".moves", "must be a non-empty list of moves");
-    for (std::size_t m = 0; m < moves.size(); ++m)
-      edit.moves.push_back(read_move(path, moves[m], key + ".moves[" + std::to_string(m) + "]",
-                                     outline_lines));
+    // A corner two moves name (the shared end of two lines moved together)
+    // moves once; two different moves of it are an error.
+    std::map<std::pair<std::size_t, std::size_t>, CornerMove> corners;
+    for (std::size_t m = 0; m < moves.size(); ++m) {
+      const std::string move_key = key + ".moves[" + std::to_string(m) + "]";
+      edit.moves.push_back(read_move(path, moves[m], move_key, outline_lines));
+      for (const auto& corner : moved_corners(pattern, edit.moves.back())) {
+        const auto [entry, fresh] = corners.emplace(corner, edit.moves.back());
+        if (!fresh && entry->second.by != edit.moves.back().by)
+          edit_error(path, moves[m], move_key,
+                     "the moves of lines '" + entry->second.line + "' and '" +
+                         edit.moves.back().line + "' move their shared corner differently");
+      }
+    }
     result.push_back(edit);
   }
   return result;
@@ -130,8 +158,7 @@ const std::vector<OptionSpec>& edit_option_specs() {
       {"edit-anchors", "KIND", "fresh",
        "the friction anchors of each re-solve: fresh (set where the start touches the body) "
        "or kept (the last drape's)"},
-      {"gmls-degree", "N", "2",
-       "degree of GMLS's polynomial basis: 1 (Sensitive Couture's) or 2"},
+      {"gmls-degree", "N", "2", "degree of GMLS's polynomial basis: 1 (Sensitive Couture's) or 2"},
       {"no-edit-outputs", "", "",
        "write summary.json and the edited patterns only, not the predicted and re-solved "
        "drapes"},

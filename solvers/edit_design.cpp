@@ -79,13 +79,10 @@ EditDesign::EditDesign(const garment::Pattern& pattern, const TriangleMesh& mesh
 
 Eigen::VectorXd EditDesign::parameters(const EditStep& step) const {
   // A corner named by several moves of a step (the shared end of two lines
-  // moved together) moves once; two different moves of it are an error.
-  std::map<int, std::pair<Eigen::Vector2d, std::string>> moved;
+  // moved together) moves once (read_edit_file refuses different moves).
+  std::map<int, Eigen::Vector2d> moved;
   const auto move_corner = [&](int corner, const CornerMove& move) {
-    const auto [entry, fresh] = moved.emplace(corner, std::make_pair(move.by, move.line));
-    if (!fresh && entry->second.first != move.by)
-      throw InputError("edit '" + step.name + "': the moves of lines '" + entry->second.second +
-                       "' and '" + move.line + "' move their shared corner differently");
+    moved.emplace(corner, move.by);
   };
   for (const CornerMove& move : step.moves) {
     for (std::size_t panel = 0; panel < pattern_.panels.size(); ++panel) {
@@ -101,7 +98,7 @@ Eigen::VectorXd EditDesign::parameters(const EditStep& step) const {
   }
   Eigen::VectorXd p = Eigen::VectorXd::Zero(size());
   for (const auto& [corner, move] : moved)
-    p.segment<2>(2 * corner) = move.first;
+    p.segment<2>(2 * corner) = move;
   return p;
 }
 
@@ -156,9 +153,9 @@ void write_edit_svg(const std::string& path, const garment::Pattern& pattern,
   const Eigen::Vector2d size = (high - low).array() + 2.0 * margin;
   std::ofstream out(path);
   if (!out) throw InputError(path + ": cannot write the edited pattern");
-  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << size.x() * scale << "mm\" height=\""
-      << size.y() * scale + 8 << "mm\" viewBox=\"0 -8 " << size.x() * scale << " "
-      << size.y() * scale + 8 << "\">\n<title>" << title << "</title>\n"
+  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << size.x() * scale
+      << "mm\" height=\"" << size.y() * scale + 8 << "mm\" viewBox=\"0 -8 " << size.x() * scale
+      << " " << size.y() * scale + 8 << "\">\n<title>" << title << "</title>\n"
       << "<text x=\"2\" y=\"-2\" font-size=\"6\">" << title
       << " (grey: before, red: after; mm)</text>\n";
   const auto polygon = [&](const std::vector<std::vector<Eigen::Vector2d>>& outlines,
@@ -167,8 +164,8 @@ void write_edit_svg(const std::string& path, const garment::Pattern& pattern,
       out << "<polygon " << style << " points=\"";
       for (const Eigen::Vector2d& q : outlines[panel]) {
         const Eigen::Vector2d at = place(panel, q);
-        out << (at.x() - low.x() + margin) * scale << ","
-            << (high.y() - at.y() + margin) * scale << " ";
+        out << (at.x() - low.x() + margin) * scale << "," << (high.y() - at.y() + margin) * scale
+            << " ";
       }
       out << "\"/>\n";
     }

@@ -5,6 +5,7 @@
 #include "common/error.hpp"
 #include "common/gmls.hpp"
 #include "common/output.hpp"
+#include "contact/body.hpp"
 #include "fem/petsc_call.hpp"
 #include "fem/sensitivity.hpp"
 #include "fem/statics.hpp"
@@ -74,6 +75,48 @@ double lowest_point(ClothProblem& problem, Vec x) {
     lowest = std::min(lowest, p.z());
   SartorPetscCall(MPI_Bcast(&lowest, 1, MPI_DOUBLE, 0, problem.comm()));
   return lowest;
+}
+
+// The thesis' penetration handling before a solve (ch. 4, Alg. 1, without
+// its spatial index): every vertex of the start closer to a body than the
+// contact offset is pushed out along the body's normal to the offset. A
+// prediction is linear and may run through the body where the drape wraps
+// round it; the minimiser's steps are bounded by the distances, so it
+// cannot leave the body's inside by itself. Returns the vertices pushed
+// and the deepest, m (every rank).
+std::pair<long, double> push_out_of_bodies(ClothProblem& problem, Vec x) {
+  std::vector<Eigen::Vector3d> positions = gathered(problem, x);
+  double counts[2] = {0.0, 0.0};
+  const double offset = problem.contact.offset;
+  for (Eigen::Vector3d& p : positions) {
+    bool pushed = false;
+    for (const contact::Body& body : problem.bodies) {
+      const contact::SurfaceQuery q = body.query(p, problem.load_factor);
+      if (q.distance >= offset || q.normal.norm() == 0.0) continue;
+      counts[1] = std::max(counts[1], offset - q.distance);
+      p += (offset - q.distance) * q.normal.normalized();
+      pushed = true;
+    }
+    counts[0] += pushed ? 1.0 : 0.0;
+  }
+  SartorPetscCall(MPI_Bcast(counts, 2, MPI_DOUBLE, 0, problem.comm()));
+  unsigned long size = positions.size();
+  SartorPetscCall(MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG, 0, problem.comm()));
+  positions.resize(size);
+  SartorPetscCall(
+      MPI_Bcast(positions.data()->data(), int(3 * size), MPI_DOUBLE, 0, problem.comm()));
+  SartorPetscCall(problem.set_solution(positions, x));
+  return {long(counts[0]), counts[1]};
+}
+
+double residual_norm(ClothProblem& problem, Vec x) {
+  Vec f = nullptr;
+  PetscReal norm = 0.0;
+  SartorPetscCall(VecDuplicate(x, &f));
+  SartorPetscCall(problem.residual(x, f));
+  SartorPetscCall(VecNorm(f, NORM_2, &norm));
+  SartorPetscCall(VecDestroy(&f));
+  return norm;
 }
 
 nlohmann::json distance_json(const Distance& d) {
@@ -192,12 +235,11 @@ void EditSession::write_state(const std::string& directory, const Design& design
   std::vector<element::MembraneStrain> strains;
   SartorPetscCall(design.problem->gather_strains(x, &strains));
   const auto positions = gathered(*design.problem, x);
-  if (is_root())
-    write_cloth_results(directory, *design.mesh, positions, strains, garment_.labels);
+  if (is_root()) write_cloth_results(directory, *design.mesh, positions, strains, garment_.labels);
 }
 
 nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
-                                      const EditDesign& design) {
+                                       const EditDesign& design) {
   Design& last = *designs_.back();
   const double slope_cpu = ensure_slope(last);
   const double predict_started = process_cpu_seconds();
@@ -229,11 +271,15 @@ nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
   if (start != "gmls" && start != "linear" && start != "unchanged")
     throw InputError("option --edit-start: unknown start '" + start +
                      "' (gmls, linear, unchanged)");
-  SartorPetscCall(
-      VecCopy(start == "gmls" ? gmls : start == "linear" ? linear : unchanged, next->x));
+  SartorPetscCall(VecCopy(start == "gmls"     ? gmls
+                          : start == "linear" ? linear
+                                              : unchanged,
+                          next->x));
   const StaticOptions solve = static_options();
   StaticReport report;
   const double solve_started = process_cpu_seconds();
+  const auto [pushed, deepest] = push_out_of_bodies(problem, next->x);
+  const double start_residual = residual_norm(problem, next->x);
   SartorPetscCall(solve_static(problem, next->x, solve, &report));
   const CertifiedState certified = certify_case(options_, problem, next->x, &solve, &report);
   const double solve_cpu = process_cpu_seconds() - solve_started;
@@ -252,42 +298,43 @@ nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
     write_state(folder + "/resolved", *next, next->x);
   }
   const double edit_cpu = slope_cpu + predict_cpu + solve_cpu;
-  nlohmann::json step = {
-      {"name", steps_[k].name},
-      {"folder", name},
-      {"largest_corner_move_m", design.largest_move(p - last.p)},
-      {"error_against_resolved",
-       {{"unchanged", distance_json(distance(problem, unchanged, next->x))},
-        {"linear", distance_json(distance(problem, linear, next->x))},
-        {"gmls", distance_json(distance(problem, gmls, next->x))}}},
-      {"gmls", {{"designs", designs_.size()}, {"degree", used.degree}}},
-      {"lowest_point_z_m",
-       {{"before", lowest_point(problem, unchanged)},
-        {"linear", lowest_point(problem, linear)},
-        {"gmls", lowest_point(problem, gmls)},
-        {"resolved", lowest_point(problem, next->x)}}},
-      {"start", start},
-      {"resolve",
-       {{"converged", report.converged},
-        {"reason", report.reason},
-        {"newton_iterations", report.newton_iterations},
-        {"contact_rounds", report.contact_rounds},
-        {"residual_N", report.final_residual_norm},
-        {"sliding_vertices", report.sliding_vertices},
-        {"contact_round_failed", report.contact_round_failed},
-        {"contact_stiffness_scale", report.contact_stiffness_scale},
-        {"certificate", certified.certificate.verdict()},
-        {"certified", certified.certificate.certified()}}},
-      {"sensitivity_stabilised", last.slope->stabilised()},
-      {"cpu_s",
-       {{"sensitivity_factorisation", slope_cpu},
-        {"prediction", predict_cpu},
-        {"resolve", solve_cpu},
-        {"edit_total", edit_cpu},
-        {"drape_from_scratch", scratch_cpu_}}},
-      {"speedup",
-       {{"resolve", solve_cpu > 0.0 ? scratch_cpu_ / solve_cpu : 0.0},
-        {"edit_total", edit_cpu > 0.0 ? scratch_cpu_ / edit_cpu : 0.0}}}};
+  nlohmann::json step = {{"name", steps_[k].name},
+                         {"folder", name},
+                         {"largest_corner_move_m", design.largest_move(p - last.p)},
+                         {"error_against_resolved",
+                          {{"unchanged", distance_json(distance(problem, unchanged, next->x))},
+                           {"linear", distance_json(distance(problem, linear, next->x))},
+                           {"gmls", distance_json(distance(problem, gmls, next->x))}}},
+                         {"gmls", {{"designs", designs_.size()}, {"degree", used.degree}}},
+                         {"lowest_point_z_m",
+                          {{"before", lowest_point(problem, unchanged)},
+                           {"linear", lowest_point(problem, linear)},
+                           {"gmls", lowest_point(problem, gmls)},
+                           {"resolved", lowest_point(problem, next->x)}}},
+                         {"start", start},
+                         {"start_pushed_out", {{"vertices", pushed}, {"deepest_m", deepest}}},
+                         {"start_residual_N", start_residual},
+                         {"resolve",
+                          {{"converged", report.converged},
+                           {"reason", report.reason},
+                           {"newton_iterations", report.newton_iterations},
+                           {"contact_rounds", report.contact_rounds},
+                           {"residual_N", report.final_residual_norm},
+                           {"sliding_vertices", report.sliding_vertices},
+                           {"contact_round_failed", report.contact_round_failed},
+                           {"contact_stiffness_scale", report.contact_stiffness_scale},
+                           {"certificate", certified.certificate.verdict()},
+                           {"certified", certified.certificate.certified()}}},
+                         {"sensitivity_stabilised", last.slope->stabilised()},
+                         {"cpu_s",
+                          {{"sensitivity_factorisation", slope_cpu},
+                           {"prediction", predict_cpu},
+                           {"resolve", solve_cpu},
+                           {"edit_total", edit_cpu},
+                           {"drape_from_scratch", scratch_cpu_}}},
+                         {"speedup",
+                          {{"resolve", solve_cpu > 0.0 ? scratch_cpu_ / solve_cpu : 0.0},
+                           {"edit_total", edit_cpu > 0.0 ? scratch_cpu_ / edit_cpu : 0.0}}}};
   for (Vec* v : {&unchanged, &linear, &gmls})
     SartorPetscCall(VecDestroy(v));
   designs_.push_back(std::move(next));
@@ -329,9 +376,8 @@ void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& mat
         1e3 * error["unchanged"]["max_m"].get<double>(), step["start"].get<std::string>().c_str(),
         step["resolve"]["converged"].get<bool>() ? "converged" : "NOT converged",
         int(step["resolve"]["newton_iterations"].get<long>()),
-        step["resolve"]["certificate"].get<std::string>().c_str(),
-        cpu["resolve"].get<double>(), cpu["edit_total"].get<double>(),
-        cpu["drape_from_scratch"].get<double>()));
+        step["resolve"]["certificate"].get<std::string>().c_str(), cpu["resolve"].get<double>(),
+        cpu["edit_total"].get<double>(), cpu["drape_from_scratch"].get<double>()));
     steps.push_back(step);
   }
   designs_.clear();
@@ -350,11 +396,9 @@ void attach_edit(const Options& options, const std::string& directory, EditGarme
                  const std::shared_ptr<EditRun>& run) {
   auto session = std::make_shared<EditSession>(options, directory, std::move(garment),
                                                std::move(steps), drape_started_cpu, run);
-  cloth->after_statics = [session](ClothProblem& problem,
-                                   const std::vector<ClothMaterial>& materials,
-                                   const std::vector<SeamSpring>&, Vec x) {
-    session->edit(problem, materials, x);
-  };
+  cloth->after_statics =
+      [session](ClothProblem& problem, const std::vector<ClothMaterial>& materials,
+                const std::vector<SeamSpring>&, Vec x) { session->edit(problem, materials, x); };
 }
 
 } // namespace sartor
