@@ -151,8 +151,9 @@ std::vector<EditStep> read_edit_file(const std::string& path, const garment::Pat
 
 const std::vector<OptionSpec>& edit_option_specs() {
   static const std::vector<OptionSpec> specs{
-      {"edit-start", "KIND", "gmls",
-       "the start of each warm re-solve: gmls (GMLS over the designs solved so far; the linear "
+      {"edit-start", "KIND", "auto",
+       "the start of each warm re-solve, pushed out of the body: auto (of the three below, the "
+       "one of least potential energy), gmls (GMLS over the designs solved so far; the linear "
        "prediction while there is one), linear (x + S dp from the last design) or unchanged "
        "(the last drape as it is)"},
       {"edit-anchors", "KIND", "fresh",

@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 namespace sartor {
 
@@ -267,14 +268,29 @@ nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
   predict_gmls(p, problem, gmls, &used);
   const double predict_cpu = process_cpu_seconds() - predict_started;
 
-  const std::string start = options_.text("edit-start");
-  if (start != "gmls" && start != "linear" && start != "unchanged")
+  // The re-solve's start, pushed out of the body; `auto`: of the three,
+  // the one of least potential energy (the minimiser descends it).
+  std::string start = options_.text("edit-start");
+  const std::map<std::string, Vec> candidates{
+      {"gmls", gmls}, {"linear", linear}, {"unchanged", unchanged}};
+  if (start != "auto" && !candidates.count(start))
     throw InputError("option --edit-start: unknown start '" + start +
-                     "' (gmls, linear, unchanged)");
-  SartorPetscCall(VecCopy(start == "gmls"     ? gmls
-                          : start == "linear" ? linear
-                                              : unchanged,
-                          next->x));
+                     "' (auto, gmls, linear, unchanged)");
+  nlohmann::json start_energy = nlohmann::json::object();
+  double least = INFINITY;
+  for (const auto& [kind, candidate] : candidates) {
+    if (start != "auto" && kind != start) continue;
+    SartorPetscCall(VecCopy(candidate, next->x));
+    push_out_of_bodies(problem, next->x);
+    ClothEnergy energy;
+    SartorPetscCall(problem.energy(next->x, &energy));
+    start_energy[kind] = energy.total();
+    if (energy.total() < least) least = energy.total();
+  }
+  if (start == "auto")
+    for (const auto& [kind, energy] : start_energy.items())
+      if (energy.get<double>() == least) start = kind;
+  SartorPetscCall(VecCopy(candidates.at(start), next->x));
   const StaticOptions solve = static_options();
   StaticReport report;
   const double solve_started = process_cpu_seconds();
@@ -312,6 +328,7 @@ nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
                            {"gmls", lowest_point(problem, gmls)},
                            {"resolved", lowest_point(problem, next->x)}}},
                          {"start", start},
+                         {"start_energy_J", start_energy},
                          {"start_pushed_out", {{"vertices", pushed}, {"deepest_m", deepest}}},
                          {"start_residual_N", start_residual},
                          {"resolve",
