@@ -79,12 +79,12 @@ double lowest_point(ClothProblem& problem, Vec x) {
 }
 
 // The thesis' penetration handling before a solve (ch. 4, Alg. 1, without
-// its spatial index): every vertex of the start closer to a body than the
-// contact offset is pushed out along the body's normal to the offset. A
-// prediction is linear and may run through the body where the drape wraps
-// round it; the minimiser's steps are bounded by the distances, so it
-// cannot leave the body's inside by itself. Returns the vertices pushed
-// and the deepest, m (every rank).
+// its spatial index): every vertex of the start inside a body is pushed out
+// along the body's normal to the middle of the contact offset layer (where
+// the penalty holds the drape's vertices). A prediction is linear and may
+// run through the body where the drape wraps round it; the minimiser's
+// steps are bounded by the distances, so it cannot leave the body's inside
+// by itself. Returns the vertices pushed and the deepest, m (every rank).
 std::pair<long, double> push_out_of_bodies(ClothProblem& problem, Vec x) {
   std::vector<Eigen::Vector3d> positions = gathered(problem, x);
   double counts[2] = {0.0, 0.0};
@@ -93,9 +93,9 @@ std::pair<long, double> push_out_of_bodies(ClothProblem& problem, Vec x) {
     bool pushed = false;
     for (const contact::Body& body : problem.bodies) {
       const contact::SurfaceQuery q = body.query(p, problem.load_factor);
-      if (q.distance >= offset || q.normal.norm() == 0.0) continue;
-      counts[1] = std::max(counts[1], offset - q.distance);
-      p += (offset - q.distance) * q.normal.normalized();
+      if (q.distance >= 0.0 || q.normal.norm() == 0.0) continue;
+      counts[1] = std::max(counts[1], -q.distance);
+      p += (0.5 * offset - q.distance) * q.normal.normalized();
       pushed = true;
     }
     counts[0] += pushed ? 1.0 : 0.0;
