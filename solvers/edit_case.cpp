@@ -159,6 +159,9 @@ const std::vector<OptionSpec>& edit_option_specs() {
       {"edit-anchors", "KIND", "fresh",
        "the friction anchors of each re-solve: fresh (set where the start touches the body) "
        "or kept (the last drape's)"},
+      {"sensitivity-tangent", "KIND", "exact",
+       "the sensitivity's tangent: exact (the derivative) or projected (the minimiser's, "
+       "PSD-projected element Hessians: damps the wrinkles' negative curvature)"},
       {"gmls-degree", "N", "2", "degree of GMLS's polynomial basis: 1 (Sensitive Couture's) or 2"},
       {"no-edit-outputs", "", "",
        "write summary.json and the edited patterns only, not the predicted and re-solved "

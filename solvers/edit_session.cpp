@@ -181,7 +181,13 @@ ProblemFactory EditSession::factory(const ClothProblem& base,
 double EditSession::ensure_slope(Design& design) {
   if (design.slope) return 0.0;
   const double started = process_cpu_seconds();
-  design.slope = std::make_unique<DesignSensitivity>(*design.problem, design.x, factory_);
+  const std::string tangent = options_.text("sensitivity-tangent");
+  if (tangent != "exact" && tangent != "projected")
+    throw InputError("option --sensitivity-tangent: unknown tangent '" + tangent +
+                     "' (exact, projected)");
+  SensitivityOptions settings;
+  settings.exact_tangent = tangent == "exact";
+  design.slope = std::make_unique<DesignSensitivity>(*design.problem, design.x, factory_, settings);
   SartorPetscCall(design.slope->factorise());
   return process_cpu_seconds() - started;
 }
