@@ -120,6 +120,33 @@ double residual_norm(ClothProblem& problem, Vec x) {
   return norm;
 }
 
+// The re-solve's start, pushed out of the body, copied into x: the one
+// --edit-start names, or with `auto` the candidate of least potential
+// energy (the minimiser descends it). Each candidate's energy goes into
+// `energies`.
+std::string choose_start(const std::map<std::string, Vec>& candidates, const Options& options,
+                         ClothProblem& problem, Vec x, nlohmann::json* energies) {
+  std::string start = options.text("edit-start");
+  if (start != "auto" && !candidates.count(start))
+    throw InputError("option --edit-start: unknown start '" + start +
+                     "' (auto, gmls, linear, unchanged)");
+  double least = INFINITY;
+  for (const auto& [kind, candidate] : candidates) {
+    if (start != "auto" && kind != start) continue;
+    SartorPetscCall(VecCopy(candidate, x));
+    push_out_of_bodies(problem, x);
+    ClothEnergy energy;
+    SartorPetscCall(problem.energy(x, &energy));
+    (*energies)[kind] = energy.total();
+    least = std::min(least, energy.total());
+  }
+  if (start == "auto")
+    for (const auto& [kind, energy] : energies->items())
+      if (energy.get<double>() == least) start = kind;
+  SartorPetscCall(VecCopy(candidates.at(start), x));
+  return start;
+}
+
 nlohmann::json distance_json(const Distance& d) {
   return {{"rms_m", d.rms}, {"max_m", d.max}};
 }
@@ -274,29 +301,10 @@ nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
   predict_gmls(p, problem, gmls, &used);
   const double predict_cpu = process_cpu_seconds() - predict_started;
 
-  // The re-solve's start, pushed out of the body; `auto`: of the three,
-  // the one of least potential energy (the minimiser descends it).
-  std::string start = options_.text("edit-start");
-  const std::map<std::string, Vec> candidates{
-      {"gmls", gmls}, {"linear", linear}, {"unchanged", unchanged}};
-  if (start != "auto" && !candidates.count(start))
-    throw InputError("option --edit-start: unknown start '" + start +
-                     "' (auto, gmls, linear, unchanged)");
   nlohmann::json start_energy = nlohmann::json::object();
-  double least = INFINITY;
-  for (const auto& [kind, candidate] : candidates) {
-    if (start != "auto" && kind != start) continue;
-    SartorPetscCall(VecCopy(candidate, next->x));
-    push_out_of_bodies(problem, next->x);
-    ClothEnergy energy;
-    SartorPetscCall(problem.energy(next->x, &energy));
-    start_energy[kind] = energy.total();
-    if (energy.total() < least) least = energy.total();
-  }
-  if (start == "auto")
-    for (const auto& [kind, energy] : start_energy.items())
-      if (energy.get<double>() == least) start = kind;
-  SartorPetscCall(VecCopy(candidates.at(start), next->x));
+  const std::string start =
+      choose_start({{"gmls", gmls}, {"linear", linear}, {"unchanged", unchanged}}, options_,
+                   problem, next->x, &start_energy);
   const StaticOptions solve = static_options();
   StaticReport report;
   const double solve_started = process_cpu_seconds();
