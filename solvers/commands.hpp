@@ -54,6 +54,8 @@ const CommandSpec& construct_command();
 int run_construct(const Invocation&);
 const CommandSpec& drape_command();
 int run_drape(const Invocation&);
+const CommandSpec& edit_command();
+int run_edit(const Invocation&);
 const CommandSpec& import_command();
 int run_import(const Invocation&);
 const CommandSpec& wrap_command();

@@ -17,6 +17,7 @@
 #include "solvers/cloth_case.hpp"
 #include "solvers/commands.hpp"
 #include "solvers/drape_outcome.hpp"
+#include "solvers/edit_case.hpp"
 #include "solvers/garment_construction.hpp"
 #include "solvers/progressive_drape.hpp"
 #include "solvers/wear_case.hpp"
@@ -334,8 +335,14 @@ const CommandSpec& drape_command() {
 }
 
 int run_drape(const Invocation& invocation) {
+  return drape_pattern(invocation, nullptr);
+}
+
+int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
   using Clock = std::chrono::steady_clock;
   const auto started = Clock::now();
+  const double started_cpu = process_cpu_seconds();
+  const std::string command = edit ? "edit" : "drape";
   const Options& options = invocation.options;
   const std::string path = invocation.command_line.positionals.at(0);
   const std::string directory = options.text("output");
@@ -475,6 +482,14 @@ int run_drape(const Invocation& invocation) {
     if (dynamic) throw InputError("option --wear-time: wear follows a static drape, not dynamics");
     attach_wear(options, directory, labels, &cloth, wear);
   }
+  if (edit) {
+    if (dynamic || wear_requested(options))
+      throw InputError("sartor edit edits a static drape: --analysis dynamic and --wear-time "
+                       "do not apply");
+    attach_edit(options, directory,
+                {constructed.pattern, sewable.mesh.material_ids, sewable.seams, labels},
+                edit->steps, started_cpu, &cloth, edit->run);
+  }
   // Progressive refinement (solvers/progressive_drape.hpp): coarser levels
   // first when --edge-length allows them; one level is the drape above.
   const DrapeLevel finest{constructed.mesh_options.edge_length, cloth, sewable.mesh.material_ids,
@@ -523,7 +538,7 @@ int run_drape(const Invocation& invocation) {
   const std::string verdict = result.certified ? result.certified->certificate.verdict()
                               : options.flag("no-certificate") ? "skipped"
                                                                : "not certified";
-  nlohmann::json summary = run_metadata(invocation, "drape");
+  nlohmann::json summary = run_metadata(invocation, command);
   summary["pattern"] = path;
   summary["fabrics"] = cloth.fabrics;
   summary["construction"] = {{"panels", constructed.pattern.panels.size()},
@@ -568,6 +583,7 @@ int run_drape(const Invocation& invocation) {
         {"drape_setup", result.setup_seconds},
         {"total", total_seconds}}},
       {"levels", levels_json(levels)}};
+  if (edit && edit->run->ran) summary["edit"] = edit->run->summary;
   if (wear->ran) {
     add_wear_summary(*wear, labels, summary);
     write_wear_tables(directory, *wear);

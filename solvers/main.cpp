@@ -33,6 +33,7 @@ const std::vector<Command>& commands() {
       {sartor::body_command, sartor::run_body},
       {sartor::construct_command, sartor::run_construct},
       {sartor::drape_command, sartor::run_drape},
+      {sartor::edit_command, sartor::run_edit},
       {sartor::import_command, sartor::run_import},
       {sartor::wrap_command, sartor::run_wrap},
       {sartor::drag_command, sartor::run_drag},

@@ -180,7 +180,7 @@ PetscErrorCode DesignSensitivity::factorise_tangent(ClothProblem& problem, bool*
   PetscCall(problem.create_solution(&x));
   PetscCall(transfer_vector(problem_, x_, problem, x));
   const bool exact = problem.exact_hessian;
-  problem.exact_hessian = true;
+  problem.exact_hessian = options_.exact_tangent;
   const PetscErrorCode assembled = problem.jacobian(x, tangent_);
   problem.exact_hessian = exact;
   PetscCall(VecDestroy(&x));

@@ -62,6 +62,12 @@ struct SensitivityOptions {
   double solve_tolerance = 1e-8;
   double stabilised_thickness = 1e-2; // SC §7: h = 1/100 of the panels' size
   bool stabilise = true;
+  // The exact tangent (the derivative). false: the tangent the static
+  // minimiser uses (element Hessians PSD-projected where the problem's
+  // materials ask), which leaves out the negative curvature of compressed
+  // and wrinkled cloth: a damped, not exact, response (`sartor edit
+  // --sensitivity-tangent projected`).
+  bool exact_tangent = true;
 };
 
 // The state of the equilibrium that a rebuilt problem must share (loads,

@@ -10,6 +10,7 @@
 // and the stabilisation of SC §7 on a sheet without bending or load, whose
 // equilibrium after the edit is the new pattern itself.
 
+#include "common/gmls.hpp"
 #include "contact/analytic_shapes.hpp"
 #include "element/rest_derivative.hpp"
 #include "fem/sensitivity.hpp"
@@ -413,6 +414,80 @@ TEST(DesignSensitivity, LinearPredictionIsSecondOrder) {
   EXPECT_NEAR(error[1] / error[0], 4.0, 1.0);
   VecDestroy(&slope);
   VecDestroy(&predicted);
+}
+
+// Five growing edits of the cantilever (1 % to 5 % longer), each predicted
+// before it is solved: linearly from the last solved design, x_k-1 + S_k-1
+// dp, and by GMLS (common/gmls.hpp) over every design solved so far with
+// its sensitivity. The samples lie on one line, so the quadratic basis is a
+// Hermite fit through the last two designs' drapes and slopes: its error is
+// third order in the step against the linear prediction's second order.
+TEST(DesignSensitivity, GmlsBeatsLinearOnGrowingEdits) {
+  const Case c = cantilever(element::BendingModel::discrete_shell);
+  const auto delta = per_vertex(
+      c.mesh, [](const Eigen::Vector2d& uv, int) { return Eigen::Vector2d(uv.x(), 0.0); });
+  const RestChange change = rest_change_per_vertex(c.mesh, delta);
+  const double step = 0.01;
+  // The designs solved so far, their sensitivities and parameters (the edit's size).
+  std::vector<std::unique_ptr<Equilibrium>> solved;
+  std::vector<std::unique_ptr<DesignSensitivity>> slopes;
+  std::vector<Eigen::VectorXd> designs;
+  solved.push_back(std::make_unique<Equilibrium>());
+  solve_equilibrium(c, c.mesh, nullptr, nullptr, solved.back().get());
+  ASSERT_TRUE(solved.back()->x);
+  ClothProblem& base = *solved.front()->problem;
+  Vec work = nullptr, linear = nullptr, gmls = nullptr, exact = nullptr;
+  VecDuplicate(solved.front()->x, &work);
+  VecDuplicate(work, &linear);
+  VecDuplicate(work, &gmls);
+  VecDuplicate(work, &exact);
+  // S_m dp of design m, in the base problem's layout, added to `into`.
+  const auto add_slope = [&](std::size_t m, double dp, Vec into) {
+    Equilibrium& e = *solved[m];
+    Vec dx = nullptr, moved = nullptr;
+    VecDuplicate(e.x, &dx);
+    VecDuplicate(work, &moved);
+    ASSERT_EQ(slopes[m]->apply(change, dx), 0);
+    transfer_vector(*e.problem, dx, base, moved);
+    VecAXPY(into, dp, moved);
+    VecDestroy(&dx);
+    VecDestroy(&moved);
+  };
+  double linear_total = 0.0, gmls_total = 0.0;
+  for (int k = 1; k <= 5; ++k) {
+    Equilibrium& last = *solved.back();
+    slopes.push_back(std::make_unique<DesignSensitivity>(*last.problem, last.x, c.factory));
+    designs.push_back(Eigen::VectorXd::Constant(1, step * (k - 1)));
+    const Eigen::VectorXd query = Eigen::VectorXd::Constant(1, step * k);
+    transfer_vector(*last.problem, last.x, base, linear);
+    add_slope(solved.size() - 1, step, linear);
+    const GmlsWeights weights = gmls_weights(designs, query);
+    VecZeroEntries(gmls);
+    for (std::size_t m = 0; m < designs.size(); ++m) {
+      transfer_vector(*solved[m]->problem, solved[m]->x, base, work);
+      VecAXPY(gmls, weights.value_weight[m], work);
+      add_slope(m, weights.slope_direction[m][0], gmls);
+    }
+    solved.push_back(std::make_unique<Equilibrium>());
+    solve_equilibrium(c, moved_rest(c.mesh, change, step * k), &base, linear, solved.back().get());
+    ASSERT_TRUE(solved.back()->x);
+    transfer_vector(*solved.back()->problem, solved.back()->x, base, exact);
+    const double linear_error = distance(linear, exact), gmls_error = distance(gmls, exact);
+    std::cout << "edit " << step * k << ": linear prediction off by " << linear_error
+              << " m, GMLS (degree " << weights.degree << ", " << designs.size() << " designs) by "
+              << gmls_error << " m\n";
+    if (k == 1) {
+      // One design: GMLS is the linear prediction.
+      EXPECT_NEAR(gmls_error, linear_error, 1e-3 * linear_error);
+    } else {
+      EXPECT_LT(gmls_error, 0.5 * linear_error);
+    }
+    linear_total += linear_error;
+    gmls_total += gmls_error;
+  }
+  EXPECT_LT(gmls_total, 0.6 * linear_total);
+  for (Vec* v : {&work, &linear, &gmls, &exact})
+    VecDestroy(v);
 }
 
 // dR/dX dX assembled here from the kernels' exact rest derivatives

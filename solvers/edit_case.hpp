@@ -1,0 +1,87 @@
+#pragma once
+// `sartor edit` (docs/sensitivity.md#sartor-edit): after a static drape,
+// a sequence of pattern edits (outline corners moved, read from an edit
+// file), each predicted by the design sensitivity (linear) and by GMLS over
+// the designs solved so far, then re-solved warm from the prediction and
+// certified; the edited pattern, the predictions and the re-solved drape
+// written per edit, with the prediction errors and CPU times.
+
+#include "fem/cloth_output.hpp"
+#include "garment/pattern.hpp"
+#include "mesh/seams.hpp"
+#include "mesh/triangle_mesh.hpp"
+#include "solvers/cli.hpp"
+#include "solvers/cloth_case.hpp"
+#include "solvers/commands.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace sartor {
+
+// One move of an edit file: the corners of an outline line (both, or its
+// start or its end) move by `by` (pattern coordinates, m).
+struct CornerMove {
+  std::string line;
+  enum class Which { both, start, end } which = Which::both;
+  Eigen::Vector2d by = Eigen::Vector2d::Zero();
+};
+
+struct EditStep {
+  std::string name;
+  std::vector<CornerMove> moves;
+};
+
+// Reads an edit file (YAML; docs/sensitivity.md#the-edit-file) against the
+// pattern its lines must belong to. Throws InputError "FILE:LINE: KEY: what
+// is wrong".
+std::vector<EditStep> read_edit_file(const std::string& path, const garment::Pattern& pattern);
+
+// The options of `sartor edit` beyond drape's.
+const std::vector<OptionSpec>& edit_option_specs();
+
+// What the garment is, for the edit: the pattern, and per triangle of the
+// cloth mesh its panel (an index into pattern.panels); the seams sewn.
+struct EditGarment {
+  garment::Pattern pattern;
+  std::vector<int> panel_of_triangle;
+  std::vector<Seam> seams;
+  ClothOutputLabels labels; // for the drapes written
+};
+
+// The edits' results, filled in by the drape's after_statics.
+struct EditRun {
+  bool ran = false;
+  nlohmann::json summary = nlohmann::json::object();
+  std::string message; // the closing lines
+  bool all_certified = false;
+};
+
+// Sets cloth->after_statics so that, once the drape converged, the edits of
+// `steps` are predicted, re-solved and written to DIRECTORY/edit_NN (rank 0).
+// `drape_started_cpu` is the process CPU time (s) when the drape began: the
+// drape from scratch is timed up to the edit.
+void attach_edit(const Options& options, const std::string& directory, EditGarment garment,
+                 std::vector<EditStep> steps, double drape_started_cpu, CaseCloth* cloth,
+                 const std::shared_ptr<EditRun>& run);
+
+// What `sartor edit` asks of the drape: the edits, and where their results go.
+struct EditRequest {
+  std::vector<EditStep> steps;
+  std::shared_ptr<EditRun> run = std::make_shared<EditRun>();
+};
+
+// `sartor drape` (edit null) and `sartor edit`: constructs and drapes the
+// pattern of the invocation's first argument; with `edit`, the edits follow
+// the converged drape (solvers/drape_command.cpp).
+int drape_pattern(const Invocation& invocation, const EditRequest* edit);
+
+// CPU time of this process (user + system), s.
+double process_cpu_seconds();
+
+} // namespace sartor

@@ -1,0 +1,435 @@
+// The edits of `sartor edit`, run in the drape's after_statics (see
+// edit_case.hpp): per edit, the linear and GMLS predictions, the warm
+// re-solve, its certificate, the errors and CPU times, and the files.
+
+#include "common/error.hpp"
+#include "common/gmls.hpp"
+#include "common/output.hpp"
+#include "contact/body.hpp"
+#include "fem/petsc_call.hpp"
+#include "fem/sensitivity.hpp"
+#include "fem/statics.hpp"
+#include "solvers/certificate_case.hpp"
+#include "solvers/commands.hpp"
+#include "solvers/edit_case.hpp"
+#include "solvers/edit_design.hpp"
+#include "solvers/seam_case.hpp"
+
+#include <petscsys.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+namespace sartor {
+
+namespace {
+
+// A solved design: its parameters, problem, equilibrium and, once needed,
+// its sensitivity.
+struct Design {
+  Eigen::VectorXd p;
+  const TriangleMesh* mesh = nullptr;
+  std::unique_ptr<TriangleMesh> owned_mesh; // edited designs own theirs
+  std::unique_ptr<ClothProblem> owned;      // edited designs own theirs
+  ClothProblem* problem = nullptr;
+  Vec x = nullptr;
+  std::unique_ptr<DesignSensitivity> slope;
+  Design() = default;
+  Design(const Design&) = delete;
+  Design& operator=(const Design&) = delete;
+  ~Design() {
+    slope.reset();
+    VecDestroy(&x);
+  }
+};
+
+// How far one state is from another, over the vertices (rank 0 measures,
+// every rank learns).
+struct Distance {
+  double rms = 0.0, max = 0.0;
+};
+
+std::vector<Eigen::Vector3d> gathered(ClothProblem& problem, Vec x) {
+  std::vector<Eigen::Vector3d> positions;
+  SartorPetscCall(problem.gather_positions(x, &positions));
+  return positions;
+}
+
+Distance distance(ClothProblem& problem, Vec a, Vec b) {
+  const auto pa = gathered(problem, a), pb = gathered(problem, b);
+  double values[2] = {0.0, 0.0};
+  for (std::size_t v = 0; v < pa.size(); ++v) {
+    const double d = (pa[v] - pb[v]).norm();
+    values[0] += d * d;
+    values[1] = std::max(values[1], d);
+  }
+  if (!pa.empty()) values[0] = std::sqrt(values[0] / double(pa.size()));
+  SartorPetscCall(MPI_Bcast(values, 2, MPI_DOUBLE, 0, problem.comm()));
+  return {values[0], values[1]};
+}
+
+double lowest_point(ClothProblem& problem, Vec x) {
+  double lowest = INFINITY;
+  for (const Eigen::Vector3d& p : gathered(problem, x))
+    lowest = std::min(lowest, p.z());
+  SartorPetscCall(MPI_Bcast(&lowest, 1, MPI_DOUBLE, 0, problem.comm()));
+  return lowest;
+}
+
+// The thesis' penetration handling before a solve (ch. 4, Alg. 1, without
+// its spatial index): every vertex of the start inside a body is pushed out
+// along the body's normal to the middle of the contact offset layer (where
+// the penalty holds the drape's vertices). A prediction is linear and may
+// run through the body where the drape wraps round it; the minimiser's
+// steps are bounded by the distances, so it cannot leave the body's inside
+// by itself. Returns the vertices pushed and the deepest, m (every rank).
+std::pair<long, double> push_out_of_bodies(ClothProblem& problem, Vec x) {
+  std::vector<Eigen::Vector3d> positions = gathered(problem, x);
+  double counts[2] = {0.0, 0.0};
+  const double offset = problem.contact.offset;
+  for (Eigen::Vector3d& p : positions) {
+    bool pushed = false;
+    for (const contact::Body& body : problem.bodies) {
+      const contact::SurfaceQuery q = body.query(p, problem.load_factor);
+      if (q.distance >= 0.0 || q.normal.norm() == 0.0) continue;
+      counts[1] = std::max(counts[1], -q.distance);
+      p += (0.5 * offset - q.distance) * q.normal.normalized();
+      pushed = true;
+    }
+    counts[0] += pushed ? 1.0 : 0.0;
+  }
+  SartorPetscCall(MPI_Bcast(counts, 2, MPI_DOUBLE, 0, problem.comm()));
+  unsigned long size = positions.size();
+  SartorPetscCall(MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG, 0, problem.comm()));
+  positions.resize(size);
+  SartorPetscCall(
+      MPI_Bcast(positions.data()->data(), int(3 * size), MPI_DOUBLE, 0, problem.comm()));
+  SartorPetscCall(problem.set_solution(positions, x));
+  return {long(counts[0]), counts[1]};
+}
+
+double residual_norm(ClothProblem& problem, Vec x) {
+  Vec f = nullptr;
+  PetscReal norm = 0.0;
+  SartorPetscCall(VecDuplicate(x, &f));
+  SartorPetscCall(problem.residual(x, f));
+  SartorPetscCall(VecNorm(f, NORM_2, &norm));
+  SartorPetscCall(VecDestroy(&f));
+  return norm;
+}
+
+// The re-solve's start, pushed out of the body, copied into x: the one
+// --edit-start names, or with `auto` the candidate of least potential
+// energy (the minimiser descends it). Each candidate's energy goes into
+// `energies`.
+std::string choose_start(const std::map<std::string, Vec>& candidates, const Options& options,
+                         ClothProblem& problem, Vec x, nlohmann::json* energies) {
+  std::string start = options.text("edit-start");
+  if (start != "auto" && !candidates.count(start))
+    throw InputError("option --edit-start: unknown start '" + start +
+                     "' (auto, gmls, linear, unchanged)");
+  double least = INFINITY;
+  for (const auto& [kind, candidate] : candidates) {
+    if (start != "auto" && kind != start) continue;
+    SartorPetscCall(VecCopy(candidate, x));
+    push_out_of_bodies(problem, x);
+    ClothEnergy energy;
+    SartorPetscCall(problem.energy(x, &energy));
+    (*energies)[kind] = energy.total();
+    least = std::min(least, energy.total());
+  }
+  if (start == "auto")
+    for (const auto& [kind, energy] : energies->items())
+      if (energy.get<double>() == least) start = kind;
+  SartorPetscCall(VecCopy(candidates.at(start), x));
+  return start;
+}
+
+nlohmann::json distance_json(const Distance& d) {
+  return {{"rms_m", d.rms}, {"max_m", d.max}};
+}
+
+class EditSession {
+public:
+  EditSession(const Options& options, std::string directory, EditGarment garment,
+              std::vector<EditStep> steps, double drape_started_cpu, std::shared_ptr<EditRun> run)
+      : options_(options), directory_(std::move(directory)), garment_(std::move(garment)),
+        steps_(std::move(steps)), drape_started_cpu_(drape_started_cpu), run_(std::move(run)) {}
+
+  void edit(ClothProblem& base, const std::vector<ClothMaterial>& materials, Vec x);
+
+private:
+  ProblemFactory factory(const ClothProblem& base, const std::vector<ClothMaterial>& materials);
+  double ensure_slope(Design& design);
+  void add_slope(Design& from, const Eigen::VectorXd& dp, ClothProblem& to, Vec into);
+  void predict_gmls(const Eigen::VectorXd& query, ClothProblem& to, Vec into, GmlsWeights* used);
+  StaticOptions static_options() const;
+  nlohmann::json solve_step(std::size_t k, const Eigen::VectorXd& p, const EditDesign& design);
+  void write_state(const std::string& directory, const Design& design, Vec x);
+
+  const Options& options_;
+  std::string directory_;
+  EditGarment garment_;
+  std::vector<EditStep> steps_;
+  double drape_started_cpu_;
+  std::shared_ptr<EditRun> run_;
+  ProblemFactory factory_;
+  std::vector<std::unique_ptr<Design>> designs_;
+  const EditDesign* design_ = nullptr;
+  double scratch_cpu_ = 0.0;
+};
+
+ProblemFactory EditSession::factory(const ClothProblem& base,
+                                    const std::vector<ClothMaterial>& materials) {
+  // Seams take their stiffness from the stiffest fabric, as the drape's.
+  const ClothMaterial stiffest = *std::max_element(
+      materials.begin(), materials.end(), [](const ClothMaterial& a, const ClothMaterial& b) {
+        const auto k = [](const ClothMaterial& m) {
+          return std::max(m.membrane.warp.initial_modulus(), m.membrane.weft.initial_modulus());
+        };
+        return k(a) < k(b);
+      });
+  return [this, materials, stiffest, pinned = base.pinned(),
+          tension = base.sewing_tension](MPI_Comm comm, const TriangleMesh& mesh, double floor) {
+    std::vector<ClothMaterial> floored = materials;
+    for (ClothMaterial& m : floored)
+      m.bending_stiffness = std::max(m.bending_stiffness, floor);
+    auto problem = std::make_unique<ClothProblem>(comm, mesh, floored, pinned);
+    problem->sewing_tension = tension;
+    if (!garment_.seams.empty())
+      problem->set_seams(case_seam_springs(options_, mesh, garment_.seams, stiffest));
+    return problem;
+  };
+}
+
+// The sensitivity of a design, factorised: its CPU time, s (0 when it was).
+double EditSession::ensure_slope(Design& design) {
+  if (design.slope) return 0.0;
+  const double started = process_cpu_seconds();
+  const std::string tangent = options_.text("sensitivity-tangent");
+  if (tangent != "exact" && tangent != "projected")
+    throw InputError("option --sensitivity-tangent: unknown tangent '" + tangent +
+                     "' (exact, projected)");
+  SensitivityOptions settings;
+  settings.exact_tangent = tangent == "exact";
+  design.slope = std::make_unique<DesignSensitivity>(*design.problem, design.x, factory_, settings);
+  SartorPetscCall(design.slope->factorise());
+  return process_cpu_seconds() - started;
+}
+
+// into += S_from dX(dp), in the layout of `to`.
+void EditSession::add_slope(Design& from, const Eigen::VectorXd& dp, ClothProblem& to, Vec into) {
+  if (dp.norm() == 0.0) return;
+  Vec dx = nullptr, moved = nullptr;
+  SartorPetscCall(VecDuplicate(from.x, &dx));
+  SartorPetscCall(VecDuplicate(into, &moved));
+  SartorPetscCall(from.slope->apply(design_->rest_change(dp), dx));
+  SartorPetscCall(transfer_vector(*from.problem, dx, to, moved));
+  SartorPetscCall(VecAXPY(into, 1.0, moved));
+  SartorPetscCall(VecDestroy(&dx));
+  SartorPetscCall(VecDestroy(&moved));
+}
+
+void EditSession::predict_gmls(const Eigen::VectorXd& query, ClothProblem& to, Vec into,
+                               GmlsWeights* used) {
+  std::vector<Eigen::VectorXd> samples;
+  for (const auto& d : designs_)
+    samples.push_back(d->p);
+  GmlsOptions gmls;
+  gmls.degree = int(options_.positive_real("gmls-degree"));
+  if (gmls.degree != 1 && gmls.degree != 2)
+    throw InputError("option --gmls-degree: must be 1 or 2, got " + options_.text("gmls-degree"));
+  *used = gmls_weights(samples, query, gmls);
+  Vec state = nullptr;
+  SartorPetscCall(VecDuplicate(into, &state));
+  SartorPetscCall(VecZeroEntries(into));
+  for (std::size_t m = 0; m < designs_.size(); ++m) {
+    Design& d = *designs_[m];
+    SartorPetscCall(transfer_vector(*d.problem, d.x, to, state));
+    SartorPetscCall(VecAXPY(into, used->value_weight[m], state));
+    add_slope(d, used->slope_direction[m], to, into);
+  }
+  SartorPetscCall(VecDestroy(&state));
+}
+
+// The drape's last stage again: sewn, loaded, with its contact rounds.
+StaticOptions EditSession::static_options() const {
+  StaticOptions solve;
+  solve.minimise = options_.text("static-solver") == "minimise";
+  solve.max_offset_depth = options_.nonnegative_real("contact-max-depth");
+  if (solve.max_offset_depth == 0.0) solve.max_contact_rounds = 0;
+  solve.start_load_factor = 1.0;
+  solve.progress_interval = 10.0;
+  return solve;
+}
+
+void EditSession::write_state(const std::string& directory, const Design& design, Vec x) {
+  std::vector<element::MembraneStrain> strains;
+  SartorPetscCall(design.problem->gather_strains(x, &strains));
+  const auto positions = gathered(*design.problem, x);
+  if (is_root()) write_cloth_results(directory, *design.mesh, positions, strains, garment_.labels);
+}
+
+nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
+                                       const EditDesign& design) {
+  Design& last = *designs_.back();
+  const double slope_cpu = ensure_slope(last);
+  const double predict_started = process_cpu_seconds();
+  auto next = std::make_unique<Design>();
+  next->p = p;
+  next->owned_mesh = std::make_unique<TriangleMesh>(
+      moved_rest(*designs_.front()->mesh, design.rest_change(p), 1.0));
+  next->mesh = next->owned_mesh.get();
+  next->owned = factory_(last.problem->comm(), *next->mesh, 0.0);
+  next->problem = next->owned.get();
+  ClothProblem& problem = *next->problem;
+  SartorPetscCall(copy_problem_state(*last.problem, problem));
+  // The friction anchors start afresh where the re-solve starts (statics
+  // anchor what touches a body at their start): the last drape's anchors
+  // would hold the contact where the edit moved it from.
+  if (options_.text("edit-anchors") == "fresh") problem.restore_anchors({});
+  SartorPetscCall(problem.create_solution(&next->x));
+  Vec unchanged = nullptr, linear = nullptr, gmls = nullptr;
+  for (Vec* v : {&unchanged, &linear, &gmls})
+    SartorPetscCall(VecDuplicate(next->x, v));
+  SartorPetscCall(transfer_vector(*last.problem, last.x, problem, unchanged));
+  SartorPetscCall(VecCopy(unchanged, linear));
+  add_slope(last, p - last.p, problem, linear);
+  GmlsWeights used;
+  predict_gmls(p, problem, gmls, &used);
+  const double predict_cpu = process_cpu_seconds() - predict_started;
+
+  nlohmann::json start_energy = nlohmann::json::object();
+  const std::string start =
+      choose_start({{"gmls", gmls}, {"linear", linear}, {"unchanged", unchanged}}, options_,
+                   problem, next->x, &start_energy);
+  const StaticOptions solve = static_options();
+  StaticReport report;
+  const double solve_started = process_cpu_seconds();
+  const auto [pushed, deepest] = push_out_of_bodies(problem, next->x);
+  const double start_residual = residual_norm(problem, next->x);
+  SartorPetscCall(solve_static(problem, next->x, solve, &report));
+  const CertifiedState certified = certify_case(options_, problem, next->x, &solve, &report);
+  const double solve_cpu = process_cpu_seconds() - solve_started;
+
+  char name[32];
+  std::snprintf(name, sizeof name, "edit_%02zu", k + 1);
+  const std::string folder = directory_ + "/" + name;
+  if (is_root()) {
+    make_output_directory(folder);
+    write_edit_svg(folder + "/pattern.svg", garment_.pattern, design.outlines(last.p),
+                   design.outlines(p), steps_[k].name);
+  }
+  if (!options_.flag("no-edit-outputs")) {
+    write_state(folder + "/linear", *next, linear);
+    write_state(folder + "/gmls", *next, gmls);
+    write_state(folder + "/resolved", *next, next->x);
+  }
+  const double edit_cpu = slope_cpu + predict_cpu + solve_cpu;
+  nlohmann::json step = {{"name", steps_[k].name},
+                         {"folder", name},
+                         {"largest_corner_move_m", design.largest_move(p - last.p)},
+                         {"error_against_resolved",
+                          {{"unchanged", distance_json(distance(problem, unchanged, next->x))},
+                           {"linear", distance_json(distance(problem, linear, next->x))},
+                           {"gmls", distance_json(distance(problem, gmls, next->x))}}},
+                         {"gmls", {{"designs", designs_.size()}, {"degree", used.degree}}},
+                         {"lowest_point_z_m",
+                          {{"before", lowest_point(problem, unchanged)},
+                           {"linear", lowest_point(problem, linear)},
+                           {"gmls", lowest_point(problem, gmls)},
+                           {"resolved", lowest_point(problem, next->x)}}},
+                         {"start", start},
+                         {"start_energy_J", start_energy},
+                         {"start_pushed_out", {{"vertices", pushed}, {"deepest_m", deepest}}},
+                         {"start_residual_N", start_residual},
+                         {"resolve",
+                          {{"converged", report.converged},
+                           {"reason", report.reason},
+                           {"newton_iterations", report.newton_iterations},
+                           {"contact_rounds", report.contact_rounds},
+                           {"residual_N", report.final_residual_norm},
+                           {"sliding_vertices", report.sliding_vertices},
+                           {"contact_round_failed", report.contact_round_failed},
+                           {"contact_stiffness_scale", report.contact_stiffness_scale},
+                           {"certificate", certified.certificate.verdict()},
+                           {"certified", certified.certificate.certified()}}},
+                         {"sensitivity_stabilised", last.slope->stabilised()},
+                         {"cpu_s",
+                          {{"sensitivity_factorisation", slope_cpu},
+                           {"prediction", predict_cpu},
+                           {"resolve", solve_cpu},
+                           {"edit_total", edit_cpu},
+                           {"drape_from_scratch", scratch_cpu_}}},
+                         {"speedup",
+                          {{"resolve", solve_cpu > 0.0 ? scratch_cpu_ / solve_cpu : 0.0},
+                           {"edit_total", edit_cpu > 0.0 ? scratch_cpu_ / edit_cpu : 0.0}}}};
+  for (Vec* v : {&unchanged, &linear, &gmls})
+    SartorPetscCall(VecDestroy(v));
+  designs_.push_back(std::move(next));
+  return step;
+}
+
+void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& materials, Vec x) {
+  scratch_cpu_ = process_cpu_seconds() - drape_started_cpu_;
+  if (garment_.panel_of_triangle.size() != base.mesh().triangle_count())
+    throw std::logic_error("sartor edit: the drape's mesh is not the constructed garment's");
+  factory_ = factory(base, materials);
+  const EditDesign design(garment_.pattern, base.mesh(), garment_.panel_of_triangle);
+  design_ = &design;
+  auto first = std::make_unique<Design>();
+  first->p = Eigen::VectorXd::Zero(design.size());
+  first->mesh = &base.mesh();
+  first->problem = &base;
+  SartorPetscCall(VecDuplicate(x, &first->x));
+  SartorPetscCall(VecCopy(x, first->x));
+  designs_.push_back(std::move(first));
+  nlohmann::json steps = nlohmann::json::array();
+  Eigen::VectorXd p = designs_.front()->p;
+  bool all_certified = true;
+  for (std::size_t k = 0; k < steps_.size(); ++k) {
+    p += design.parameters(steps_[k]);
+    const nlohmann::json step = solve_step(k, p, design);
+    all_certified = all_certified && step["resolve"]["certified"].get<bool>();
+    const auto& error = step["error_against_resolved"];
+    const auto& cpu = step["cpu_s"];
+    SartorPetscCall(PetscPrintf(
+        base.comm(),
+        "sartor edit: %s ('%s'): lowest point %+.1f mm; predictions off by (max) linear %.2f "
+        "mm, GMLS %.2f mm, unchanged %.2f mm; re-solve from %s: %s, %d Newton iterations, "
+        "certificate: %s; CPU s: re-solve %.2f, edit %.2f, drape from scratch %.2f\n",
+        step["folder"].get<std::string>().c_str(), steps_[k].name.c_str(),
+        1e3 * (step["lowest_point_z_m"]["resolved"].get<double>() -
+               step["lowest_point_z_m"]["before"].get<double>()),
+        1e3 * error["linear"]["max_m"].get<double>(), 1e3 * error["gmls"]["max_m"].get<double>(),
+        1e3 * error["unchanged"]["max_m"].get<double>(), step["start"].get<std::string>().c_str(),
+        step["resolve"]["converged"].get<bool>() ? "converged" : "NOT converged",
+        int(step["resolve"]["newton_iterations"].get<long>()),
+        step["resolve"]["certificate"].get<std::string>().c_str(), cpu["resolve"].get<double>(),
+        cpu["edit_total"].get<double>(), cpu["drape_from_scratch"].get<double>()));
+    steps.push_back(step);
+  }
+  designs_.clear();
+  run_->ran = true;
+  run_->all_certified = all_certified;
+  run_->summary = {{"steps", steps},
+                   {"drape_from_scratch_cpu_s", scratch_cpu_},
+                   {"start", options_.text("edit-start")},
+                   {"gmls_degree", int(options_.positive_real("gmls-degree"))}};
+}
+
+} // namespace
+
+void attach_edit(const Options& options, const std::string& directory, EditGarment garment,
+                 std::vector<EditStep> steps, double drape_started_cpu, CaseCloth* cloth,
+                 const std::shared_ptr<EditRun>& run) {
+  auto session = std::make_shared<EditSession>(options, directory, std::move(garment),
+                                               std::move(steps), drape_started_cpu, run);
+  cloth->after_statics =
+      [session](ClothProblem& problem, const std::vector<ClothMaterial>& materials,
+                const std::vector<SeamSpring>&, Vec x) { session->edit(problem, materials, x); };
+}
+
+} // namespace sartor
