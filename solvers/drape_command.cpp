@@ -44,6 +44,10 @@ const std::map<std::string, std::string>& drape_defaults() {
       {"body", "mannequin mu=0.3 name=mannequin"},
       {"density", "0.25"},
       {"bending-stiffness", "1.5e-5"},
+      // The hinges: with the patch model the dynamic sewing of the coarse
+      // skirt took 10 s CPU for its first 0.02 s against 10 s for 0.3 s
+      // (docs/finite-elements.md#bending); --bending-model patch asks for it.
+      {"bending-model", "discrete_shell"},
       // Tight garments press on the body (~100 N on the skirt): a stiffer
       // penalty keeps the vertices within the contact offset.
       {"contact-stiffness-factor", "5"},

@@ -67,8 +67,9 @@ const std::vector<OptionSpec>& case_option_specs() {
        "baraff_witkin, stvk or measured (Wang et al. table) [measured for a fabric with one]"},
       {"membrane-psd", "", "",
        "project membrane (and contact) Hessians to PSD (compression stabilisation)"},
-      {"bending-model", "M", "discrete_shell",
-       "discrete_shell or quadratic (hinges), patch (converges to plate theory)"},
+      {"bending-model", "M", "patch",
+       "patch (converges to plate theory), discrete_shell or quadratic (hinges) [discrete_shell "
+       "for a mesh with creases]"},
       {"bending-stiffness", "N*M", "1e-6",
        "bending stiffness (warp, patch), N m (0: no bending) [the fabric's curves if any]"},
       {"bending-weft", "N*M", "", "patch model: weft rigidity, N m [--bending-stiffness]"},
@@ -325,7 +326,12 @@ element::MembraneModel membrane_model(const Options& options, const Fabric& fabr
                    "' (baraff_witkin, stvk, measured)");
 }
 
-element::BendingModel bending_model(const Options& options) {
+// The bending model of the options; a mesh with creases (rest angles on
+// edges, docs/pleats.md) takes the discrete shell unless a model is given,
+// since only the hinges carry a rest angle per edge.
+element::BendingModel bending_model(const Options& options, bool mesh_has_creases) {
+  if (mesh_has_creases && !options.is_set("bending-model"))
+    return element::BendingModel::discrete_shell;
   const std::string bending = options.text("bending-model");
   if (bending == "discrete_shell") return element::BendingModel::discrete_shell;
   if (bending == "quadratic") return element::BendingModel::quadratic;
@@ -360,7 +366,8 @@ void set_bending(const Options& options, const Fabric& fabric, ClothMaterial& ma
 // The material of `fabric` (a preset, FILE.yaml or a measured FILE.json)
 // with the options' moduli, models, bending and density; options given
 // explicitly override what the fabric holds (docs/fabrics.md).
-ClothMaterial build_material(const Options& options, const std::string& fabric_spec) {
+ClothMaterial build_material(const Options& options, const std::string& fabric_spec,
+                             bool mesh_has_creases) {
   const auto choices = resolve_fabrics(fabric_spec);
   const Fabric& fabric = choices.front().fabric;
   print_warnings(fabric.warnings);
@@ -393,7 +400,7 @@ ClothMaterial build_material(const Options& options, const std::string& fabric_s
                                                        material.membrane.weft.initial_modulus());
   material.membrane.shear_modulus =
       options.is_set("shear-modulus") ? options.nonnegative_real("shear-modulus") : automatic_shear;
-  material.bending_model = bending_model(options);
+  material.bending_model = bending_model(options, mesh_has_creases);
   set_bending(options, fabric, material);
   material.areal_density = !options.is_set("density") && fabric.areal_density
                                ? *fabric.areal_density
@@ -710,7 +717,12 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   std::vector<ClothMaterial> materials;
   for (const std::string& fabric :
        cloth ? cloth->fabrics : std::vector<std::string>{options.text("fabric")})
-    materials.push_back(build_material(options, fabric));
+    materials.push_back(build_material(options, fabric, !mesh.creases.empty()));
+  if (!mesh.creases.empty() && !options.is_set("bending-model")) {
+    print_warnings({"the mesh has " + std::to_string(mesh.creases.size()) +
+                    " crease edges: bending by the discrete shell, the model with rest angles "
+                    "on edges (--bending-model discrete_shell; docs/pleats.md)"});
+  }
   if (materials.size() > 1 && (options.flag("seam-merge") || options.text("analysis") == "creep")) {
     throw InputError("the cloth has " + std::to_string(materials.size()) +
                      " fabrics; --seam-merge and --analysis creep need one: give --fabric");

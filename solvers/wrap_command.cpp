@@ -54,6 +54,7 @@ std::vector<OptionSpec> wrap_option_specs() {
 const std::map<std::string, std::string>& wrap_drape_defaults() {
   static const std::map<std::string, std::string> defaults{{"density", "0.25"},
                                                            {"bending-stiffness", "1.5e-5"},
+                                                           {"bending-model", "discrete_shell"},
                                                            {"contact-stiffness-factor", "5"},
                                                            {"membrane-psd", "true"},
                                                            {"bending-psd", "true"},

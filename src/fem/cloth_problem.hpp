@@ -46,9 +46,10 @@ struct ClothMaterial {
       : membrane(std::move(membrane_material)) {}
   element::MembraneModel membrane_model = element::MembraneModel::baraff_witkin;
   element::MembraneMaterial membrane;
-  // The hinge model stays the default until the patch model's Newton solves
-  // are as robust in sewing from far starts (docs/finite-elements.md).
-  element::BendingModel bending_model = element::BendingModel::discrete_shell;
+  // The patch model converges to plate theory (docs/finite-elements.md); the
+  // hinges (discrete shell, quadratic) are the thesis' and Sensitive
+  // Couture's models, and only the discrete shell honours creases.
+  element::BendingModel bending_model = element::BendingModel::patch;
   double bending_stiffness = 0.0; // N m
   // Orthotropic rigidities of the patch model (warp along u, weft along v);
   // unset: isotropic with nu = 0 from bending_stiffness.

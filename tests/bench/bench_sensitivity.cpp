@@ -52,6 +52,7 @@ ProblemFactory sheet_factory(const std::vector<int>& pins, double ball) {
   return [pins, ball](MPI_Comm comm, const TriangleMesh& mesh, double floor) {
     ClothMaterial m(
         {TensionCurve::linear(1000.0, "bench"), TensionCurve::linear(1000.0, "bench"), 100.0, 0.0});
+    m.bending_model = element::BendingModel::discrete_shell;
     m.bending_stiffness = std::max(1e-5, floor);
     m.areal_density = 0.2;
     auto problem = std::make_unique<ClothProblem>(comm, mesh, m, pins);

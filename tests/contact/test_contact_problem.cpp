@@ -28,6 +28,10 @@ constexpr double gravity = 9.80665;
 ClothMaterial fabric(double bending) {
   ClothMaterial m(
       {TensionCurve::linear(2000, "test"), TensionCurve::linear(1500, "test"), 150.0, 0.0});
+  // The hinges, as these tests were calibrated: with the patch model the
+  // frictional drape on the ball differs by 3.2e-6 m between 1 and 2 ranks
+  // (DrapeOverASphereStaysOutside allows 1e-6; the hinges stay below it).
+  m.bending_model = element::BendingModel::discrete_shell;
   m.bending_stiffness = bending;
   m.areal_density = density;
   return m;

@@ -70,6 +70,7 @@ TEST(Creases, PrefoldedPanelSettlesAtTheRestAngleUnderNoLoad) {
     if (meshed.mesh.positions[v].x() < 0.05) pins.push_back(int(v));
   ClothMaterial cloth(
       {TensionCurve::linear(32600, "test"), TensionCurve::linear(32600, "test"), 4000.0, 0.0});
+  cloth.bending_model = element::BendingModel::discrete_shell; // the model with creases
   cloth.bending_stiffness = 1e-3;
   cloth.project_bending = true; // as drape solves: Newton on the PSD-projected Hessian
   cloth.project_membrane = true;

@@ -18,9 +18,10 @@ namespace {
 const double width = 0.4, height = 0.3, gap = 0.15;
 const double modulus = 30000.0; // N/m
 
-ClothMaterial fabric() {
+ClothMaterial fabric(element::BendingModel model) {
   ClothMaterial m(
       {TensionCurve::linear(modulus, "test"), TensionCurve::linear(modulus, "test"), 3000.0, 0.0});
+  m.bending_model = model;
   m.bending_stiffness = 1e-4;
   m.areal_density = 0.2;
   return m;
@@ -44,8 +45,8 @@ struct Sewn {
 };
 
 Sewn sew(MPI_Comm comm, const TriangleMesh& mesh, const std::vector<SeamSpring>& springs,
-         const std::vector<int>& pins) {
-  ClothProblem problem(comm, mesh, fabric(), pins);
+         const std::vector<int>& pins, element::BendingModel model = element::BendingModel::patch) {
+  ClothProblem problem(comm, mesh, fabric(model), pins);
   problem.loads.gravity = {0.0, 0.0, -9.80665};
   if (!springs.empty()) problem.set_seams(springs);
   Sewn sewn;
@@ -111,7 +112,8 @@ void expect_sewn_tube(const mesh::PanelMesh& tube, const Sewn& sewn, int nx, int
 
 TEST(Sewing, JacobianIncludesTheSeamCouplings) {
   const mesh::PanelMesh tube = mesh::tube_panels(width, height, 4, 3, 5, 2, gap);
-  ClothProblem problem(PETSC_COMM_WORLD, tube.mesh, fabric(), top_of_back_panel(tube));
+  ClothProblem problem(PETSC_COMM_WORLD, tube.mesh, fabric(element::BendingModel::patch),
+                       top_of_back_panel(tube));
   problem.set_seams(springs_of(tube));
   Vec x = nullptr, v = nullptr;
   ASSERT_EQ(problem.create_solution(&x), 0);
@@ -177,8 +179,13 @@ TEST(SewingMpi, SameSewnTubeOnAnyNumberOfRanks) {
   const mesh::PanelMesh tube = mesh::tube_panels(width, height, 10, 6, 12, 4, gap);
   const auto springs = springs_of(tube);
   const auto pins = top_of_back_panel(tube);
-  const Sewn together = sew(PETSC_COMM_WORLD, tube.mesh, springs, pins);
-  const Sewn alone = sew(PETSC_COMM_SELF, tube.mesh, springs, pins);
+  // With the discrete shell. With the patch model the far-start sewing ends
+  // in different equilibria of the tube on 1 and 2 ranks (measured 4.3 cm
+  // apart, both converged): the path through the folding panels there turns
+  // on round-off, which this test of the parallel assembly must not see.
+  const auto hinges = element::BendingModel::discrete_shell;
+  const Sewn together = sew(PETSC_COMM_WORLD, tube.mesh, springs, pins, hinges);
+  const Sewn alone = sew(PETSC_COMM_SELF, tube.mesh, springs, pins, hinges);
   ASSERT_TRUE(together.report.converged && alone.report.converged);
   PetscMPIInt size = 1;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);

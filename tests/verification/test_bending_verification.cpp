@@ -3,13 +3,17 @@
 // cantilever of Sze, Liu & Lo 2004 with nu = 0) and the simply supported
 // strip's 5 w L^4 / 384 D, on rectangle meshes of every diagonal pattern,
 // cells of aspect 4, and irregular meshes (random diagonals, perturbed
-// interior vertices) refined three times.
+// interior vertices) refined three times; the simply supported square plate
+// (Navier's double series) on three Delaunay meshes.
 
 #include "fem/cloth_problem.hpp"
 #include "fem/statics.hpp"
+#include "garment/pattern.hpp"
 #include "mesh/generators.hpp"
+#include "mesh/panel_mesher.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -207,10 +211,103 @@ TEST(BendingVerification, SimplySupportedStripOnEveryPatternAndAspect) {
   for (const Case& c : cases) {
     const double patch = simply_supported_error(c.mesh, element::BendingModel::patch);
     const double hinge = simply_supported_error(c.mesh, element::BendingModel::discrete_shell);
-    std::printf("simply supported strip, %s: patch %+.3f %%, discrete shell %+.3f %%\n", c.name,
-                100 * patch, 100 * hinge);
+    const double quadratic = simply_supported_error(c.mesh, element::BendingModel::quadratic);
+    std::printf("simply supported strip, %s: patch %+.3f %%, discrete shell %+.3f %%, quadratic "
+                "%+.3f %%\n",
+                c.name, 100 * patch, 100 * hinge, 100 * quadratic);
     EXPECT_LT(std::abs(patch), 0.01) << c.name;
   }
+}
+
+// --- Simply supported square plate, linear range ---------------------------
+
+// Navier's double series for a simply supported square plate of side a under
+// a uniform load q: w = 16 q / (pi^6 D) sum over odd m, n of
+// sin(m pi x / a) sin(n pi y / a) / (m n (m^2 + n^2)^2 / a^4).
+double navier_deflection(double x, double y, double a, double q, double rigidity) {
+  const double pi = std::acos(-1.0);
+  double sum = 0.0;
+  for (int m = 1; m < 200; m += 2) {
+    for (int n = 1; n < 200; n += 2) {
+      const double mn2 = double(m * m + n * n);
+      sum += std::sin(m * pi * x / a) * std::sin(n * pi * y / a) / (m * n * mn2 * mn2);
+    }
+  }
+  return 16.0 * q * std::pow(a, 4) / (std::pow(pi, 6) * rigidity) * sum;
+}
+
+// The unit square as a pattern panel, triangulated by the Delaunay mesher
+// (unstructured) with edges up to `edge_length`.
+TriangleMesh delaunay_square(double edge_length) {
+  const auto side = [](const char* id, double x0, double y0, double x1, double y1) {
+    return nlohmann::json{{"id", id}, {"type", "straight"}, {"points", {{x0, y0}, {x1, y1}}}};
+  };
+  const nlohmann::json document = {{"format", "sartor-pattern"},
+                                   {"version", 1},
+                                   {"units", "m"},
+                                   {"panels",
+                                    {{{"id", "plate"},
+                                      {"fabric", "silk"},
+                                      {"tag", {{"cylinder", "torso"}, {"side", "front"}}},
+                                      {"grain", {{"angle_deg", 0}}},
+                                      {"outline",
+                                       {side("bottom", 0, 0, 1, 0), side("right", 1, 0, 1, 1),
+                                        side("top", 1, 1, 0, 1), side("left", 0, 1, 0, 0)}}}}}};
+  const garment::Pattern pattern = garment::parse_pattern(document.dump(), "square.json");
+  PanelMeshOptions options;
+  options.edge_length = edge_length;
+  return mesh_panel(pattern.panels.front(), options).mesh;
+}
+
+// Deflection error at the vertex nearest the centre, relative to the series
+// there; the plate's boundary vertices pinned (simple support).
+double square_plate_error(const TriangleMesh& mesh, element::BendingModel model) {
+  const double rigidity = 1.0, density = 1e-3; // deflection 4e-5 of the side: linear
+  std::vector<int> pins;
+  std::size_t centre = 0;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const Eigen::Vector3d& p = mesh.positions[v];
+    if (std::min({p.x(), p.y(), 1.0 - p.x(), 1.0 - p.y()}) < 1e-9) pins.push_back(int(v));
+    const Eigen::Vector3d middle(0.5, 0.5, 0.0);
+    if ((p - middle).norm() < (mesh.positions[centre] - middle).norm()) centre = v;
+  }
+  ClothProblem problem(PETSC_COMM_WORLD, mesh, strip_material(1e4, rigidity, density, model), pins);
+  problem.loads.gravity = {0.0, 0.0, -gravity};
+  Vec x = nullptr;
+  EXPECT_EQ(problem.create_solution(&x), 0);
+  StaticReport report;
+  EXPECT_EQ(solve_static(problem, x, StaticOptions{}, &report), 0);
+  EXPECT_TRUE(report.converged) << report.reason;
+  std::vector<Eigen::Vector3d> positions;
+  EXPECT_EQ(problem.gather_positions(x, &positions), 0);
+  VecDestroy(&x);
+  const Eigen::Vector3d& p = mesh.positions[centre];
+  const double reference = navier_deflection(p.x(), p.y(), 1.0, density * gravity, rigidity);
+  return (p.z() - positions[centre].z()) / reference - 1.0;
+}
+
+TEST(BendingVerification, SimplySupportedSquarePlateOnDelaunayMeshes) {
+  // Series check: the centre deflection 0.00406235 q a^4 / D (Timoshenko).
+  EXPECT_NEAR(navier_deflection(0.5, 0.5, 1.0, 1.0, 1.0), 0.00406235, 1e-7);
+  std::vector<double> patch;
+  for (const double edge : {0.2, 0.1, 0.05, 0.025}) {
+    const TriangleMesh mesh = delaunay_square(edge);
+    patch.push_back(square_plate_error(mesh, element::BendingModel::patch));
+    const double hinge = square_plate_error(mesh, element::BendingModel::discrete_shell);
+    const double quadratic = square_plate_error(mesh, element::BendingModel::quadratic);
+    std::printf("simply supported square plate, Delaunay edges <= %g m (%zu triangles): patch "
+                "%+.3f %%, discrete shell %+.3f %%, quadratic %+.3f %%\n",
+                edge, mesh.triangle_count(), 100 * patch.back(), 100 * hinge, 100 * quadratic);
+  }
+  std::printf("square plate, patch: observed orders %.2f, %.2f, %.2f\n",
+              observed_order(patch[0], patch[1]), observed_order(patch[1], patch[2]),
+              observed_order(patch[2], patch[3]));
+  // Measured -5.1, +0.50, -0.36, -0.22 %: the coarse Delaunay meshes are not
+  // in the asymptotic range (the error changes sign), the finer ones
+  // converge at about order 0.7 (the hinges stay 7 % too stiff).
+  EXPECT_LT(std::abs(patch[3]), 0.005);
+  EXPECT_LT(std::abs(patch[3]), std::abs(patch[2]));
+  EXPECT_LT(std::abs(patch[2]), 0.2 * std::abs(patch[0]));
 }
 
 // --- Cantilevers ------------------------------------------------------------
@@ -374,8 +471,8 @@ TEST(BendingVerification, SzeEndShearCantileverMatchesTheElastica) {
                 "%.2f, %.2f); discrete shell on the finest %+.3f %%, %+.3f %%\n",
                 load, 10.0 * reference.shortening, 10.0 * reference.droop, 100 * errors[0].x(),
                 100 * errors[1].x(), 100 * errors[2].x(), 100 * errors[0].y(), 100 * errors[1].y(),
-                100 * errors[2].y(), observed_order(errors[1].y(), errors[2].y()),
-                observed_order(errors[0].y(), errors[1].y()),
+                100 * errors[2].y(), observed_order(errors[0].y(), errors[1].y()),
+                observed_order(errors[1].y(), errors[2].y()),
                 100 * (-hinge.x() / (10.0 * reference.shortening) - 1.0),
                 100 * (hinge.z() / (10.0 * reference.droop) - 1.0));
     if (load == 4.0) {
