@@ -1,5 +1,7 @@
 #include "solvers/progressive_drape.hpp"
 
+#include "solvers/dynamic_case.hpp"
+
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "contact/body_spec.hpp"
@@ -246,8 +248,14 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
                                const PanelMeshOptions& mesh_options, const DrapeLevel& finest,
                                const std::vector<double>& edge_lengths,
                                const std::string& directory, const ClothOutputLabels& labels,
-                               std::vector<LevelRun>* runs) {
+                               std::vector<LevelRun>* runs,
+                               const CaseCheckpointing& checkpointing) {
   const std::size_t count = edge_lengths.size();
+  if (count > 1 && (checkpointing.interval > 0.0 || !checkpointing.restart_file.empty())) {
+    throw InputError("options --checkpoint-interval and --restart: checkpoints of a drape with " +
+                     std::to_string(count) +
+                     " refinement levels are not supported; give --levels 1");
+  }
   std::vector<DrapeLevel> levels;
   for (std::size_t l = 0; l + 1 < count; ++l) {
     levels.push_back(coarser_level(construction, mesh_options, finest, edge_lengths[l],
@@ -268,7 +276,10 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
       const ScopedOption seams("-seams_file", level.seams_file.c_str());
       ClothOutputLabels coarsest = labels;
       coarsest.panel_of_triangle = level.panel_of_triangle;
-      result = solve_case(options, 0, series_writer(directory, coarsest), {}, &level.cloth);
+      const double resumed_time =
+          checkpointing.restart_file.empty() ? -1.0 : checkpoint_time(checkpointing.restart_file);
+      result = solve_case(options, 0, series_writer(directory, coarsest, resumed_time),
+                          checkpointing, &level.cloth);
     } else {
       const garment::Prolongation prolongation(panel_mesh(levels[l - 1]), panel_mesh(level));
       std::vector<Eigen::Vector3d> start = prolongation.vertex_field(solved);
