@@ -129,10 +129,11 @@ void write_case_results(const std::string& directory, const CaseResult& result,
 // An observer for solve_case that writes the output states of dynamic and
 // creep runs (positions, strains; creep strains) to DIRECTORY/series.h5 +
 // series.xmf, as `sartor run` does; `labels` as for write_case_results.
-// `resumed_time` (s; negative: a new run): a resumed run's writer, which keeps
-// the states series.h5 has up to that time and appends after them.
+// `resumed_from` (a checkpoint file; "": a new run): a resumed run's writer,
+// which keeps the states series.h5 has up to the checkpoint's time and
+// appends after them.
 CaseStepObserver series_writer(const std::string& directory, const ClothOutputLabels& labels = {},
-                               double resumed_time = -1.0);
+                               const std::string& resumed_from = "");
 
 // --checkpoint, --checkpoint-interval and --restart (the checkpoint file
 // defaults to DIRECTORY/checkpoint.h5; DIRECTORY is made when needed).

@@ -1,7 +1,5 @@
 #include "solvers/progressive_drape.hpp"
 
-#include "solvers/dynamic_case.hpp"
-
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "contact/body_spec.hpp"
@@ -276,10 +274,9 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
       const ScopedOption seams("-seams_file", level.seams_file.c_str());
       ClothOutputLabels coarsest = labels;
       coarsest.panel_of_triangle = level.panel_of_triangle;
-      const double resumed_time =
-          checkpointing.restart_file.empty() ? -1.0 : checkpoint_time(checkpointing.restart_file);
-      result = solve_case(options, 0, series_writer(directory, coarsest, resumed_time),
-                          checkpointing, &level.cloth);
+      result =
+          solve_case(options, 0, series_writer(directory, coarsest, checkpointing.restart_file),
+                     checkpointing, &level.cloth);
     } else {
       const garment::Prolongation prolongation(panel_mesh(levels[l - 1]), panel_mesh(level));
       std::vector<Eigen::Vector3d> start = prolongation.vertex_field(solved);

@@ -1126,9 +1126,9 @@ void write_petsc_options(const std::string& directory) {
 }
 
 CaseStepObserver series_writer(const std::string& directory, const ClothOutputLabels& labels,
-                               double resumed_time) {
+                               const std::string& resumed_from) {
   auto series = std::make_shared<std::unique_ptr<ClothTimeSeries>>();
-  return [directory, series, labels, resumed_time](ClothProblem& problem, Vec x,
+  return [directory, series, labels, resumed_from](ClothProblem& problem, Vec x,
                                                    const CaseState& state) {
     if (!state.output) return;
     std::vector<Eigen::Vector3d> positions;
@@ -1151,12 +1151,11 @@ CaseStepObserver series_writer(const std::string& directory, const ClothOutputLa
         fields[3].values.push_back(c.weft.permanent);
       }
     }
-    if (!*series) {
-      *series =
-          resumed_time >= 0.0
-              ? std::make_unique<ClothTimeSeries>(directory, problem.mesh(), labels, resumed_time)
-              : std::make_unique<ClothTimeSeries>(directory, problem.mesh(), labels);
+    if (!*series && !resumed_from.empty()) {
+      *series = std::make_unique<ClothTimeSeries>(directory, problem.mesh(), labels,
+                                                  checkpoint_time(resumed_from));
     }
+    if (!*series) *series = std::make_unique<ClothTimeSeries>(directory, problem.mesh(), labels);
     (*series)->write(state.time, positions, strains, fields);
   };
 }
@@ -1179,9 +1178,7 @@ int run_run(const Invocation& invocation) {
   // Dynamic runs write their states at output times into series.h5/.xmf.
   const ClothOutputLabels labels{{options.text("fabric")}, {}, {}};
   const CaseCheckpointing checkpointing = case_checkpointing(options, directory);
-  const CaseStepObserver write_state = series_writer(
-      directory, labels,
-      checkpointing.restart_file.empty() ? -1.0 : checkpoint_time(checkpointing.restart_file));
+  const CaseStepObserver write_state = series_writer(directory, labels, checkpointing.restart_file);
   const CaseResult result = solve_case(options, 0, write_state, checkpointing);
 
   nlohmann::json summary = run_metadata(invocation, "run");

@@ -171,6 +171,17 @@ void flush_to_disk(const std::string& path) {
   if (status != 0) throw InputError(path + ": cannot flush to disk");
 }
 
+// The rename reaches the disk: the folder's entry is flushed too (a failure
+// here leaves the new checkpoint in place, so it is not an error).
+void flush_directory(const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  const std::string folder = slash == std::string::npos ? "." : path.substr(0, slash + 1);
+  const int descriptor = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY);
+  if (descriptor < 0) return;
+  ::fsync(descriptor);
+  ::close(descriptor);
+}
+
 std::vector<double> creep_rows(const std::vector<ElementCreep>& creep) {
   std::vector<double> values;
   for (const ElementCreep& c : creep) {
@@ -246,6 +257,7 @@ void write_checkpoint(const std::string& path, const RunCheckpoint& checkpoint) 
   if (std::rename(temporary.c_str(), path.c_str()) != 0) {
     throw InputError(path + ": cannot replace the checkpoint with " + temporary);
   }
+  flush_directory(path);
 }
 
 RunCheckpoint read_checkpoint(const std::string& path) {

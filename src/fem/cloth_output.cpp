@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -304,14 +305,18 @@ ClothTimeSeries::ClothTimeSeries(const std::string& directory, const TriangleMes
 ClothTimeSeries::ClothTimeSeries(const std::string& directory, const TriangleMesh& mesh,
                                  const ClothOutputLabels& labels, double resumed_time)
     : directory_(directory), mesh_(mesh), has_panels_(has_panels(mesh, labels)) {
-  if (keep_states(clean_time(resumed_time))) {
+  // A resumed run writing into another folder starts its series there.
+  const bool exists = std::ifstream(directory + "/series.h5").good();
+  if (exists && keep_states(clean_time(resumed_time))) {
     write_index();
     return;
   }
-  std::fprintf(stderr,
-               "sartor: warning: %s/series.h5 cannot be continued; it starts again with the "
-               "resumed states\n",
-               directory.c_str());
+  if (exists) {
+    std::fprintf(stderr,
+                 "sartor: warning: %s/series.h5 cannot be continued; it starts again with the "
+                 "resumed states\n",
+                 directory.c_str());
+  }
   times_.clear();
   grids_.clear();
   extra_names_.clear();
