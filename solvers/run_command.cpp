@@ -700,6 +700,89 @@ void broadcast(double* values, int count) {
   MPI_Bcast(values, count, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
 }
 
+// --analysis dynamic: from rest, or from --restart's checkpoint, with
+// checkpoints as `checkpointing` says.
+void solve_dynamic_case(const Options& options, ClothProblem& problem, Vec x,
+                        const CaseStepObserver& observe, const CaseCheckpointing& checkpointing,
+                        CaseResult* result) {
+  // Starts at rest (or where a checkpoint left it); the probe is followed
+  // step by step for dynamics.csv.
+  Vec v = nullptr;
+  SartorPetscCall(VecDuplicate(x, &v));
+  SartorPetscCall(VecSet(v, 0.0));
+  DynamicReport report;
+  std::optional<DynamicResume> resume;
+  if (!checkpointing.restart_file.empty()) {
+    resume = read_dynamic_checkpoint(checkpointing.restart_file, problem);
+    if (options.positive_real("time-end") < resume->control.time) {
+      throw InputError("option --time-end: " + options.text("time-end") + " s is before " +
+                       checkpointing.restart_file + "'s time, " +
+                       format_number(resume->control.time) + " s");
+    }
+    SartorPetscCall(resume->restore(problem, x, v));
+    report = resume->report;
+    result->probe_history = resume->probe_history;
+    result->resumed_time = resume->control.time;
+    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "sartor: resuming from %s at t = %g s\n",
+                                checkpointing.restart_file.c_str(), resume->control.time));
+  }
+  const DynamicObserver follow = [&](const DynamicStepReport& step, Vec state,
+                                     Vec) -> PetscErrorCode {
+    if (result->probe) {
+      std::vector<Eigen::Vector3d> positions;
+      SartorPetscCall(problem.gather_positions(state, &positions));
+      double d[3] = {0.0, 0.0, 0.0};
+      if (is_root()) {
+        const std::size_t p = result->probe->vertex;
+        for (int k = 0; k < 3; ++k)
+          d[k] = positions[p][k] - result->mesh.positions[p][k];
+      }
+      broadcast(d, 3);
+      result->probe_history.emplace_back(d[0], d[1], d[2]);
+    }
+    if (observe) observe(problem, state, {step.time, step.output, nullptr});
+    return 0;
+  };
+  DynamicCheckpoints checkpoints;
+  checkpoints.resume = resume ? &resume->control : nullptr;
+  checkpoints.interval = checkpointing.interval;
+  check_time_divisions(options.positive_real("time-end"), "time-end", checkpointing.interval,
+                       "checkpoint-interval");
+  if (checkpointing.interval > 0.0) {
+    checkpoints.write = dynamic_checkpoint_writer(
+        problem, checkpointing, report, result->probe_history, &result->checkpoints_written);
+  }
+  SartorPetscCall(
+      solve_dynamic(problem, x, v, dynamic_options(options), &report, follow, checkpoints));
+  SartorPetscCall(VecDestroy(&v));
+  result->converged = report.completed;
+  result->solve_seconds = report.solve_seconds;
+  result->dynamics = std::move(report);
+}
+
+// Statics: solve_static, from --restart's checkpoint when given, with a
+// checkpoint after every sewing stage and contact round when asked.
+void solve_static_case(ClothProblem& problem, Vec x, const StaticOptions& solve,
+                       const CaseCheckpointing& checkpointing, CaseResult* result) {
+  StaticOptions checkpointed = solve;
+  std::optional<StaticResume> resume;
+  if (!checkpointing.restart_file.empty()) {
+    resume = read_static_checkpoint(checkpointing.restart_file, problem);
+    SartorPetscCall(resume->restore(problem, x));
+    checkpointed.resume = &resume->report;
+    result->resumed_time = 0.0;
+    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                                "sartor: resuming from %s after %d stage(s), %d contact round(s)\n",
+                                checkpointing.restart_file.c_str(), resume->report.sewing_stages,
+                                resume->report.contact_rounds));
+  }
+  if (checkpointing.interval > 0.0)
+    checkpointed.checkpoint =
+        static_checkpoint_writer(problem, checkpointing, &result->checkpoints_written);
+  SartorPetscCall(solve_static(problem, x, checkpointed, &result->report));
+  reject_unmet_residual(problem.force_scale(), &result->report);
+}
+
 } // namespace
 
 CaseResult solve_case(const Options& options, int extra_refinements,
@@ -800,54 +883,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   Vec x = nullptr;
   SartorPetscCall(problem.create_solution(&x));
   if (dynamic) {
-    // Starts at rest (or where a checkpoint left it); the probe is followed
-    // step by step for dynamics.csv.
-    Vec v = nullptr;
-    SartorPetscCall(VecDuplicate(x, &v));
-    SartorPetscCall(VecSet(v, 0.0));
-    DynamicReport report;
-    std::optional<DynamicResume> resume;
-    if (!checkpointing.restart_file.empty()) {
-      resume = read_dynamic_checkpoint(checkpointing.restart_file, problem);
-      SartorPetscCall(resume->restore(problem, x, v));
-      report = resume->report;
-      result.probe_history = resume->probe_history;
-      result.resumed_time = resume->control.time;
-      SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "sartor: resuming from %s at t = %g s\n",
-                                  checkpointing.restart_file.c_str(), resume->control.time));
-    }
-    const DynamicObserver follow = [&](const DynamicStepReport& step, Vec state,
-                                       Vec) -> PetscErrorCode {
-      if (result.probe) {
-        std::vector<Eigen::Vector3d> positions;
-        SartorPetscCall(problem.gather_positions(state, &positions));
-        double d[3] = {0.0, 0.0, 0.0};
-        if (is_root()) {
-          const std::size_t p = result.probe->vertex;
-          for (int k = 0; k < 3; ++k)
-            d[k] = positions[p][k] - mesh.positions[p][k];
-        }
-        broadcast(d, 3);
-        result.probe_history.emplace_back(d[0], d[1], d[2]);
-      }
-      if (observe) observe(problem, state, {step.time, step.output, nullptr});
-      return 0;
-    };
-    DynamicCheckpoints checkpoints;
-    checkpoints.resume = resume ? &resume->control : nullptr;
-    checkpoints.interval = checkpointing.interval;
-    check_time_divisions(options.positive_real("time-end"), "time-end", checkpointing.interval,
-                         "checkpoint-interval");
-    if (checkpointing.interval > 0.0) {
-      checkpoints.write = dynamic_checkpoint_writer(
-          problem, checkpointing, report, result.probe_history, &result.checkpoints_written);
-    }
-    SartorPetscCall(
-        solve_dynamic(problem, x, v, dynamic_options(options), &report, follow, checkpoints));
-    SartorPetscCall(VecDestroy(&v));
-    result.converged = report.completed;
-    result.solve_seconds = report.solve_seconds;
-    result.dynamics = std::move(report);
+    solve_dynamic_case(options, problem, x, observe, checkpointing, &result);
   } else if (creep) {
     CreepCoupling coupling(problem, creep_materials(options));
     const CreepStateObserver follow = [&](Vec state, const CreepStepReport& step) {
@@ -860,23 +896,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
     result.solve_seconds = run.report.solve_seconds;
     result.creep = std::move(run);
   } else {
-    StaticOptions checkpointed = solve;
-    std::optional<StaticResume> resume;
-    if (!checkpointing.restart_file.empty()) {
-      resume = read_static_checkpoint(checkpointing.restart_file, problem);
-      SartorPetscCall(resume->restore(problem, x));
-      checkpointed.resume = &resume->report;
-      result.resumed_time = 0.0;
-      SartorPetscCall(PetscPrintf(
-          PETSC_COMM_WORLD, "sartor: resuming from %s after %d stage(s), %d contact round(s)\n",
-          checkpointing.restart_file.c_str(), resume->report.sewing_stages,
-          resume->report.contact_rounds));
-    }
-    if (checkpointing.interval > 0.0)
-      checkpointed.checkpoint =
-          static_checkpoint_writer(problem, checkpointing, &result.checkpoints_written);
-    SartorPetscCall(solve_static(problem, x, checkpointed, &result.report));
-    reject_unmet_residual(problem.force_scale(), &result.report);
+    solve_static_case(problem, x, solve, checkpointing, &result);
   }
   // The final state of statics, or of a settle, is certified (a saddle is not converged).
   const bool settled = result.dynamics && result.dynamics->settled;
