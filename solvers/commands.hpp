@@ -5,15 +5,26 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace sartor {
 
+struct CaseResult;
+struct ClothOutputLabels;
+
+// `sartor run` and `sartor drape` hand their solved case here, with its
+// summary and labels, once the results are written and before a failure is
+// reported: the Python module (python/sartor_python.cpp) keeps them in memory.
+using CaseResultSink = std::function<void(const CaseResult& result, const nlohmann::json& summary,
+                                          const ClothOutputLabels& labels)>;
+
 struct Invocation {
   ParsedCommandLine command_line;
   Options options;
   std::vector<std::string> arguments; // as typed, for the run's metadata
+  CaseResultSink keep_result = {};    // empty on the command line
 };
 
 struct Command {

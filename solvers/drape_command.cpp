@@ -590,6 +590,7 @@ int run_drape(const Invocation& invocation) {
     SartorPetscCall(PetscOptionsHasName(nullptr, nullptr, "-seams_file", &echoed));
   }
   write_petsc_options(directory);
+  if (invocation.keep_result) invocation.keep_result(result, summary, labels);
 
   SartorPetscCall(PetscPrintf(
       PETSC_COMM_WORLD,

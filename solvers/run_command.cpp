@@ -1206,6 +1206,7 @@ int run_run(const Invocation& invocation) {
   add_case_summary(result, summary);
   write_case_results(directory, result, summary, labels);
   write_petsc_options(directory);
+  if (invocation.keep_result) invocation.keep_result(result, summary, labels);
   if (!options.flag("no-plot")) make_plot("plot_result.py", directory);
 
   if (result.creep) {

@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "fem/incremental_system.hpp"
+#include "fem/progress_clock.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -134,7 +135,7 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
   double t = start;
   double next_output = next_multiple(t, options.output_interval, tiny);
   double next_checkpoint = next_multiple(t, restart.checkpoint_interval, tiny);
-  double next_progress = start + 0.05 * (end - start);
+  ProgressClock progress;
   int rejected = 0;
   while (t < end - tiny) {
     double target = std::min({end, next_output, next_checkpoint});
@@ -258,14 +259,14 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
       next_checkpoint = next_multiple(t, restart.checkpoint_interval, tiny);
       if (restart.write) PetscCall(restart.write(accepted, x, velocity, dt));
     }
-    if (options.print_progress && t >= next_progress - tiny) {
+    const bool finished = t >= end - tiny;
+    if (options.print_progress && progress.due(finished)) {
       PetscCall(PetscPrintf(problem.comm(),
                             "  creep t = %-10.4g s (%3.0f %%): step %ld, dt %.3g s, load %.3g, "
-                            "creep increment %.2e\n",
+                            "creep increment %.2e; %s\n",
                             t, 100.0 * (t - start) / (end - start), step, h, problem.load_factor,
-                            increment));
-      while (next_progress <= t + tiny)
-        next_progress += 0.05 * (end - start);
+                            increment,
+                            progress.timing(finished ? 1.0 : (t - start) / (end - start)).c_str()));
     }
   }
   report->completed = t >= end - tiny;

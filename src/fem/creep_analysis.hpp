@@ -52,7 +52,7 @@ struct CreepOptions {
   // velocities; the initial state is static equilibrium at rest.
   bool dynamic = false;
   double damping = 0.0;        // alpha, 1/s (dynamic)
-  bool print_progress = false; // a line on rank 0 every 5 % of the simulated time
+  bool print_progress = false; // a line on rank 0 every 10 s of wall time (ProgressClock)
 };
 
 struct CreepStepReport {

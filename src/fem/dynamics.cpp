@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "fem/incremental_system.hpp"
+#include "fem/progress_clock.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -93,7 +94,6 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
                options.time_step,
                0,
                options.output_interval > 0.0 ? start + options.output_interval : 0.0,
-               0.05,
                initial.kinetic_energy,
                initial.static_residual_norm};
   }
@@ -102,7 +102,7 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
   double dt = control.next_step;
   double next_output = control.next_output;
   double previous_kinetic = control.previous_kinetic;
-  double next_progress = control.next_progress;
+  ProgressClock progress;
   PetscInt step_index = control.step;
   double next_checkpoint = next_checkpoint_time(t, checkpoints.interval, tiny);
   report->completed = true;
@@ -185,22 +185,20 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
     }
     report->steps.push_back(step);
     if (observe) PetscCall(observe(step, x, v));
-    if (options.print_progress &&
-        ((t - start) >= next_progress * span - tiny || options.time_end - t <= tiny)) {
+    const bool finished = at_rest || options.time_end - t <= tiny;
+    if (options.print_progress && progress.due(finished)) {
       PetscCall(PetscPrintf(problem.comm(),
                             "  t = %.4g s (%3.0f%%): %" PetscInt_FMT " steps, %" PetscInt_FMT
                             " Newton iterations, %" PetscInt_FMT
-                            " rejected; kinetic %.3e J, potential %.6e J\n",
+                            " rejected; kinetic %.3e J, potential %.6e J; %s\n",
                             t, 100.0 * (t - start) / span, step_index, report->newton_iterations,
-                            report->rejected_steps, step.kinetic_energy, step.potential_energy));
-      while (next_progress * span <= t - start + tiny)
-        next_progress += 0.05;
+                            report->rejected_steps, step.kinetic_energy, step.potential_energy,
+                            progress.timing(finished ? 1.0 : (t - start) / span).c_str()));
     }
     if (checkpoints.write && t >= next_checkpoint - tiny) {
       next_checkpoint = next_checkpoint_time(t, checkpoints.interval, tiny);
-      PetscCall(checkpoints.write({start, t, dt, step_index, next_output, next_progress,
-                                   previous_kinetic, initial_residual},
-                                  x, v));
+      PetscCall(checkpoints.write(
+          {start, t, dt, step_index, next_output, previous_kinetic, initial_residual}, x, v));
     }
     if (at_rest) break;
   }

@@ -45,7 +45,7 @@ struct DynamicOptions {
   int max_cutbacks = 8;         // halvings of one step before the run stops
   double output_interval = 0.0; // s; 0: every step
   double rest_tolerance = 0.0;  // 0: run to time_end
-  bool print_progress = false;  // a line on rank 0 every 5 % of the simulated time
+  bool print_progress = false;  // a line on rank 0 every 10 s of wall time (ProgressClock)
   bool settle = false;          // finish with a static Newton solve
 };
 
@@ -96,7 +96,6 @@ struct DynamicControl {
   double next_step = 0.0;        // s, the next attempt's dt
   PetscInt step = 0;             // accepted steps so far
   double next_output = 0.0;      // s
-  double next_progress = 0.05;   // fraction of the span of the next progress line
   double previous_kinetic = 0.0; // J, for kinetic damping's peak test
   double initial_residual = 0.0; // N, for rest_tolerance
 };

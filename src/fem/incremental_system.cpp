@@ -187,8 +187,7 @@ PetscErrorCode IncrementalSystem::run_snes(SNES snes, Vec x, Solve* result) {
   // a step below -snes_stol of the positions: the residual is above the
   // tolerance (else the residual test would have stopped it first), and
   // whether the shrunk step falls below stol is round-off. Not a solution.
-  result->converged =
-      reason > 0 && !(reason == SNES_CONVERGED_SNORM_RELATIVE && handing_over_);
+  result->converged = reason > 0 && !(reason == SNES_CONVERGED_SNORM_RELATIVE && handing_over_);
   PetscFunctionReturn(0);
 }
 
