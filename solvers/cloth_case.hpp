@@ -67,6 +67,9 @@ struct CaseResult {
   // Dynamic runs with --probe: its displacement at every state of
   // dynamics->steps, m.
   std::vector<Eigen::Vector3d> probe_history;
+  // Dynamic runs: checkpoints written, and the time resumed from (--restart; -1: none), s.
+  long checkpoints_written = 0;
+  double resumed_time = -1.0;
 
   // Rank 0 only (empty elsewhere): final positions and per-triangle strains.
   std::vector<Eigen::Vector3d> positions;
@@ -83,7 +86,8 @@ struct CaseResult {
 // thrown. Every field but positions and strains is the same on every rank.
 // With --analysis dynamic or creep, `observe` (when given) is called
 // collectively with the initial state and after every accepted time step;
-// `checkpointing` says where creep runs write checkpoints and resume from.
+// `checkpointing` says where dynamic and creep runs write checkpoints and
+// resume from.
 struct CaseState {
   double time = 0.0;                    // s
   bool output = false;                  // an output time
@@ -125,7 +129,15 @@ void write_case_results(const std::string& directory, const CaseResult& result,
 // An observer for solve_case that writes the output states of dynamic and
 // creep runs (positions, strains; creep strains) to DIRECTORY/series.h5 +
 // series.xmf, as `sartor run` does; `labels` as for write_case_results.
-CaseStepObserver series_writer(const std::string& directory, const ClothOutputLabels& labels = {});
+// `resumed_from` (a checkpoint file; "": a new run): a resumed run's writer,
+// which keeps the states series.h5 has up to the checkpoint's time and
+// appends after them.
+CaseStepObserver series_writer(const std::string& directory, const ClothOutputLabels& labels = {},
+                               const std::string& resumed_from = "");
+
+// --checkpoint, --checkpoint-interval and --restart (the checkpoint file
+// defaults to DIRECTORY/checkpoint.h5; DIRECTORY is made when needed).
+CaseCheckpointing case_checkpointing(const Options& options, const std::string& directory);
 
 // Collective: every option in effect, to DIRECTORY/petsc_options.txt.
 void write_petsc_options(const std::string& directory);

@@ -327,6 +327,13 @@ const CommandSpec& drape_command() {
         options.push_back(
             {"output", "DIR", "out/drape", "output folder (created; files in it are replaced)"});
         options.push_back({"no-plot", "", "", "write data only, no PNG"});
+        options.push_back({"checkpoint-interval", "S", "0",
+                           "write a checkpoint every S s of simulated time (dynamics), after "
+                           "every sewing stage and contact round (statics: any S > 0), or after "
+                           "every refinement level but the last (docs/reliability.md)"});
+        options.push_back({"checkpoint", "FILE", "", "the checkpoint file [OUTPUT/checkpoint.h5]"});
+        options.push_back(
+            {"restart", "FILE", "", "resume from this checkpoint (the same pattern and options)"});
         for (const OptionSpec& option : wear_option_specs())
           options.push_back(option);
         options.push_back({"drop-tolerance", "M", "0.1",
@@ -502,7 +509,7 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
   const CaseResult result = drape_progressively(
       options, constructed.construction, constructed.mesh_options, finest,
       drape_level_edge_lengths(options, constructed.construction, constructed.mesh_options),
-      directory, labels, &levels);
+      directory, labels, &levels, case_checkpointing(options, directory));
 
   // 4. What the drape achieved.
   Eigen::Vector3d reaction = Eigen::Vector3d::Zero();

@@ -3,6 +3,7 @@
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "contact/body_spec.hpp"
+#include "fem/checkpoint.hpp"
 #include "fem/petsc_call.hpp"
 #include "solvers/commands.hpp"
 
@@ -191,6 +192,72 @@ void record(const CaseResult& result, LevelRun* run) {
   }
 }
 
+constexpr const char* level_kind = "drape-level";
+
+// A level's end as a checkpoint: its solved positions, and in /state the
+// level reached and what every level so far did.
+void write_level_checkpoint(const std::string& path, std::size_t level, std::size_t count,
+                            const std::vector<Eigen::Vector3d>& solved,
+                            const std::vector<LevelRun>& runs) {
+  if (!is_root()) return;
+  RunCheckpoint checkpoint;
+  checkpoint.next_step = 1.0; // a drape's levels have no clock
+  checkpoint.step = long(level);
+  checkpoint.positions = solved;
+  checkpoint.state =
+      nlohmann::json{
+          {"kind", level_kind}, {"level", level}, {"levels", count}, {"runs", levels_json(runs)}}
+          .dump();
+  write_checkpoint(path, checkpoint);
+}
+
+LevelRun level_run_from(const nlohmann::json& r) {
+  LevelRun run;
+  run.edge_length = r.at("edge_length_m").get<double>();
+  run.vertices = r.at("vertices").get<std::size_t>();
+  run.triangles = r.at("triangles").get<std::size_t>();
+  run.analysis = r.at("analysis").get<std::string>();
+  run.converged = r.at("converged").get<bool>();
+  run.newton_iterations = r.at("newton_iterations").get<long>();
+  const nlohmann::json& residual = r.at("residual_force_N");
+  run.residual_force = residual.is_null() ? -1.0 : residual.get<double>();
+  run.seam_gap_prolonged = r.at("start_seam_gap_prolonged_m").get<double>();
+  run.seam_gap_start = r.at("start_seam_gap_closed_m").get<double>();
+  run.outside_distance = r.at("largest_outside_distance_m").get<double>();
+  run.deepest_start = r.at("start_depth_below_offset_m").get<double>();
+  run.solve_seconds = r.at("solve_s").get<double>();
+  run.cpu_seconds = r.at("cpu_s").get<double>();
+  return run;
+}
+
+// The level after the one a checkpoint ended, with that level's positions
+// and the runs so far.
+std::size_t read_level_checkpoint(const std::string& path, const std::vector<DrapeLevel>& levels,
+                                  std::vector<Eigen::Vector3d>* solved,
+                                  std::vector<LevelRun>* runs) {
+  const RunCheckpoint checkpoint = read_checkpoint(path);
+  std::size_t level = 0;
+  try {
+    const nlohmann::json state = nlohmann::json::parse(checkpoint.state);
+    if (state.at("kind") != level_kind) throw std::invalid_argument("not a level's end");
+    level = state.at("level").get<std::size_t>();
+    if (state.at("levels").get<std::size_t>() != levels.size() || level + 1 >= levels.size())
+      throw std::invalid_argument("of a drape with other levels");
+    for (const nlohmann::json& r : state.at("runs"))
+      runs->push_back(level_run_from(r));
+  } catch (const std::exception& error) {
+    throw InputError(path + ": not the checkpoint of a level of this drape's " +
+                     std::to_string(levels.size()) + " levels (" + error.what() + ")");
+  }
+  if (runs->size() != level + 1 ||
+      checkpoint.positions.size() != levels[level].cloth.mesh.vertex_count()) {
+    throw InputError(path + ": the checkpoint's level " + std::to_string(level + 1) +
+                     " has another mesh than this drape's");
+  }
+  *solved = checkpoint.positions;
+  return level + 1;
+}
+
 void print_level(std::size_t index, std::size_t count, const LevelRun& run) {
   SartorPetscCall(
       PetscPrintf(PETSC_COMM_WORLD,
@@ -246,7 +313,8 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
                                const PanelMeshOptions& mesh_options, const DrapeLevel& finest,
                                const std::vector<double>& edge_lengths,
                                const std::string& directory, const ClothOutputLabels& labels,
-                               std::vector<LevelRun>* runs) {
+                               std::vector<LevelRun>* runs,
+                               const CaseCheckpointing& checkpointing) {
   const std::size_t count = edge_lengths.size();
   std::vector<DrapeLevel> levels;
   for (std::size_t l = 0; l + 1 < count; ++l) {
@@ -256,7 +324,17 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
   levels.push_back(finest);
   CaseResult result;
   std::vector<Eigen::Vector3d> solved;
-  for (std::size_t l = 0; l < count; ++l) {
+  // Several levels: a checkpoint at the end of each level before the last
+  // (the levels' own solves write none); one level: solve_case's.
+  std::size_t first = 0;
+  if (count > 1 && !checkpointing.restart_file.empty()) {
+    first = read_level_checkpoint(checkpointing.restart_file, levels, &solved, runs);
+    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                                "sartor drape: resuming from %s at level %zu of %zu\n",
+                                checkpointing.restart_file.c_str(), first + 1, count));
+  }
+  const CaseCheckpointing in_level = count > 1 ? CaseCheckpointing{} : checkpointing;
+  for (std::size_t l = first; l < count; ++l) {
     DrapeLevel& level = levels[l];
     LevelRun run;
     run.edge_length = level.edge_length;
@@ -268,7 +346,8 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
       const ScopedOption seams("-seams_file", level.seams_file.c_str());
       ClothOutputLabels coarsest = labels;
       coarsest.panel_of_triangle = level.panel_of_triangle;
-      result = solve_case(options, 0, series_writer(directory, coarsest), {}, &level.cloth);
+      result = solve_case(options, 0, series_writer(directory, coarsest, in_level.restart_file),
+                          in_level, &level.cloth);
     } else {
       const garment::Prolongation prolongation(panel_mesh(levels[l - 1]), panel_mesh(level));
       std::vector<Eigen::Vector3d> start = prolongation.vertex_field(solved);
@@ -286,8 +365,11 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
     record(result, &run);
     if (count > 1) print_level(l, count, run);
     runs->push_back(run);
-    if (l + 1 < count)
+    if (l + 1 < count) {
       solved = broadcast_positions(result.positions, level.cloth.mesh.vertex_count());
+      if (checkpointing.interval > 0.0)
+        write_level_checkpoint(checkpointing.file, l, count, solved, *runs);
+    }
   }
   // The drape's solve time is all its levels'.
   result.solve_seconds = 0.0;

@@ -67,12 +67,16 @@ struct LevelRun {
 // for its panels). Returns
 // the finest level's result, its solve_seconds summed over the levels;
 // `runs` gets one entry per level. A single
-// level is solve_case on `finest`, as before.
+// level is solve_case on `finest`, as before, with `checkpointing`. Several
+// levels with checkpoints: one at the end of every level before the last
+// (its positions and the LevelRuns so far), and a restart goes on with the
+// level after the checkpoint's.
 CaseResult drape_progressively(const Options& options, const garment::Construction& construction,
                                const PanelMeshOptions& mesh_options, const DrapeLevel& finest,
                                const std::vector<double>& edge_lengths,
                                const std::string& directory, const ClothOutputLabels& labels,
-                               std::vector<LevelRun>* runs);
+                               std::vector<LevelRun>* runs,
+                               const CaseCheckpointing& checkpointing = {});
 
 // summary.json's drape.levels: one object per level.
 nlohmann::json levels_json(const std::vector<LevelRun>& runs);

@@ -15,6 +15,8 @@
 #include "solvers/certificate_case.hpp"
 #include "solvers/cloth_case.hpp"
 #include "solvers/commands.hpp"
+#include "solvers/dynamic_case.hpp"
+#include "solvers/static_checkpoint.hpp"
 
 #include <nlohmann/json.hpp>
 #include <petscsys.h>
@@ -182,8 +184,9 @@ const CommandSpec& run_command() {
       "Algorithm 2: equilibrium, then each element's creep update, with the loads\n"
       "scaled by --load-history and steps sized by --creep-tolerance) and writes\n"
       "series.h5 + series.xmf (with per-triangle creep strains) and creep.csv (one\n"
-      "row per step). --checkpoint-interval writes checkpoints; --restart resumes\n"
-      "one (docs/creep-structure.md).\n\n"
+      "row per step).\n\n"
+      "Dynamic and creep runs write checkpoints with --checkpoint-interval, and\n"
+      "--restart resumes one where it stood (docs/reliability.md).\n\n"
       "examples:\n"
       "  sartor run cases/fe/hanging_sheet.yaml\n"
       "  sartor run cases/fe/hencky.yaml --mesh-rings 16 -snes_monitor\n"
@@ -196,10 +199,10 @@ const CommandSpec& run_command() {
         options.push_back(
             {"output", "DIR", "out/run", "output folder (created; files in it are replaced)"});
         options.push_back({"checkpoint-interval", "S", "0",
-                           "creep: write a checkpoint every S seconds of simulated time"});
-        options.push_back(
-            {"checkpoint", "FILE", "", "creep: the checkpoint file [OUTPUT/checkpoint.h5]"});
-        options.push_back({"restart", "FILE", "", "creep: resume from this checkpoint"});
+                           "dynamic, creep: write a checkpoint every S seconds of simulated time"});
+        options.push_back({"checkpoint", "FILE", "",
+                           "dynamic, creep: the checkpoint file [OUTPUT/checkpoint.h5]"});
+        options.push_back({"restart", "FILE", "", "dynamic, creep: resume from this checkpoint"});
         options.push_back({"no-plot", "", "", "write data only, no result.png"});
         return options;
       }(),
@@ -704,6 +707,89 @@ void broadcast(double* values, int count) {
   MPI_Bcast(values, count, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
 }
 
+// --analysis dynamic: from rest, or from --restart's checkpoint, with
+// checkpoints as `checkpointing` says.
+void solve_dynamic_case(const Options& options, ClothProblem& problem, Vec x,
+                        const CaseStepObserver& observe, const CaseCheckpointing& checkpointing,
+                        CaseResult* result) {
+  // Starts at rest (or where a checkpoint left it); the probe is followed
+  // step by step for dynamics.csv.
+  Vec v = nullptr;
+  SartorPetscCall(VecDuplicate(x, &v));
+  SartorPetscCall(VecSet(v, 0.0));
+  DynamicReport report;
+  std::optional<DynamicResume> resume;
+  if (!checkpointing.restart_file.empty()) {
+    resume = read_dynamic_checkpoint(checkpointing.restart_file, problem);
+    if (options.positive_real("time-end") < resume->control.time) {
+      throw InputError("option --time-end: " + options.text("time-end") + " s is before " +
+                       checkpointing.restart_file + "'s time, " +
+                       format_number(resume->control.time) + " s");
+    }
+    SartorPetscCall(resume->restore(problem, x, v));
+    report = resume->report;
+    result->probe_history = resume->probe_history;
+    result->resumed_time = resume->control.time;
+    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "sartor: resuming from %s at t = %g s\n",
+                                checkpointing.restart_file.c_str(), resume->control.time));
+  }
+  const DynamicObserver follow = [&](const DynamicStepReport& step, Vec state,
+                                     Vec) -> PetscErrorCode {
+    if (result->probe) {
+      std::vector<Eigen::Vector3d> positions;
+      SartorPetscCall(problem.gather_positions(state, &positions));
+      double d[3] = {0.0, 0.0, 0.0};
+      if (is_root()) {
+        const std::size_t p = result->probe->vertex;
+        for (int k = 0; k < 3; ++k)
+          d[k] = positions[p][k] - result->mesh.positions[p][k];
+      }
+      broadcast(d, 3);
+      result->probe_history.emplace_back(d[0], d[1], d[2]);
+    }
+    if (observe) observe(problem, state, {step.time, step.output, nullptr});
+    return 0;
+  };
+  DynamicCheckpoints checkpoints;
+  checkpoints.resume = resume ? &resume->control : nullptr;
+  checkpoints.interval = checkpointing.interval;
+  check_time_divisions(options.positive_real("time-end"), "time-end", checkpointing.interval,
+                       "checkpoint-interval");
+  if (checkpointing.interval > 0.0) {
+    checkpoints.write = dynamic_checkpoint_writer(
+        problem, checkpointing, report, result->probe_history, &result->checkpoints_written);
+  }
+  SartorPetscCall(
+      solve_dynamic(problem, x, v, dynamic_options(options), &report, follow, checkpoints));
+  SartorPetscCall(VecDestroy(&v));
+  result->converged = report.completed;
+  result->solve_seconds = report.solve_seconds;
+  result->dynamics = std::move(report);
+}
+
+// Statics: solve_static, from --restart's checkpoint when given, with a
+// checkpoint after every sewing stage and contact round when asked.
+void solve_static_case(ClothProblem& problem, Vec x, const StaticOptions& solve,
+                       const CaseCheckpointing& checkpointing, CaseResult* result) {
+  StaticOptions checkpointed = solve;
+  std::optional<StaticResume> resume;
+  if (!checkpointing.restart_file.empty()) {
+    resume = read_static_checkpoint(checkpointing.restart_file, problem);
+    SartorPetscCall(resume->restore(problem, x));
+    checkpointed.resume = &resume->report;
+    result->resumed_time = 0.0;
+    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                                "sartor: resuming from %s after %d stage(s), %d contact round(s)\n",
+                                checkpointing.restart_file.c_str(), resume->report.sewing_stages,
+                                resume->report.contact_rounds));
+  }
+  if (checkpointing.interval > 0.0)
+    checkpointed.checkpoint =
+        static_checkpoint_writer(problem, checkpointing, &result->checkpoints_written);
+  SartorPetscCall(solve_static(problem, x, checkpointed, &result->report));
+  reject_unmet_residual(problem.force_scale(), &result->report);
+}
+
 } // namespace
 
 CaseResult solve_case(const Options& options, int extra_refinements,
@@ -809,33 +895,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   Vec x = nullptr;
   SartorPetscCall(problem.create_solution(&x));
   if (dynamic) {
-    // Starts at rest; the probe is followed step by step for dynamics.csv.
-    Vec v = nullptr;
-    SartorPetscCall(VecDuplicate(x, &v));
-    SartorPetscCall(VecSet(v, 0.0));
-    const DynamicObserver follow = [&](const DynamicStepReport& step, Vec state,
-                                       Vec) -> PetscErrorCode {
-      if (result.probe) {
-        std::vector<Eigen::Vector3d> positions;
-        SartorPetscCall(problem.gather_positions(state, &positions));
-        double d[3] = {0.0, 0.0, 0.0};
-        if (is_root()) {
-          const std::size_t p = result.probe->vertex;
-          for (int k = 0; k < 3; ++k)
-            d[k] = positions[p][k] - mesh.positions[p][k];
-        }
-        broadcast(d, 3);
-        result.probe_history.emplace_back(d[0], d[1], d[2]);
-      }
-      if (observe) observe(problem, state, {step.time, step.output, nullptr});
-      return 0;
-    };
-    DynamicReport report;
-    SartorPetscCall(solve_dynamic(problem, x, v, dynamic_options(options), &report, follow));
-    SartorPetscCall(VecDestroy(&v));
-    result.converged = report.completed;
-    result.solve_seconds = report.solve_seconds;
-    result.dynamics = std::move(report);
+    solve_dynamic_case(options, problem, x, observe, checkpointing, &result);
   } else if (creep) {
     CreepCoupling coupling(problem, creep_materials(options));
     const CreepStateObserver follow = [&](Vec state, const CreepStepReport& step) {
@@ -848,8 +908,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
     result.solve_seconds = run.report.solve_seconds;
     result.creep = std::move(run);
   } else {
-    SartorPetscCall(solve_static(problem, x, solve, &result.report));
-    reject_unmet_residual(problem.force_scale(), &result.report);
+    solve_static_case(problem, x, solve, checkpointing, &result);
   }
   // The final state of statics, or of a settle, is certified (a saddle is not converged).
   const bool settled = result.dynamics && result.dynamics->settled;
@@ -937,7 +996,8 @@ void add_statics_summary(const StaticReport& report, nlohmann::json& summary) {
   }
 }
 
-void add_dynamics_summary(const DynamicReport& report, nlohmann::json& summary) {
+void add_dynamics_summary(const CaseResult& result, nlohmann::json& summary) {
+  const DynamicReport& report = *result.dynamics;
   const std::size_t accepted = report.steps.empty() ? 0 : report.steps.size() - 1;
   nlohmann::json history = nlohmann::json::array();
   for (const auto& step : report.steps) {
@@ -974,7 +1034,10 @@ void add_dynamics_summary(const DynamicReport& report, nlohmann::json& summary) 
                                       {"residual_norm", report.settle_residual_norm}}},
       {"steps_per_second",
        report.solve_seconds > 0 ? double(accepted) / report.solve_seconds : 0.0},
-      {"history", history}};
+      {"history", history},
+      {"checkpoints_written", result.checkpoints_written},
+      {"resumed", result.resumed_time >= 0.0}};
+  if (result.resumed_time >= 0.0) summary["dynamics"]["resumed_from_time_s"] = result.resumed_time;
 }
 
 void add_creep_summary(const CreepRunResult& run, nlohmann::json& summary) {
@@ -1026,7 +1089,7 @@ void add_case_summary(const CaseResult& result, nlohmann::json& summary) {
                      {"dofs", result.dofs}};
   summary["converged"] = result.converged;
   if (result.dynamics) {
-    add_dynamics_summary(*result.dynamics, summary);
+    add_dynamics_summary(result, summary);
   } else if (result.creep) {
     add_creep_summary(*result.creep, summary);
   } else {
@@ -1094,9 +1157,11 @@ void write_petsc_options(const std::string& directory) {
   if (is_root()) write_file_atomically(path, quote_option_values(path));
 }
 
-CaseStepObserver series_writer(const std::string& directory, const ClothOutputLabels& labels) {
+CaseStepObserver series_writer(const std::string& directory, const ClothOutputLabels& labels,
+                               const std::string& resumed_from) {
   auto series = std::make_shared<std::unique_ptr<ClothTimeSeries>>();
-  return [directory, series, labels](ClothProblem& problem, Vec x, const CaseState& state) {
+  return [directory, series, labels, resumed_from](ClothProblem& problem, Vec x,
+                                                   const CaseState& state) {
     if (!state.output) return;
     std::vector<Eigen::Vector3d> positions;
     std::vector<element::MembraneStrain> strains;
@@ -1118,17 +1183,16 @@ CaseStepObserver series_writer(const std::string& directory, const ClothOutputLa
         fields[3].values.push_back(c.weft.permanent);
       }
     }
+    if (!*series && !resumed_from.empty()) {
+      *series = std::make_unique<ClothTimeSeries>(directory, problem.mesh(), labels,
+                                                  checkpoint_time(resumed_from));
+    }
     if (!*series) *series = std::make_unique<ClothTimeSeries>(directory, problem.mesh(), labels);
     (*series)->write(state.time, positions, strains, fields);
   };
 }
 
-int run_run(const Invocation& invocation) {
-  const Options& options = invocation.options;
-  const std::string directory = options.text("output");
-  // Dynamic runs write their states at output times into series.h5/.xmf.
-  const ClothOutputLabels labels{{options.text("fabric")}, {}, {}};
-  const CaseStepObserver write_state = series_writer(directory, labels);
+CaseCheckpointing case_checkpointing(const Options& options, const std::string& directory) {
   CaseCheckpointing checkpointing;
   checkpointing.interval = options.nonnegative_real("checkpoint-interval");
   checkpointing.file =
@@ -1137,6 +1201,16 @@ int run_run(const Invocation& invocation) {
   if (checkpointing.interval > 0.0 || !checkpointing.restart_file.empty()) {
     if (is_root()) make_output_directory(directory);
   }
+  return checkpointing;
+}
+
+int run_run(const Invocation& invocation) {
+  const Options& options = invocation.options;
+  const std::string directory = options.text("output");
+  // Dynamic runs write their states at output times into series.h5/.xmf.
+  const ClothOutputLabels labels{{options.text("fabric")}, {}, {}};
+  const CaseCheckpointing checkpointing = case_checkpointing(options, directory);
+  const CaseStepObserver write_state = series_writer(directory, labels, checkpointing.restart_file);
   const CaseResult result = solve_case(options, 0, write_state, checkpointing);
 
   nlohmann::json summary = run_metadata(invocation, "run");

@@ -127,6 +127,27 @@ std::string read_format(hid_t file) {
   return text.substr(0, text.find('\0'));
 }
 
+// A character dataset; `required` false: "" when absent.
+std::string read_text(hid_t file, const char* name, const std::string& path, bool required) {
+  if (H5Lexists(file, name, H5P_DEFAULT) <= 0) {
+    if (!required) return "";
+    throw InputError(path + ": not a complete checkpoint (no " + name + ")");
+  }
+  const H5Handle set(H5Dopen2(file, name, H5P_DEFAULT), H5Dclose);
+  if (set.get() < 0) throw InputError(path + ": cannot open " + name);
+  const H5Handle space(H5Dget_space(set.get()), H5Sclose);
+  const hssize_t characters = H5Sget_simple_extent_npoints(space.get());
+  if (characters < 0 || std::size_t(characters) > file_bytes(file)) {
+    throw InputError(path + ": dataset " + name + " claims more characters than the file holds");
+  }
+  std::string text(std::size_t(characters), '\0');
+  if (!text.empty() &&
+      H5Dread(set.get(), H5T_NATIVE_CHAR, H5S_ALL, H5S_ALL, H5P_DEFAULT, text.data()) < 0) {
+    throw InputError(path + ": cannot read " + name);
+  }
+  return text;
+}
+
 std::uint64_t read_checksum(hid_t file, const std::string& path) {
   if (H5Lexists(file, "/checksum", H5P_DEFAULT) <= 0) {
     throw InputError(path + ": not a complete checkpoint (no dataset /checksum)");
@@ -148,6 +169,17 @@ void flush_to_disk(const std::string& path) {
   const int status = ::fsync(descriptor);
   ::close(descriptor);
   if (status != 0) throw InputError(path + ": cannot flush to disk");
+}
+
+// The rename reaches the disk: the folder's entry is flushed too (a failure
+// here leaves the new checkpoint in place, so it is not an error).
+void flush_directory(const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  const std::string folder = slash == std::string::npos ? "." : path.substr(0, slash + 1);
+  const int descriptor = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY);
+  if (descriptor < 0) return;
+  ::fsync(descriptor);
+  ::close(descriptor);
 }
 
 std::vector<double> creep_rows(const std::vector<ElementCreep>& creep) {
@@ -179,6 +211,7 @@ std::uint64_t checksum(const RunCheckpoint& checkpoint) {
   sum.add(creep_rows(checkpoint.creep));
   sum.add(anchor_rows(checkpoint.anchors));
   sum.add(checkpoint.history.data(), checkpoint.history.size());
+  sum.add(checkpoint.state.data(), checkpoint.state.size());
   return sum.value();
 }
 
@@ -206,6 +239,10 @@ void write_checkpoint(const std::string& path, const RunCheckpoint& checkpoint) 
     write_set(f, "/checksum", H5T_NATIVE_ULLONG, &sum, {1}, path);
     write_set(f, "/history", H5T_NATIVE_CHAR, checkpoint.history.data(),
               {checkpoint.history.size()}, path);
+    if (!checkpoint.state.empty()) {
+      write_set(f, "/state", H5T_NATIVE_CHAR, checkpoint.state.data(), {checkpoint.state.size()},
+                path);
+    }
     const H5Handle string_type(H5Tcopy(H5T_C_S1), H5Tclose);
     H5Tset_size(string_type.get(), std::strlen(format_tag));
     const H5Handle scalar(H5Screate(H5S_SCALAR), H5Sclose);
@@ -220,6 +257,7 @@ void write_checkpoint(const std::string& path, const RunCheckpoint& checkpoint) 
   if (std::rename(temporary.c_str(), path.c_str()) != 0) {
     throw InputError(path + ": cannot replace the checkpoint with " + temporary);
   }
+  flush_directory(path);
 }
 
 RunCheckpoint read_checkpoint(const std::string& path) {
@@ -265,20 +303,8 @@ RunCheckpoint read_checkpoint(const std::string& path) {
     std::copy_n(anchors.begin() + long(i), 8, row.begin());
     checkpoint.anchors.push_back(row);
   }
-  {
-    const H5Handle set(H5Dopen2(f, "/history", H5P_DEFAULT), H5Dclose);
-    if (set.get() < 0) throw InputError(path + ": not a complete checkpoint (no /history)");
-    const H5Handle space(H5Dget_space(set.get()), H5Sclose);
-    const hssize_t characters = H5Sget_simple_extent_npoints(space.get());
-    if (characters < 0 || std::size_t(characters) > file_bytes(f)) {
-      throw InputError(path + ": dataset /history claims more characters than the file holds");
-    }
-    checkpoint.history.resize(std::size_t(characters));
-    if (!checkpoint.history.empty() && H5Dread(set.get(), H5T_NATIVE_CHAR, H5S_ALL, H5S_ALL,
-                                               H5P_DEFAULT, checkpoint.history.data()) < 0) {
-      throw InputError(path + ": cannot read /history");
-    }
-  }
+  checkpoint.history = read_text(f, "/history", path, true);
+  checkpoint.state = read_text(f, "/state", path, false);
   if (checksum(checkpoint) != read_checksum(f, path)) {
     throw InputError(path + ": the checkpoint is corrupted (its checksum does not match its "
                             "contents); resume from another checkpoint or start again");

@@ -13,9 +13,12 @@
 // /step (int64), /positions (n x 3), /velocities (n x 3, optional),
 // /creep (t x 6: eps_v warp, eps_p warp, eps_v weft, eps_p weft, tension
 // warp, tension weft), /anchors (k x 8: body, vertex, point, normal),
-// /history (the history CSV text), /checksum (uint64: FNV-1a over all of the
-// above, verified on reading: a corrupted file is refused), and the attribute
-// /format = "sartor-checkpoint 2".
+// /history (the history CSV text), /state (optional: JSON text of the
+// controller of a dynamic run or a static drape, fem/run_state.hpp),
+// /checksum (uint64: FNV-1a over all of the above, verified on reading: a
+// corrupted file is refused), and the attribute /format = "sartor-checkpoint
+// 2". A file without /state sums as one with an empty /state, so checkpoints
+// written before /state existed still resume.
 
 #include "fem/creep_coupling.hpp"
 
@@ -37,6 +40,7 @@ struct RunCheckpoint {
   std::vector<ElementCreep> creep;         // per mesh triangle
   std::vector<std::array<double, 8>> anchors;
   std::string history; // the run's history file (CSV) up to this state
+  std::string state;   // JSON: the step controller and reports so far; "" for creep runs
 };
 
 // Atomic (temporary file and rename). Throws InputError when it cannot write.

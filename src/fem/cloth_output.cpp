@@ -10,8 +10,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -98,6 +100,23 @@ std::string data_item(const std::string& h5, const std::string& set, std::size_t
 // One XDMF grid of the cloth whose datasets live under `group` of `h5`
 // ("" for the final state: /fields, /cell_fields), at `time` when given
 // (then also with the positions as a node field, see the header).
+// The names of the extra cell fields in `group` (beyond the membrane's;
+// none when it does not exist), sorted.
+std::vector<std::string> cell_field_names(hid_t file, const std::string& group) {
+  std::vector<std::string> names;
+  if (H5Lexists(file, group.c_str(), H5P_DEFAULT) <= 0) return names;
+  const auto collect = [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
+    const bool membrane =
+        std::any_of(std::begin(membrane_fields), std::end(membrane_fields),
+                    [&](const CellFieldUnits& f) { return f.name == std::string(name); });
+    if (!membrane) static_cast<std::vector<std::string>*>(data)->push_back(name);
+    return 0;
+  };
+  H5Literate_by_name(file, group.c_str(), H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &names,
+                     H5P_DEFAULT);
+  return names;
+}
+
 std::string grid_text(const std::string& h5, const std::string& group, std::size_t vertices,
                       std::size_t triangles, bool has_panels, const double* time,
                       const std::vector<std::string>& extra_cell_fields = {},
@@ -230,6 +249,16 @@ std::vector<std::string> obj_groups(const TriangleMesh& mesh, const ClothOutputL
   return groups;
 }
 
+// series.h5 with the mesh and no states.
+void create_series_file(const std::string& directory, const TriangleMesh& mesh,
+                        const ClothOutputLabels& labels) {
+  make_output_directory(directory);
+  const std::string h5 = directory + "/series.h5";
+  const H5Handle file(H5Fcreate(h5.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  if (file.get() < 0) throw InputError(h5 + ": cannot create HDF5 file");
+  write_mesh(file.get(), mesh, labels, h5);
+}
+
 } // namespace
 
 void write_cloth_results(const std::string& directory, const TriangleMesh& mesh,
@@ -270,11 +299,64 @@ void write_cloth_results(const std::string& directory, const TriangleMesh& mesh,
 ClothTimeSeries::ClothTimeSeries(const std::string& directory, const TriangleMesh& mesh,
                                  const ClothOutputLabels& labels)
     : directory_(directory), mesh_(mesh), has_panels_(has_panels(mesh, labels)) {
-  make_output_directory(directory);
-  const std::string h5 = directory + "/series.h5";
-  const H5Handle file(H5Fcreate(h5.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
-  if (file.get() < 0) throw InputError(h5 + ": cannot create HDF5 file");
-  write_mesh(file.get(), mesh, labels, h5);
+  create_series_file(directory, mesh, labels);
+}
+
+ClothTimeSeries::ClothTimeSeries(const std::string& directory, const TriangleMesh& mesh,
+                                 const ClothOutputLabels& labels, double resumed_time)
+    : directory_(directory), mesh_(mesh), has_panels_(has_panels(mesh, labels)) {
+  // A resumed run writing into another folder starts its series there.
+  const bool exists = std::ifstream(directory + "/series.h5").good();
+  if (exists && keep_states(clean_time(resumed_time))) {
+    write_index();
+    return;
+  }
+  if (exists) {
+    std::fprintf(stderr,
+                 "sartor: warning: %s/series.h5 cannot be continued; it starts again with the "
+                 "resumed states\n",
+                 directory.c_str());
+  }
+  times_.clear();
+  grids_.clear();
+  extra_names_.clear();
+  create_series_file(directory, mesh, labels);
+}
+
+bool ClothTimeSeries::keep_states(double last_time) {
+  const std::string h5 = directory_ + "/series.h5";
+  // HDF5 would print its own error stack for a damaged file.
+  H5E_auto2_t handler = nullptr;
+  void* handler_data = nullptr;
+  H5Eget_auto2(H5E_DEFAULT, &handler, &handler_data);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  const H5Handle file(H5Fopen(h5.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose);
+  bool readable = file.get() >= 0 && H5Lexists(file.get(), "/mesh", H5P_DEFAULT) > 0;
+  const bool has_steps = readable && H5Lexists(file.get(), "/steps", H5P_DEFAULT) > 0;
+  for (std::size_t k = 0; has_steps && readable; ++k) {
+    std::ostringstream group;
+    group << "/steps/" << std::setw(6) << std::setfill('0') << k;
+    if (H5Lexists(file.get(), group.str().c_str(), H5P_DEFAULT) <= 0) break;
+    // A state after the checkpoint, or one a kill cut short, goes.
+    double time = INFINITY;
+    const std::string time_set = group.str() + "/time";
+    if (H5Lexists(file.get(), time_set.c_str(), H5P_DEFAULT) > 0) {
+      const H5Handle set(H5Dopen2(file.get(), time_set.c_str(), H5P_DEFAULT), H5Dclose);
+      if (set.get() < 0 ||
+          H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &time) < 0)
+        time = INFINITY;
+    }
+    if (time > last_time) {
+      readable = H5Ldelete(file.get(), group.str().c_str(), H5P_DEFAULT) >= 0;
+      continue;
+    }
+    if (times_.empty()) extra_names_ = cell_field_names(file.get(), group.str() + "/cell_fields");
+    times_.push_back(time);
+    grids_ += grid_text("series.h5", group.str(), mesh_.vertex_count(), mesh_.triangle_count(),
+                        has_panels_, &times_.back(), extra_names_);
+  }
+  H5Eset_auto2(H5E_DEFAULT, handler, handler_data);
+  return readable;
 }
 
 void ClothTimeSeries::write(double time, const std::vector<Eigen::Vector3d>& positions,
@@ -287,7 +369,11 @@ void ClothTimeSeries::write(double time, const std::vector<Eigen::Vector3d>& pos
   for (const CellField& field : extra_cell_fields)
     names.push_back(field.name);
   if (times_.empty()) extra_names_ = names;
-  if (names != extra_names_) {
+  // A resumed series read its names back sorted.
+  std::vector<std::string> sorted = names, sorted_extra = extra_names_;
+  std::sort(sorted.begin(), sorted.end());
+  std::sort(sorted_extra.begin(), sorted_extra.end());
+  if (sorted != sorted_extra) {
     throw std::logic_error("ClothTimeSeries: every state must have the same cell fields");
   }
   const double written_time = clean_time(time);

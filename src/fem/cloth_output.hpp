@@ -63,6 +63,12 @@ public:
   };
   ClothTimeSeries(const std::string& directory, const TriangleMesh& mesh,
                   const ClothOutputLabels& labels = {});
+  // A resumed run's series: keeps the states of the existing series.h5 up
+  // to `resumed_time` (s) and drops those after it (written after the
+  // checkpoint the run resumes from). An unreadable series.h5 is replaced by
+  // a new one, with a warning on stderr.
+  ClothTimeSeries(const std::string& directory, const TriangleMesh& mesh,
+                  const ClothOutputLabels& labels, double resumed_time);
   // Completes the XDMF index (series.xmf) if the last states are not in it.
   ~ClothTimeSeries();
   ClothTimeSeries(const ClothTimeSeries&) = delete;
@@ -75,6 +81,7 @@ public:
 
 private:
   void write_index();
+  bool keep_states(double last_time);
 
   std::string directory_;
   const TriangleMesh& mesh_;

@@ -39,14 +39,23 @@ void check(const DynamicOptions& options, double start) {
   }
 }
 
+// The first multiple of `interval` after `time` (within `tiny` of one counts
+// as on it); infinity without an interval.
+double next_checkpoint_time(double time, double interval, double tiny) {
+  if (interval <= 0.0) return INFINITY;
+  return (std::floor((time + tiny) / interval) + 1.0) * interval;
+}
+
 } // namespace
 
 PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicOptions& options,
-                             DynamicReport* report, const DynamicObserver& observe) {
+                             DynamicReport* report, const DynamicObserver& observe,
+                             const DynamicCheckpoints& checkpoints) {
   Vec f = nullptr, work = nullptr;
   PetscFunctionBeginUser;
   const auto started = std::chrono::steady_clock::now();
-  const double start = problem.time;
+  const DynamicControl* resume = checkpoints.resume;
+  const double start = resume ? resume->start : problem.time;
   check(options, start);
   const double span = options.time_end - start;
   // Times closer than this are the same time (round-off of sums of steps).
@@ -55,8 +64,9 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
   IncrementalSystem system(problem, x);
   PetscCall(VecDuplicate(x, &f));
   PetscCall(VecDuplicate(x, &work));
-  // Vertices that touch a body in the starting placement stick there.
-  PetscCall(problem.update_contact(x));
+  // Vertices that touch a body in the starting placement stick there (a
+  // resumed run has the checkpoint's anchors).
+  if (!resume) PetscCall(problem.update_contact(x));
 
   const auto measure = [&](DynamicStepReport* step) -> PetscErrorCode {
     ClothEnergy energy;
@@ -69,22 +79,34 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
     PetscFunctionReturn(0);
   };
 
-  DynamicStepReport initial;
-  initial.time = start;
-  initial.output = true;
-  PetscCall(measure(&initial));
-  report->steps.push_back(initial);
-  if (observe) PetscCall(observe(initial, x, v));
-  const double initial_residual = initial.static_residual_norm;
-
-  double t = start;
-  double dt = options.time_step;
-  double next_output = options.output_interval > 0.0 ? start + options.output_interval : 0.0;
-  double previous_kinetic = initial.kinetic_energy;
+  DynamicControl control;
+  if (resume) {
+    control = *resume;
+  } else {
+    DynamicStepReport initial;
+    initial.time = start;
+    initial.output = true;
+    PetscCall(measure(&initial));
+    report->steps.push_back(initial);
+    if (observe) PetscCall(observe(initial, x, v));
+    control = {start,
+               start,
+               options.time_step,
+               0,
+               options.output_interval > 0.0 ? start + options.output_interval : 0.0,
+               initial.kinetic_energy,
+               initial.static_residual_norm};
+  }
+  const double initial_residual = control.initial_residual;
+  double t = control.time;
+  double dt = control.next_step;
+  double next_output = control.next_output;
+  double previous_kinetic = control.previous_kinetic;
   ProgressClock progress;
-  PetscInt step_index = 0;
+  PetscInt step_index = control.step;
+  double next_checkpoint = next_checkpoint_time(t, checkpoints.interval, tiny);
   report->completed = true;
-  while (options.time_end - t > tiny) {
+  while (!report->at_rest && options.time_end - t > tiny) {
     DynamicStepReport step;
     step.step = ++step_index;
     bool accepted = false;
@@ -172,6 +194,11 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
                             t, 100.0 * (t - start) / span, step_index, report->newton_iterations,
                             report->rejected_steps, step.kinetic_energy, step.potential_energy,
                             progress.timing(finished ? 1.0 : (t - start) / span).c_str()));
+    }
+    if (checkpoints.write && t >= next_checkpoint - tiny) {
+      next_checkpoint = next_checkpoint_time(t, checkpoints.interval, tiny);
+      PetscCall(checkpoints.write(
+          {start, t, dt, step_index, next_output, previous_kinetic, initial_residual}, x, v));
     }
     if (at_rest) break;
   }

@@ -87,10 +87,35 @@ struct DynamicReport {
 // initial state, step 0).
 using DynamicObserver = std::function<PetscErrorCode(const DynamicStepReport&, Vec x, Vec v)>;
 
+// The step controller between two accepted steps: what a run continues from
+// besides x, v, problem.time, the friction anchors and the report so far
+// (docs/reliability.md#checkpoints-and-restart).
+struct DynamicControl {
+  double start = 0.0;            // s, the run's start time
+  double time = 0.0;             // s, of the last accepted step
+  double next_step = 0.0;        // s, the next attempt's dt
+  PetscInt step = 0;             // accepted steps so far
+  double next_output = 0.0;      // s
+  double previous_kinetic = 0.0; // J, for kinetic damping's peak test
+  double initial_residual = 0.0; // N, for rest_tolerance
+};
+
+// Checkpoints of a run: `write` is called collectively after every accepted
+// step that ends at or past a multiple of `interval` (s of simulated time;
+// 0: never), once the observer has seen it. With `resume` the run continues
+// from that controller state; the caller has put the checkpoint's x, v,
+// problem.time, anchors and report (steps and counts) in place.
+struct DynamicCheckpoints {
+  const DynamicControl* resume = nullptr;
+  double interval = 0.0;
+  std::function<PetscErrorCode(const DynamicControl&, Vec x, Vec v)> write;
+};
+
 // Collective. x: positions (free dofs), v: velocities (m/s), both solution
 // vectors of `problem`, advanced in place. Throws InputError for options that
 // make no sense (time_end before problem.time, dt <= 0, ...).
 PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicOptions& options,
-                             DynamicReport* report, const DynamicObserver& observe = {});
+                             DynamicReport* report, const DynamicObserver& observe = {},
+                             const DynamicCheckpoints& checkpoints = {});
 
 } // namespace sartor

@@ -172,6 +172,17 @@ bool stiffen_contact(ClothProblem& problem, const StaticOptions& options,
   return true;
 }
 
+// StaticOptions::checkpoint of the state after a stage or round.
+PetscErrorCode checkpoint(IncrementalSystem& system, Vec x, const StaticOptions& options,
+                          StaticReport* report) {
+  PetscFunctionBeginUser;
+  if (!options.checkpoint) PetscFunctionReturn(0);
+  report->minimiser = system.minimiser_statistics;
+  report->contact_stiffness_scale = system.problem().contact.stiffness_scale;
+  PetscCall(options.checkpoint(x, *report));
+  PetscFunctionReturn(0);
+}
+
 // Solves the last stage again while the contact rounds of the header ask for it.
 PetscErrorCode contact_rounds(IncrementalSystem& system, Vec x, const StaticOptions& options,
                               Vec last, StaticReport* report) {
@@ -198,6 +209,7 @@ PetscErrorCode contact_rounds(IncrementalSystem& system, Vec x, const StaticOpti
       break;
     }
     PetscCall(measure_contact(problem, x, report));
+    PetscCall(checkpoint(system, x, options, report));
   }
   report->contact_stiffness_scale = problem.contact.stiffness_scale;
   PetscFunctionReturn(0);
@@ -223,6 +235,10 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
   system.damping_weight = 0.0;
   system.minimise_statics = options.minimise;
   system.minimiser_statistics = {};
+  if (options.resume) {
+    *report = *options.resume;
+    system.minimiser_statistics = report->minimiser;
+  }
   system.progress_interval = options.progress_interval;
   system.progress_origin = system.progress_last = started;
   report->minimised = system.minimises();
@@ -231,7 +247,7 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
   const double target = problem.load_factor;
   const bool sews = problem.sewing_tension > 0.0 && problem.seam_coupling();
   const int stages = sews ? std::max(1, options.sewing_stages) : 1;
-  for (int stage = 0; stage < stages; ++stage) {
+  for (int stage = options.resume ? options.resume->sewing_stages : 0; stage < stages; ++stage) {
     problem.sewing_stage = stages == 1 ? 1.0 : double(stage) / double(stages - 1);
     // The loads grow with the seams' stiffness: the first stage sews the
     // panels round the body unloaded, so that they are closed before their
@@ -265,6 +281,7 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
     } else {
       PetscCall(solve_again(system, x, last, report, &report->converged));
     }
+    PetscCall(checkpoint(system, x, options, report));
   }
   system.loose_rtol = 0.0;
   problem.sewing_stage = 1.0;

@@ -38,10 +38,13 @@
 
 #include <petscsnes.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace sartor {
+
+struct StaticReport;
 
 struct StaticOptions {
   // The solve ramps the load factor from here to problem.load_factor.
@@ -61,6 +64,13 @@ struct StaticOptions {
   // The minimiser's progress lines (stage or round, iteration, |F|, elapsed
   // wall time), one every this many seconds; 0: none.
   double progress_interval = 0.0;
+  // Checkpoints (docs/reliability.md#checkpoints-and-restart): called
+  // collectively after every sewing stage and contact round with the state
+  // and the report so far. With `resume` the solve continues after the
+  // stages and rounds that report counts, from x; the caller has restored
+  // x, the friction anchors and the contact stiffness scale it reports.
+  std::function<PetscErrorCode(Vec x, const StaticReport& report)> checkpoint;
+  const StaticReport* resume = nullptr;
 };
 
 struct LoadStepReport {

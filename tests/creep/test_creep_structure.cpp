@@ -367,5 +367,27 @@ TEST(Checkpoint, CorruptedFilesAreRefused) {
   std::remove(path.c_str());
 }
 
+// The controller state of a dynamic run or static drape (/state) reads back
+// exactly, and a changed character in it is refused like any corruption.
+TEST(Checkpoint, StateRoundTripsAndIsSummed) {
+  RunCheckpoint written;
+  written.time = 0.5;
+  written.next_step = 0.01;
+  written.positions = {{0.1, 0.2, 0.3}};
+  written.velocities = {{-1.0, 0.0, 2.5}};
+  written.state = R"({"kind":"dynamic","control":{"next_output":0.30000000000000004}})";
+  const std::string path = "test_checkpoint_state.h5";
+  write_checkpoint(path, written);
+  EXPECT_EQ(read_checkpoint(path).state, written.state);
+  const std::string good = file_bytes(path);
+  const std::size_t at = good.find("0.30000000000000004");
+  ASSERT_NE(at, std::string::npos);
+  std::string changed = good;
+  changed[at + 2] = '4'; // 0.40000000000000004: still valid JSON, another state
+  expect_refused(path, changed, "a digit of /state changed");
+  std::remove(path.c_str());
+  std::remove((path + ".tmp").c_str());
+}
+
 } // namespace
 } // namespace sartor

@@ -1,0 +1,131 @@
+#include "solvers/static_checkpoint.hpp"
+
+#include "common/error.hpp"
+#include "solvers/commands.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace sartor {
+
+namespace {
+
+constexpr const char* static_kind = "static";
+
+// /state of a static solve's checkpoint: the report so far. JSON writes
+// doubles with 17 significant digits, so they read back exactly.
+std::string state_text(const StaticReport& r) {
+  nlohmann::json steps = nlohmann::json::array();
+  for (const LoadStepReport& s : r.steps) {
+    steps.push_back({s.load_factor, s.converged, s.reason, s.newton_iterations, s.linear_iterations,
+                     s.pseudo_steps, s.residual_norm});
+  }
+  const auto& m = r.minimiser;
+  return nlohmann::json{{"kind", static_kind},
+                        {"report",
+                         {{"converged", r.converged},
+                          {"reason", r.reason},
+                          {"steps", steps},
+                          {"newton_iterations", r.newton_iterations},
+                          {"linear_iterations", r.linear_iterations},
+                          {"pseudo_steps", r.pseudo_steps},
+                          {"initial_residual_norm", r.initial_residual_norm},
+                          {"minimised", r.minimised},
+                          {"minimiser",
+                           {m.step_bound_cuts, m.regularised_steps, m.residual_rule_trials,
+                            m.failed_factorisations, m.exact_steps}},
+                          {"sewing_stages", r.sewing_stages},
+                          {"contact_rounds", r.contact_rounds},
+                          {"contact_stiffness_scale", r.contact_stiffness_scale},
+                          {"sliding_vertices", r.sliding_vertices},
+                          {"contact_round_failed", r.contact_round_failed},
+                          {"kept_residual_norm", r.kept_residual_norm}}}}
+      .dump();
+}
+
+StaticReport report_from(const std::string& text) {
+  const nlohmann::json state = nlohmann::json::parse(text);
+  if (state.at("kind") != static_kind) throw std::invalid_argument("not of a static solve");
+  const nlohmann::json& j = state.at("report");
+  StaticReport r;
+  r.converged = j.at("converged").get<bool>();
+  r.reason = j.at("reason").get<std::string>();
+  for (const nlohmann::json& s : j.at("steps")) {
+    r.steps.push_back({s.at(0).get<double>(), s.at(1).get<bool>(), s.at(2).get<std::string>(),
+                       s.at(3).get<PetscInt>(), s.at(4).get<PetscInt>(), s.at(5).get<PetscInt>(),
+                       s.at(6).get<double>()});
+  }
+  r.newton_iterations = j.at("newton_iterations").get<PetscInt>();
+  r.linear_iterations = j.at("linear_iterations").get<PetscInt>();
+  r.pseudo_steps = j.at("pseudo_steps").get<PetscInt>();
+  r.initial_residual_norm = j.at("initial_residual_norm").get<double>();
+  r.minimised = j.at("minimised").get<bool>();
+  const nlohmann::json& m = j.at("minimiser");
+  r.minimiser = {m.at(0).get<PetscInt>(), m.at(1).get<PetscInt>(), m.at(2).get<PetscInt>(),
+                 m.at(3).get<PetscInt>(), m.at(4).get<PetscInt>()};
+  r.sewing_stages = j.at("sewing_stages").get<int>();
+  r.contact_rounds = j.at("contact_rounds").get<int>();
+  r.contact_stiffness_scale = j.at("contact_stiffness_scale").get<double>();
+  r.sliding_vertices = j.at("sliding_vertices").get<long>();
+  r.contact_round_failed = j.at("contact_round_failed").get<bool>();
+  r.kept_residual_norm = j.at("kept_residual_norm").get<double>();
+  if (r.sewing_stages < 1 || r.contact_rounds < 0 || !(r.contact_stiffness_scale > 0.0)) {
+    throw std::invalid_argument("its stage, round or penalty counts are not valid");
+  }
+  return r;
+}
+
+} // namespace
+
+PetscErrorCode StaticResume::restore(ClothProblem& problem, Vec x) const {
+  PetscFunctionBeginUser;
+  PetscCall(problem.set_solution(checkpoint.positions, x));
+  problem.restore_anchors(checkpoint.anchors);
+  problem.contact.stiffness_scale = report.contact_stiffness_scale;
+  PetscFunctionReturn(0);
+}
+
+StaticResume read_static_checkpoint(const std::string& path, const ClothProblem& problem) {
+  StaticResume resume;
+  resume.checkpoint = read_checkpoint(path);
+  const RunCheckpoint& checkpoint = resume.checkpoint;
+  if (checkpoint.state.empty() || !checkpoint.velocities.empty()) {
+    throw InputError(path + ": the checkpoint is not of a static solve (a dynamic or creep "
+                            "run's?); resume it as one");
+  }
+  const std::size_t vertices = problem.mesh().vertex_count();
+  if (checkpoint.positions.size() != vertices) {
+    throw InputError(path + ": the checkpoint has " + std::to_string(checkpoint.positions.size()) +
+                     " vertices, the case " + std::to_string(vertices) +
+                     ": it belongs to another case or mesh");
+  }
+  try {
+    resume.report = report_from(checkpoint.state);
+  } catch (const std::exception& error) {
+    throw InputError(path + ": the checkpoint's /state is not a static solve's state (" +
+                     error.what() + ")");
+  }
+  return resume;
+}
+
+std::function<PetscErrorCode(Vec, const StaticReport&)>
+static_checkpoint_writer(ClothProblem& problem, const CaseCheckpointing& checkpointing,
+                         long* written) {
+  return [&problem, checkpointing, written](Vec x, const StaticReport& report) -> PetscErrorCode {
+    RunCheckpoint checkpoint;
+    PetscFunctionBeginUser;
+    // A static solve has no clock: the stage and round counts say where it stands.
+    checkpoint.next_step = 1.0;
+    checkpoint.step = report.sewing_stages + report.contact_rounds;
+    checkpoint.load_factor = problem.load_factor;
+    PetscCall(problem.gather_positions(x, &checkpoint.positions));
+    PetscCall(problem.gather_anchors(&checkpoint.anchors));
+    if (is_root()) {
+      checkpoint.state = state_text(report);
+      write_checkpoint(checkpointing.file, checkpoint);
+    }
+    ++*written;
+    PetscFunctionReturn(0);
+  };
+}
+
+} // namespace sartor

@@ -1,0 +1,34 @@
+#pragma once
+// Checkpoints and restart of static solves (`sartor drape`'s minimiser): the
+// state after every sewing stage and contact round (fem/statics.hpp,
+// StaticOptions::checkpoint): positions, the friction anchors, and in
+// /state the report so far with the adaptive contact penalty
+// (docs/reliability.md#checkpoints-and-restart).
+
+#include "fem/checkpoint.hpp"
+#include "fem/statics.hpp"
+#include "solvers/creep_case.hpp"
+
+#include <functional>
+#include <string>
+
+namespace sartor {
+
+struct StaticResume {
+  RunCheckpoint checkpoint;
+  StaticReport report; // the stages and rounds done
+  // Collective: x, the friction anchors and the contact stiffness scale.
+  PetscErrorCode restore(ClothProblem& problem, Vec x) const;
+};
+
+// Reads and checks a static solve's checkpoint against the problem's mesh.
+// Throws InputError naming the file when it is not one of this case.
+StaticResume read_static_checkpoint(const std::string& path, const ClothProblem& problem);
+
+// Collective. The checkpoint writer for StaticOptions::checkpoint (rank 0
+// writes `checkpointing.file` atomically); counts them in *written.
+std::function<PetscErrorCode(Vec, const StaticReport&)>
+static_checkpoint_writer(ClothProblem& problem, const CaseCheckpointing& checkpointing,
+                         long* written);
+
+} // namespace sartor

@@ -1,0 +1,124 @@
+#!/usr/bin/env bash
+# kill -9 at pseudo-random moments and resume (docs/reliability.md#checkpoints-and-restart):
+# a dynamic run (the swinging sheet), a static drape (the skirt: sewing
+# stages and contact rounds), the same on two refinement levels, and a
+# dynamic drape (the skirt sewn in time) are
+# each run once uninterrupted, then again with checkpoints, killed with
+# SIGKILL a few times at moments drawn from a fixed seed (the first after its
+# first checkpoint appeared), resumed with --restart into the same output
+# folder each time, and finally let finish. The final positions, and the
+# states of series.h5 and dynamics.csv, must equal the uninterrupted run's
+# within 1e-6 m (the drapes' solver tolerance is 1e-6 of the weight in
+# force; the displacements are 0.05 to 1 m). The differences are printed.
+#   kill_resume.sh SARTOR PROJECT_DIR WORKDIR
+set -euo pipefail
+sartor=$1 project=$2 work=$3
+python=/usr/bin/python3
+"$python" -c "import h5py, numpy" 2> /dev/null || { echo "error: $python lacks h5py/numpy (./dev deps installs it)" >&2; exit 1; }
+rm -rf "$work" && mkdir -p "$work"
+RANDOM=18 # the seed of the kill moments
+
+# interrupted NAME KILLS ARGS...: runs ARGS into $work/NAME with checkpoints,
+# killing it KILLS times; every start after a kill resumes the last checkpoint.
+interrupted() {
+  local name=$1 kills=$2
+  shift 2
+  local out="$work/$name" log="$work/$name.log" restart=() kill_count=0
+  for attempt in $(seq 0 "$kills"); do
+    "$sartor" "$@" "${restart[@]}" --output "$out" >> "$log" 2>&1 &
+    local pid=$!
+    if [ "$attempt" -lt "$kills" ]; then
+      if [ "$attempt" -eq 0 ]; then
+        for _ in $(seq 1 6000); do # the first checkpoint, up to 2 min on a loaded machine
+          [ -s "$out/checkpoint.h5" ] && break
+          kill -0 "$pid" 2> /dev/null || break
+          sleep 0.02
+        done
+      fi
+      # 0.1 to 2.1 s: within the runs (3 to 6 s of wall time here).
+      local delay
+      delay=$(printf '%d.%02d' $((RANDOM % 2)) $((RANDOM % 100)))
+      sleep "$delay"
+      sleep 0.1
+      if kill -9 "$pid" 2> /dev/null; then
+        kill_count=$((kill_count + 1))
+        echo "$name: killed after ${delay} s (kill $kill_count)" | tee -a "$log"
+      fi
+      wait "$pid" 2> /dev/null || true
+      [ -s "$out/checkpoint.h5" ] || { echo "$name: no checkpoint before the kill" >&2; exit 1; }
+      restart=(--restart "$out/checkpoint.h5")
+      [ -e "$out/summary.json" ] && break # it finished before the kill
+    else
+      wait "$pid" || { cat "$log" >&2; echo "$name: the resumed run failed" >&2; exit 1; }
+    fi
+  done
+  [ "$kill_count" -gt 0 ] || { echo "$name: every run ended before its kill" >&2; exit 1; }
+  grep -q "resuming from" "$log" || { echo "$name: never resumed" >&2; exit 1; }
+}
+
+sheet=("$project/cases/fe/hanging_sheet_dynamic.yaml" --mesh-nx 8 --mesh-ny 8 --time-end 1.5
+  --output-interval 0.1 --no-plot)
+skirt=("$project/cases/patterns/skirt.json" --edge-length 0.08 --no-plot)
+skirt_levels=("${skirt[@]}" --levels 2)
+skirt_dynamic=("${skirt[@]}" --analysis dynamic --time-end 0.2 --sewing-time 0.1 -settle false)
+
+"$sartor" run "${sheet[@]}" --output "$work/sheet_whole" > "$work/sheet_whole.log"
+interrupted sheet 3 run "${sheet[@]}" --checkpoint-interval 0.05
+"$sartor" drape "${skirt[@]}" --output "$work/skirt_whole" > "$work/skirt_whole.log"
+interrupted skirt 3 drape "${skirt[@]}" --checkpoint-interval 1
+"$sartor" drape "${skirt_levels[@]}" --output "$work/skirt_levels_whole" > "$work/skirt_levels_whole.log"
+interrupted skirt_levels 2 drape "${skirt_levels[@]}" --checkpoint-interval 1
+"$sartor" drape "${skirt_dynamic[@]}" --output "$work/skirt_dynamic_whole" \
+  > "$work/skirt_dynamic_whole.log"
+interrupted skirt_dynamic 2 drape "${skirt_dynamic[@]}" --checkpoint-interval 0.02
+
+# A checkpoint of another kind of run is refused, with its file named.
+if "$sartor" run "${sheet[@]}" --restart "$work/skirt/checkpoint.h5" --output "$work/wrong" \
+  > "$work/wrong.log" 2>&1; then
+  echo "a static drape's checkpoint resumed a dynamic run" >&2
+  exit 1
+fi
+grep -q "skirt/checkpoint.h5: the checkpoint is not of an --analysis dynamic run" "$work/wrong.log" ||
+  { cat "$work/wrong.log" >&2; exit 1; }
+
+"$python" - "$work" <<'PY'
+import csv, sys
+import h5py, numpy as np
+work = sys.argv[1]
+tolerance = 1e-6  # m
+failures = []
+
+def largest_difference(name):
+    with h5py.File(f"{work}/{name}_whole/result.h5") as a, h5py.File(f"{work}/{name}/result.h5") as b:
+        x, y = a["fields/position"][()], b["fields/position"][()]
+        moved = np.abs(x - a["mesh/initial_position"][()]).max() if "mesh/initial_position" in a else None
+        return np.abs(x - y).max(), moved
+
+for name in ("sheet", "skirt", "skirt_levels", "skirt_dynamic"):
+    diff, moved = largest_difference(name)
+    print(f"{name}: resumed final positions differ by {diff:.3g} m from the uninterrupted run's"
+          + (f" (largest displacement {moved:.3g} m)" if moved is not None else ""))
+    if not diff <= tolerance:
+        failures.append(f"{name}: final positions differ by {diff:.3g} m")
+
+for name in ("sheet", "skirt_dynamic"):
+    with h5py.File(f"{work}/{name}_whole/series.h5") as a, h5py.File(f"{work}/{name}/series.h5") as b:
+        steps = sorted(a["steps"])
+        if sorted(b["steps"]) != steps:
+            failures.append(f"{name}: series.h5 has states {sorted(b['steps'])}, uninterrupted {steps}")
+            continue
+        worst = max(np.abs(a[f"steps/{s}/fields/position"][()] - b[f"steps/{s}/fields/position"][()]).max()
+                    for s in steps)
+        times = [a[f"steps/{s}/time"][0] == b[f"steps/{s}/time"][0] for s in steps]
+        print(f"{name}: series.h5 {len(steps)} states, positions differ by at most {worst:.3g} m")
+        if not (worst <= tolerance and all(times)):
+            failures.append(f"{name}: series.h5 states differ by {worst:.3g} m or in time")
+    rows = [list(csv.reader(open(f"{work}/{n}/dynamics.csv"))) for n in (f"{name}_whole", name)]
+    if len(rows[0]) != len(rows[1]) or any(
+            abs(float(p) - float(q)) > 1e-9 * max(1.0, abs(float(p)))
+            for r, s in zip(rows[0][1:], rows[1][1:]) for p, q in zip(r[:6], s[:6])):
+        failures.append(f"{name}: dynamics.csv differs from the uninterrupted run's")
+if failures:
+    print("\n".join(failures), file=sys.stderr)
+    sys.exit(1)
+PY
