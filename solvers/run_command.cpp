@@ -912,7 +912,18 @@ void add_statics_summary(const StaticReport& report, nlohmann::json& summary) {
         {"contact_rounds", report.contact_rounds},
         {"contact_round_failed", report.contact_round_failed},
         {"contact_stiffness_scale", report.contact_stiffness_scale},
-        {"sliding_vertices", report.sliding_vertices}};
+        {"sliding_vertices", report.sliding_vertices},
+        {"friction_consistent", report.friction_consistent},
+        {"anchored_residual_N", report.anchored_residual_norm},
+        {"consistency_tolerance_N", report.consistency_tolerance}};
+    nlohmann::json rounds = nlohmann::json::array();
+    for (const ContactRound& round : report.rounds) {
+      rounds.push_back({{"newton_iterations", round.newton_iterations},
+                        {"anchored_residual_N", round.residual_norm},
+                        {"sliding_vertices", round.sliding_vertices},
+                        {"contact_stiffness_scale", round.contact_stiffness_scale}});
+    }
+    summary["solver"]["minimiser"]["rounds"] = rounds;
   }
   summary["load_steps"] = nlohmann::json::array();
   for (const auto& step : report.steps) {

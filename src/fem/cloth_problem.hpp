@@ -31,6 +31,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -397,7 +398,17 @@ private:
     bool active = false;
     Eigen::Vector3d point = Eigen::Vector3d::Zero();   // on the body surface
     Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); // of the frozen tangent plane
+    // The normal force at the last update (lagged), N; infinite where it is
+    // not known (anchors restored from a checkpoint): a plain spring.
+    double normal_force = std::numeric_limits<double>::infinity();
+    bool sliding = false; // slid at the last update: bounded by mu_k, else mu_s
   };
+  // The anchor spring's force bound: Coulomb's cone at the lagged normal force.
+  static double friction_bound(const FrictionAnchor& anchor, const contact::Friction& friction) {
+    if (std::isinf(anchor.normal_force)) return anchor.normal_force;
+    return (anchor.sliding ? friction.kinetic_coefficient : friction.static_coefficient) *
+           anchor.normal_force;
+  }
   void set_up_contact();
   // The clock of body motions: like the pin histories', the load factor in
   // statics and `time` when time stepping (pins_follow_time).
