@@ -67,10 +67,10 @@ contact::PointResult ClothProblem::vertex_contact(std::size_t body, int vertex,
   if (anchors_.size() == bodies.size()) {
     const FrictionAnchor& anchor = anchors_[body][std::size_t(vertex)];
     if (anchor.active) {
-      const contact::PointResult spring =
-          contact::anchor_spring(k, x, b.to_world(anchor.point, contact_clock()),
-                                 b.direction_to_world(anchor.normal, contact_clock()),
-                                 friction_bound(anchor, b.friction), want);
+      const contact::PointResult spring = contact::anchor_spring(
+          k, x, b.to_world(anchor.point, contact_clock()),
+          b.direction_to_world(anchor.normal, contact_clock()),
+          friction_bound(anchor, b.friction, contact.bounded_friction), want);
       result.energy += spring.energy;
       result.gradient += spring.gradient;
       result.hessian += spring.hessian;
@@ -202,6 +202,7 @@ PetscErrorCode ClothProblem::update_contact(Vec x) {
     anchors_.assign(bodies.size(), std::vector<FrictionAnchor>(mesh_.vertex_count()));
   }
   solved_anchors_ = anchors_;
+  solved_bounded_ = contact.bounded_friction;
   sliding_.assign(bodies.size(), 0);
   PetscCall(to_local(x));
   PetscCall(VecGetArrayRead(local_x_, &values));
@@ -286,7 +287,8 @@ PetscErrorCode ClothProblem::contact_report(Vec x, std::vector<BodyContact>* rep
         const Eigen::Vector3d spring =
             contact::anchor_spring(k, p, body.to_world(anchor.point, contact_clock()),
                                    body.direction_to_world(anchor.normal, contact_clock()),
-                                   friction_bound(anchor, body.friction), element::Want::gradient)
+                                   friction_bound(anchor, body.friction, solved_bounded_),
+                                   element::Want::gradient)
                 .gradient;
         for (int d = 0; d < 3; ++d)
           sums[3 + d] -= spring[d];

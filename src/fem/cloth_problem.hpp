@@ -105,6 +105,11 @@ struct ContactSettings {
   // PSD-project each vertex's contact Hessian (its curvature term
   // -k (offset - d) H_d is negative on convex bodies).
   bool project_hessian = false;
+  // Friction anchor springs bounded by Coulomb's cone (contact::anchor_spring):
+  // a vertex slides within a solve. The static minimiser's contact rounds
+  // turn it on (fem/statics.hpp); plain springs otherwise, whose anchors
+  // slide between solves only.
+  bool bounded_friction = false;
 };
 
 // What one body does to the cloth, summed over all vertices (every rank).
@@ -403,9 +408,11 @@ private:
     double normal_force = std::numeric_limits<double>::infinity();
     bool sliding = false; // slid at the last update: bounded by mu_k, else mu_s
   };
-  // The anchor spring's force bound: Coulomb's cone at the lagged normal force.
-  static double friction_bound(const FrictionAnchor& anchor, const contact::Friction& friction) {
-    if (std::isinf(anchor.normal_force)) return anchor.normal_force;
+  // The anchor spring's force bound: Coulomb's cone at the lagged normal
+  // force; infinite (a plain spring) unless contact.bounded_friction.
+  static double friction_bound(const FrictionAnchor& anchor, const contact::Friction& friction,
+                               bool bounded) {
+    if (!bounded || std::isinf(anchor.normal_force)) return std::numeric_limits<double>::infinity();
     return (anchor.sliding ? friction.kinetic_coefficient : friction.static_coefficient) *
            anchor.normal_force;
   }
@@ -430,6 +437,7 @@ private:
   // The anchors before the last update: those the last solved state is in
   // equilibrium with, for the reported friction forces.
   std::vector<std::vector<FrictionAnchor>> solved_anchors_;
+  bool solved_bounded_ = false; // contact.bounded_friction of that solve
   std::vector<long> sliding_;
   // Per body and mesh vertex, the last place it was queried at and its
   // signed distance there. The distance moves no faster than the body's

@@ -195,6 +195,11 @@ PetscErrorCode contact_rounds(IncrementalSystem& system, Vec x, const StaticOpti
   report->consistency_tolerance = report->steps.empty() ? 0.0 : report->steps.back().tolerance;
   PetscCall(measure_contact(problem, x, f, report));
   if (!system.minimises()) PetscFunctionReturn(0);
+  // Sliding within a solve from here on; the solved states of the stages
+  // (and their paths) are those of plain springs. After an update, every
+  // spring is within its bound, so the two agree at the state reached.
+  const bool bounded = problem.contact.bounded_friction;
+  problem.contact.bounded_friction = true;
   while (report->converged && report->contact_rounds < options.max_contact_rounds) {
     if (report->friction_consistent && !too_deep(problem, options, *report)) break;
     const double scale = problem.contact.stiffness_scale;
@@ -226,6 +231,7 @@ PetscErrorCode contact_rounds(IncrementalSystem& system, Vec x, const StaticOpti
                         report->contact_rounds, round.newton_iterations, round.residual_norm,
                         report->consistency_tolerance, round.sliding_vertices));
   }
+  problem.contact.bounded_friction = bounded;
   report->contact_stiffness_scale = problem.contact.stiffness_scale;
   PetscFunctionReturn(0);
 }
