@@ -129,6 +129,9 @@ const std::vector<OptionSpec>& case_option_specs() {
       {"contact-max-depth", "F", "0.5",
        "static: stiffen the contact penalty until no vertex is deeper in the offset layer than "
        "F times --contact-offset (0: never)"},
+      {"contact-rounds", "N", "30",
+       "static: at most N contact rounds after the last stage: re-solves until the friction "
+       "anchors' update leaves the state in equilibrium (and no vertex is too deep)"},
       {"analysis", "KIND", "static",
        "static (equilibrium), dynamic (implicit time stepping) or creep (quasi-static creep "
        "over real time)"},
@@ -652,7 +655,7 @@ StaticOptions static_options(const Options& options, const ClothProblem& problem
     throw InputError("option --sewing-stages: the case has no seams to sew (or they are merged)");
   }
   solve.max_offset_depth = options.nonnegative_real("contact-max-depth");
-  if (solve.max_offset_depth == 0.0) solve.max_contact_rounds = 0;
+  solve.max_contact_rounds = int(options.integer_in("contact-rounds", 0, 1000));
   // A static solve that runs long says where it is (docs/drape.md).
   solve.progress_interval = 10.0;
   return solve;
