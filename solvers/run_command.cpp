@@ -132,6 +132,9 @@ const std::vector<OptionSpec>& case_option_specs() {
       {"contact-max-depth", "F", "0.5",
        "static: stiffen the contact penalty until no vertex is deeper in the offset layer than "
        "F times --contact-offset (0: never)"},
+      {"contact-rounds", "N", "30",
+       "static: at most N contact rounds after the last stage: re-solves until the friction "
+       "anchors' update leaves the state in equilibrium (and no vertex is too deep)"},
       {"analysis", "KIND", "static",
        "static (equilibrium), dynamic (implicit time stepping) or creep (quasi-static creep "
        "over real time)"},
@@ -662,7 +665,7 @@ StaticOptions static_options(const Options& options, const ClothProblem& problem
     throw InputError("option --sewing-stages: the case has no seams to sew (or they are merged)");
   }
   solve.max_offset_depth = options.nonnegative_real("contact-max-depth");
-  if (solve.max_offset_depth == 0.0) solve.max_contact_rounds = 0;
+  solve.max_contact_rounds = int(options.integer_in("contact-rounds", 0, 1000));
   // A static solve that runs long says where it is (docs/drape.md).
   solve.progress_interval = 10.0;
   return solve;
@@ -983,7 +986,18 @@ void add_statics_summary(const StaticReport& report, nlohmann::json& summary) {
         {"contact_rounds", report.contact_rounds},
         {"contact_round_failed", report.contact_round_failed},
         {"contact_stiffness_scale", report.contact_stiffness_scale},
-        {"sliding_vertices", report.sliding_vertices}};
+        {"sliding_vertices", report.sliding_vertices},
+        {"friction_consistent", report.friction_consistent},
+        {"anchored_residual_N", report.anchored_residual_norm},
+        {"consistency_tolerance_N", report.consistency_tolerance}};
+    nlohmann::json rounds = nlohmann::json::array();
+    for (const ContactRound& round : report.rounds) {
+      rounds.push_back({{"newton_iterations", round.newton_iterations},
+                        {"anchored_residual_N", round.residual_norm},
+                        {"sliding_vertices", round.sliding_vertices},
+                        {"contact_stiffness_scale", round.contact_stiffness_scale}});
+    }
+    summary["solver"]["minimiser"]["rounds"] = rounds;
   }
   summary["load_steps"] = nlohmann::json::array();
   for (const auto& step : report.steps) {

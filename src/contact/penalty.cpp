@@ -18,15 +18,28 @@ PointResult penalty(double stiffness, double offset, const SurfaceQuery& query, 
 }
 
 PointResult anchor_spring(double stiffness, const Eigen::Vector3d& x, const Eigen::Vector3d& anchor,
-                          const Eigen::Vector3d& normal, Want want) {
+                          const Eigen::Vector3d& normal, double bound, Want want) {
   PointResult result;
   const Eigen::Matrix3d tangent = Eigen::Matrix3d::Identity() - normal * normal.transpose();
   const Eigen::Vector3d stretch = tangent * (x - anchor);
-  result.energy = 0.5 * stiffness * stretch.squaredNorm();
+  const double length = stretch.norm();
+  if (stiffness * length <= bound) {
+    result.energy = 0.5 * stiffness * length * length;
+    if (want == Want::energy) return result;
+    result.gradient = stiffness * stretch;
+    if (want == Want::gradient) return result;
+    result.hessian = stiffness * tangent;
+    return result;
+  }
+  // Sliding: the force keeps its bound along the stretch; the Hessian has
+  // no stiffness along the slip, bound / length across it in the plane.
+  const double reach = bound / stiffness;
+  result.energy = bound * (length - 0.5 * reach);
   if (want == Want::energy) return result;
-  result.gradient = stiffness * stretch;
+  const Eigen::Vector3d slip = stretch / length;
+  result.gradient = bound * slip;
   if (want == Want::gradient) return result;
-  result.hessian = stiffness * tangent;
+  result.hessian = (bound / length) * (tangent - slip * slip.transpose());
   return result;
 }
 

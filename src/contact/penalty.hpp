@@ -11,11 +11,18 @@
 //
 // Coulomb friction uses moving anchors (Sensitive Couture §7, after Hasegawa
 // et al.): a vertex in contact is tied to an anchor a on the body surface by a
-// tangential spring
-//     E = k_t/2 |P (x - a)|^2,   P = I - m m^T,
-// with the anchor and the tangent plane's normal m frozen while Newton
-// iterates (so gradient k_t P (x - a) and Hessian k_t P are exact). Between
-// accepted steps `slide_anchor` enforces Coulomb's law on the spring force.
+// tangential spring of stiffness k_t whose force saturates at Coulomb's
+// bound F = mu f_n (f_n the normal force when the anchor was last updated,
+// lagged as in IPC's friction):
+//     u = P (x - a),  P = I - m m^T,  s = |u|,  r = F / k_t
+//     E = k_t/2 s^2                 (s <= r: sticking)
+//     E = F (s - r/2)               (s >  r: sliding, force F along u)
+// with the anchor, the tangent plane's normal m and F frozen while Newton
+// iterates (so gradient and Hessian are exact; E is convex and C^1). A
+// vertex can thus slide as far as the solve takes it, under the sliding
+// force, instead of being held by an over-stretched spring. Between solves
+// `slide_anchor` enforces Coulomb's law on the spring force (the return
+// mapping onto the cone).
 
 #include "contact/shape.hpp"
 #include "element/element.hpp"
@@ -33,10 +40,10 @@ struct PointResult {
 // The normal penalty, from the body's query at the vertex.
 PointResult penalty(double stiffness, double offset, const SurfaceQuery& query, element::Want want);
 
-// The tangential anchor spring with anchor `anchor` and tangent-plane normal
-// `normal` (unit) frozen.
+// The tangential anchor spring with anchor `anchor`, tangent-plane normal
+// `normal` (unit) and force bound `bound` (N; infinite: a plain spring) frozen.
 PointResult anchor_spring(double stiffness, const Eigen::Vector3d& x, const Eigen::Vector3d& anchor,
-                          const Eigen::Vector3d& normal, element::Want want);
+                          const Eigen::Vector3d& normal, double bound, element::Want want);
 
 // Coulomb's law on an anchor spring at an accepted state: when the spring's
 // tangential force k_t |P (x - a)| exceeds mu_s * normal_force, the anchor

@@ -67,9 +67,10 @@ contact::PointResult ClothProblem::vertex_contact(std::size_t body, int vertex,
   if (anchors_.size() == bodies.size()) {
     const FrictionAnchor& anchor = anchors_[body][std::size_t(vertex)];
     if (anchor.active) {
-      const contact::PointResult spring =
-          contact::anchor_spring(k, x, b.to_world(anchor.point, contact_clock()),
-                                 b.direction_to_world(anchor.normal, contact_clock()), want);
+      const contact::PointResult spring = contact::anchor_spring(
+          k, x, b.to_world(anchor.point, contact_clock()),
+          b.direction_to_world(anchor.normal, contact_clock()),
+          friction_bound(anchor, b.friction, contact.bounded_friction), want);
       result.energy += spring.energy;
       result.gradient += spring.gradient;
       result.hessian += spring.hessian;
@@ -201,6 +202,7 @@ PetscErrorCode ClothProblem::update_contact(Vec x) {
     anchors_.assign(bodies.size(), std::vector<FrictionAnchor>(mesh_.vertex_count()));
   }
   solved_anchors_ = anchors_;
+  solved_bounded_ = contact.bounded_friction;
   sliding_.assign(bodies.size(), 0);
   PetscCall(to_local(x));
   PetscCall(VecGetArrayRead(local_x_, &values));
@@ -219,26 +221,38 @@ PetscErrorCode ClothProblem::update_contact(Vec x) {
         anchor.active = false; // left the body: released
         continue;
       }
-      Eigen::Vector3d place = q.closest; // a new contact sticks where it touched
-      if (anchor.active) {
-        const double k = contact_stiffness(v);
-        const Eigen::Vector3d held = body.to_world(anchor.point, contact_clock());
-        const Eigen::Vector3d normal = body.direction_to_world(anchor.normal, contact_clock());
-        const contact::AnchorUpdate update = contact::slide_anchor(
-            k, p, held, normal, k * gap * slope, body.friction.static_coefficient,
-            body.friction.kinetic_coefficient);
-        if (!update.slid) continue;
-        // An anchor that slid last time sits on the cone (mu_k = mu_s): it
-        // slides again by round-off. It moves (continuously), but counts as
-        // sliding, and so asks for another contact round, only when it moved
-        // by more than sliding_margin of its spring's stretch.
-        const Eigen::Vector3d stretch = (p - held) - normal.dot(p - held) * normal;
-        if ((update.anchor - held).norm() > sliding_margin * stretch.norm()) ++sliding_[b];
-        place = body.query(update.anchor, contact_clock()).closest; // back onto the surface
+      const double k = contact_stiffness(v);
+      const double normal_force = k * gap * slope;
+      const Eigen::Vector3d normal = q.normal / slope;
+      if (!anchor.active) { // a new contact sticks where it touched
+        anchor = {true, body.to_body(q.closest, contact_clock()),
+                  body.direction_to_body(normal, contact_clock()), normal_force, false};
+        continue;
       }
-      anchor.active = true;
+      const Eigen::Vector3d held = body.to_world(anchor.point, contact_clock());
+      const Eigen::Vector3d plane = body.direction_to_world(anchor.normal, contact_clock());
+      // Coulomb's law on the force the solve applied (in its tangent plane),
+      // against the cone of the normal force now.
+      const contact::AnchorUpdate update = contact::slide_anchor(
+          k, p, held, plane, normal_force,
+          anchor.sliding ? body.friction.kinetic_coefficient : body.friction.static_coefficient,
+          body.friction.kinetic_coefficient);
+      anchor.normal_force = normal_force;
+      anchor.sliding = update.slid;
+      if (!update.slid) continue; // sticks: anchor and plane stay
+      // The return mapping, in the tangent plane at p now: the anchor goes
+      // where the spring pulls with the sliding force mu_k f_n along the slip.
+      const Eigen::Vector3d along = (p - update.anchor) - normal.dot(p - update.anchor) * normal;
+      const double reach = body.friction.kinetic_coefficient * normal_force / k;
+      Eigen::Vector3d place = update.anchor;
+      if (along.norm() > 0.0)
+        place = p - normal.dot(p - q.closest) * normal - reach * along.normalized();
+      // An anchor that slid last time sits on the cone (mu_k = mu_s): it
+      // slides again by round-off. It moves (continuously), but counts as
+      // sliding only when it moved by more than sliding_margin of its reach.
+      if ((place - held).norm() > sliding_margin * reach) ++sliding_[b];
       anchor.point = body.to_body(place, contact_clock());
-      anchor.normal = body.direction_to_body(q.normal / slope, contact_clock());
+      anchor.normal = body.direction_to_body(normal, contact_clock());
     }
   }
   PetscCall(VecRestoreArrayRead(local_x_, &values));
@@ -273,6 +287,7 @@ PetscErrorCode ClothProblem::contact_report(Vec x, std::vector<BodyContact>* rep
         const Eigen::Vector3d spring =
             contact::anchor_spring(k, p, body.to_world(anchor.point, contact_clock()),
                                    body.direction_to_world(anchor.normal, contact_clock()),
+                                   friction_bound(anchor, body.friction, solved_bounded_),
                                    element::Want::gradient)
                 .gradient;
         for (int d = 0; d < 3; ++d)

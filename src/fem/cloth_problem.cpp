@@ -821,7 +821,9 @@ void ClothProblem::restore_anchors(const std::vector<std::array<double, 8>>& row
       throw InputError("checkpoint: friction anchor of body " + std::to_string(row[0]) +
                        " at vertex " + std::to_string(row[1]) + " is not in this case");
     }
-    anchors_[body][vertex] = {true, {row[2], row[3], row[4]}, {row[5], row[6], row[7]}};
+    anchors_[body][vertex].active = true;
+    anchors_[body][vertex].point = {row[2], row[3], row[4]};
+    anchors_[body][vertex].normal = {row[5], row[6], row[7]};
   }
   solved_anchors_ = anchors_;
 }

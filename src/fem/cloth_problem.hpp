@@ -31,6 +31,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -105,6 +106,11 @@ struct ContactSettings {
   // PSD-project each vertex's contact Hessian (its curvature term
   // -k (offset - d) H_d is negative on convex bodies).
   bool project_hessian = false;
+  // Friction anchor springs bounded by Coulomb's cone (contact::anchor_spring):
+  // a vertex slides within a solve. The static minimiser's contact rounds
+  // turn it on (fem/statics.hpp); plain springs otherwise, whose anchors
+  // slide between solves only.
+  bool bounded_friction = false;
 };
 
 // What one body does to the cloth, summed over all vertices (every rank).
@@ -398,7 +404,19 @@ private:
     bool active = false;
     Eigen::Vector3d point = Eigen::Vector3d::Zero();   // on the body surface
     Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); // of the frozen tangent plane
+    // The normal force at the last update (lagged), N; infinite where it is
+    // not known (anchors restored from a checkpoint): a plain spring.
+    double normal_force = std::numeric_limits<double>::infinity();
+    bool sliding = false; // slid at the last update: bounded by mu_k, else mu_s
   };
+  // The anchor spring's force bound: Coulomb's cone at the lagged normal
+  // force; infinite (a plain spring) unless contact.bounded_friction.
+  static double friction_bound(const FrictionAnchor& anchor, const contact::Friction& friction,
+                               bool bounded) {
+    if (!bounded || std::isinf(anchor.normal_force)) return std::numeric_limits<double>::infinity();
+    return (anchor.sliding ? friction.kinetic_coefficient : friction.static_coefficient) *
+           anchor.normal_force;
+  }
   void set_up_contact();
   // The clock of body motions: like the pin histories', the load factor in
   // statics and `time` when time stepping (pins_follow_time).
@@ -420,6 +438,7 @@ private:
   // The anchors before the last update: those the last solved state is in
   // equilibrium with, for the reported friction forces.
   std::vector<std::vector<FrictionAnchor>> solved_anchors_;
+  bool solved_bounded_ = false; // contact.bounded_friction of that solve
   std::vector<long> sliding_;
   // Per body and mesh vertex, the last place it was queried at and its
   // signed distance there. The distance moves no faster than the body's

@@ -75,6 +75,7 @@ PetscErrorCode ClothProblem::gather_vertex_loads(Vec x, std::vector<ClothNodeFie
       per_vertex[offset + 1] +=
           contact::anchor_spring(k, p, body.to_world(anchor.point, contact_clock()),
                                  body.direction_to_world(anchor.normal, contact_clock()),
+                                 friction_bound(anchor, body.friction, solved_bounded_),
                                  element::Want::gradient)
               .gradient.norm();
     }

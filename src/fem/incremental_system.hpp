@@ -56,6 +56,7 @@ public:
     PetscInt newton_iterations = 0;
     PetscInt linear_iterations = 0;
     double residual_norm = 0.0;
+    double tolerance = 0.0; // the minimiser's: max(atol, rtol |F_0|)
   };
   // Solves from x in place (x holds SNES's last iterate on failure).
   PetscErrorCode solve(Vec x, Solve* result);

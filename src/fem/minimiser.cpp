@@ -166,6 +166,7 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
     current.potential_scale = magnitude(energy);
   }
   const PetscReal tolerance = std::max(atol, rtol * initial_norm);
+  result->tolerance = tolerance;
   // Every solve starts regularised at mu's floor, and leaves it for mu = 0
   // only after a full Newton step: started at 0, a Hessian singular along a free
   // panel's rigid motions would leave the step along them to round-off.

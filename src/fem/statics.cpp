@@ -15,6 +15,7 @@ void add(const IncrementalSystem::Solve& solve, LoadStepReport* step) {
   step->newton_iterations += solve.newton_iterations;
   step->linear_iterations += solve.linear_iterations;
   step->residual_norm = solve.residual_norm;
+  step->tolerance = solve.tolerance;
   step->reason = solve.reason;
 }
 
@@ -145,8 +146,9 @@ PetscErrorCode sewing_stage(IncrementalSystem& system, Vec x, StaticReport* repo
   PetscFunctionReturn(0);
 }
 
-// The deepest vertex in the offset layers and the anchors that slid, over all bodies.
-PetscErrorCode measure_contact(ClothProblem& problem, Vec x, StaticReport* report) {
+// The deepest vertex in the offset layers, the anchors that slid, over all
+// bodies, and the residual with the anchors as updated (into f).
+PetscErrorCode measure_contact(ClothProblem& problem, Vec x, Vec f, StaticReport* report) {
   std::vector<BodyContact> bodies;
   PetscFunctionBeginUser;
   PetscCall(problem.contact_report(x, &bodies));
@@ -158,7 +160,18 @@ PetscErrorCode measure_contact(ClothProblem& problem, Vec x, StaticReport* repor
     report->deepest_offset_depth = std::max(report->deepest_offset_depth, body.max_penetration);
     report->smallest_distance = std::min(report->smallest_distance, body.min_distance);
   }
+  PetscCall(problem.residual(x, f));
+  PetscCall(VecNorm(f, NORM_2, &report->anchored_residual_norm));
+  report->friction_consistent = report->anchored_residual_norm <= report->consistency_tolerance;
   PetscFunctionReturn(0);
+}
+
+// Whether a vertex ended deeper in the offset layer than the adaptive
+// penalty allows.
+bool too_deep(const ClothProblem& problem, const StaticOptions& options,
+              const StaticReport& report) {
+  const double allowed = options.max_offset_depth * problem.contact.offset;
+  return allowed > 0.0 && report.deepest_offset_depth > allowed;
 }
 
 // The adaptive penalty: stiffer contact where a vertex ended deeper than
@@ -166,8 +179,8 @@ PetscErrorCode measure_contact(ClothProblem& problem, Vec x, StaticReport* repor
 // tenfold). Whether it stiffened.
 bool stiffen_contact(ClothProblem& problem, const StaticOptions& options,
                      const StaticReport& report) {
+  if (!too_deep(problem, options, report)) return false;
   const double allowed = options.max_offset_depth * problem.contact.offset;
-  if (allowed <= 0.0 || report.deepest_offset_depth <= allowed) return false;
   problem.contact.stiffness_scale *= std::min(10.0, 2.0 * report.deepest_offset_depth / allowed);
   return true;
 }
@@ -183,34 +196,54 @@ PetscErrorCode checkpoint(IncrementalSystem& system, Vec x, const StaticOptions&
   PetscFunctionReturn(0);
 }
 
-// Solves the last stage again while the contact rounds of the header ask for it.
+// Solves the last stage again while the contact rounds of the header ask
+// for it: friction not consistent yet, or a vertex too deep.
 PetscErrorCode contact_rounds(IncrementalSystem& system, Vec x, const StaticOptions& options,
-                              Vec last, StaticReport* report) {
+                              Vec last, Vec f, StaticReport* report) {
   ClothProblem& problem = system.problem();
   PetscFunctionBeginUser;
   if (problem.bodies.empty()) PetscFunctionReturn(0);
-  PetscCall(measure_contact(problem, x, report));
+  report->consistency_tolerance = report->steps.empty() ? 0.0 : report->steps.back().tolerance;
+  PetscCall(measure_contact(problem, x, f, report));
   if (!system.minimises()) PetscFunctionReturn(0);
+  // Sliding within a solve from here on; the solved states of the stages
+  // (and their paths) are those of plain springs. After an update, every
+  // spring is within its bound, so the two agree at the state reached.
+  const bool bounded = problem.contact.bounded_friction;
+  problem.contact.bounded_friction = true;
   while (report->converged && report->contact_rounds < options.max_contact_rounds) {
+    if (report->friction_consistent && !too_deep(problem, options, *report)) break;
     const double scale = problem.contact.stiffness_scale;
-    if (!stiffen_contact(problem, options, *report) && report->sliding_vertices == 0) break;
+    stiffen_contact(problem, options, *report);
     ++report->contact_rounds;
     system.progress_label = "contact round " + std::to_string(report->contact_rounds);
-    const double solved_residual = report->steps.back().residual_norm;
+    ContactRound round;
+    round.contact_stiffness_scale = problem.contact.stiffness_scale;
+    const PetscInt before = report->newton_iterations;
     bool solved = false;
     PetscCall(solve_again(system, x, last, report, &solved));
+    round.newton_iterations = report->newton_iterations - before;
     if (!solved) {
-      // The state before the round is an equilibrium with the anchors and
-      // penalty it was solved with: it stays, with its residual; the
-      // round's failure is reported (and the anchors that slid).
+      // The state before the round stays, with the anchors and penalty it
+      // was measured with; the round's failure is reported.
       problem.contact.stiffness_scale = scale;
       report->contact_round_failed = true;
-      report->kept_residual_norm = solved_residual;
+      PetscCall(measure_contact(problem, x, f, report));
+      report->rounds.push_back(round);
       break;
     }
-    PetscCall(measure_contact(problem, x, report));
+    PetscCall(measure_contact(problem, x, f, report));
+    round.residual_norm = report->anchored_residual_norm;
+    round.sliding_vertices = report->sliding_vertices;
+    report->rounds.push_back(round);
+    PetscCall(PetscInfo(system.snes(),
+                        "contact round %d: %" PetscInt_FMT " Newton iterations; with the anchors "
+                        "updated: residual %g N (consistent at %g N), %ld anchors slid\n",
+                        report->contact_rounds, round.newton_iterations, round.residual_norm,
+                        report->consistency_tolerance, round.sliding_vertices));
     PetscCall(checkpoint(system, x, options, report));
   }
+  problem.contact.bounded_friction = bounded;
   report->contact_stiffness_scale = problem.contact.stiffness_scale;
   PetscFunctionReturn(0);
 }
@@ -273,7 +306,7 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
       // Seams pulling cloth against a body: the next stage's stiffer
       // springs need a stiffer penalty to hold it outside.
       if (system.minimises() && !problem.bodies.empty() && options.max_contact_rounds > 0) {
-        PetscCall(measure_contact(problem, x, report));
+        PetscCall(measure_contact(problem, x, f, report));
         stiffen_contact(problem, options, *report);
       }
     } else if (stage == 0) {
@@ -285,12 +318,13 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
   }
   system.loose_rtol = 0.0;
   problem.sewing_stage = 1.0;
-  PetscCall(contact_rounds(system, x, options, last, report));
+  PetscCall(contact_rounds(system, x, options, last, f, report));
   report->minimiser = system.minimiser_statistics;
   // The minimiser's last residual is that of the friction anchors it solved
-  // with; the update after it (sliding_vertices) changes them.
-  if (report->contact_round_failed) {
-    report->final_residual_norm = report->kept_residual_norm;
+  // with; with bodies, the one with the anchors updated after it is the
+  // state's.
+  if (report->minimised && !problem.bodies.empty()) {
+    report->final_residual_norm = report->anchored_residual_norm;
   } else if (report->minimised && report->converged && !report->steps.empty()) {
     report->final_residual_norm = report->steps.back().residual_norm;
   } else {

@@ -23,12 +23,19 @@
 // last to the full tolerance. The friction anchors are lagged: set for what touches a
 // body at the start of a stage, and updated (Coulomb's law) between solves.
 //
-// Contact rounds (minimiser, bodies): after the last stage, while anchors
-// slid at the update (the solved state broke Coulomb's law with them) or a
-// vertex ended deeper than `max_offset_depth` of the contact offset in the
-// offset layer (the adaptive penalty: the contact stiffness grows by the
-// ratio of depths, twice over), the last stage is solved again, at most
-// `max_contact_rounds` times.
+// Contact rounds (minimiser, bodies): friction is lagged, so a solved state
+// is an equilibrium with the anchors it was solved with; updating them
+// (Coulomb's return mapping: an anchor whose spring pulls beyond the cone of
+// the normal force now slides onto it, along the slip) may leave it out of
+// equilibrium. After the last stage, the last stage is solved again while
+// the residual with the updated anchors is above the last stage's own
+// tolerance (friction not yet consistent: IPC's lagged friction, repeated
+// until the anchors and normal forces stop changing) or a vertex ended
+// deeper than `max_offset_depth` of the contact offset in the offset layer
+// (the adaptive penalty: the contact stiffness grows by the ratio of
+// depths, twice over), at most `max_contact_rounds` times; the report says
+// whether friction ended consistent, and the residual with the anchors in
+// effect at the end is the one reported.
 //
 // Solver choices come from the options database (-snes_*, -ksp_*, -pc_*).
 // Defaults: a direct solve (MUMPS LU) of each Newton system.
@@ -59,7 +66,7 @@ struct StaticOptions {
   int sewing_stages = 1;         // with problem.sewing_tension > 0
   double stage_rtol = 1e-3;      // of the stages before the last
   int stage_max_iterations = 30; // of the stages before the last
-  int max_contact_rounds = 4;
+  int max_contact_rounds = 30;
   double max_offset_depth = 0.5; // fraction of the contact offset
   // The minimiser's progress lines (stage or round, iteration, |F|, elapsed
   // wall time), one every this many seconds; 0: none.
@@ -81,6 +88,15 @@ struct LoadStepReport {
   PetscInt linear_iterations = 0;
   PetscInt pseudo_steps = 0; // continuation steps taken before the final Newton solve
   double residual_norm = 0.0;
+  double tolerance = 0.0; // the minimiser's stopping tolerance of this solve
+};
+
+// One contact round: what the solve took and what the update after it left.
+struct ContactRound {
+  PetscInt newton_iterations = 0;
+  double residual_norm = 0.0;           // N: with the anchors updated after the solve
+  long sliding_vertices = 0;            // anchors that slid at that update
+  double contact_stiffness_scale = 1.0; // the penalty the round was solved with
 };
 
 struct StaticReport {
@@ -99,10 +115,16 @@ struct StaticReport {
   int contact_rounds = 0;               // solves after the last stage
   double contact_stiffness_scale = 1.0; // of the adaptive penalty at the end
   long sliding_vertices = 0;            // anchors that slid at the last update
-  // A contact round that did not converge: the state before it is kept
-  // (with its residual), and sliding_vertices says what it left undone.
+  // Friction consistent: the residual with the anchors updated at the end
+  // (anchored_residual_norm) is within the last stage's tolerance
+  // (consistency_tolerance); rounds: one entry per contact round.
+  bool friction_consistent = false;
+  double anchored_residual_norm = 0.0;
+  double consistency_tolerance = 0.0;
+  std::vector<ContactRound> rounds;
+  // A contact round that did not converge: the state before it is kept,
+  // and sliding_vertices says what it left undone.
   bool contact_round_failed = false;
-  double kept_residual_norm = 0.0;
   double deepest_offset_depth = 0.0; // m: largest depth of a vertex into the offset layer
   double smallest_distance = 0.0;    // m: smallest signed distance to a body (< 0: inside)
 };

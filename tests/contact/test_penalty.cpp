@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <random>
 
 namespace sartor::contact {
@@ -65,19 +67,50 @@ TEST(Penalty, ZeroOutsideTheOffsetLayer) {
 }
 
 TEST(Penalty, AnchorSpringDerivatives) {
+  const double inf = std::numeric_limits<double>::infinity();
   const Vector3d anchor(0.1, 0.2, 0.0), normal = Vector3d(0.2, -0.1, 1.0).normalized();
   const Vector3d x(0.13, 0.18, 0.004);
   const auto energy = [&](const Vector3d& y) {
-    return anchor_spring(3e3, y, anchor, normal, Want::energy).energy;
+    return anchor_spring(3e3, y, anchor, normal, inf, Want::energy).energy;
   };
   const auto gradient = [&](const Vector3d& y) {
-    return anchor_spring(3e3, y, anchor, normal, Want::gradient).gradient;
+    return anchor_spring(3e3, y, anchor, normal, inf, Want::gradient).gradient;
   };
-  const PointResult exact = anchor_spring(3e3, x, anchor, normal, Want::hessian);
+  const PointResult exact = anchor_spring(3e3, x, anchor, normal, inf, Want::hessian);
   EXPECT_LT((numeric_gradient<3>(energy, x, 1e-7) - exact.gradient).norm(),
             1e-7 * exact.gradient.norm());
   EXPECT_LT((numeric_jacobian<3, 3>(gradient, x, 1e-7) - exact.hessian).norm(), 1e-6 * 3e3);
   EXPECT_NEAR(exact.gradient.dot(normal), 0.0, 1e-10); // purely tangential
+}
+
+// Past its bound the spring pulls with the bound along the stretch (Coulomb's
+// sliding force), whatever the stretch; below it, it is the plain spring.
+TEST(Penalty, BoundedAnchorSpringSlidesAtItsBound) {
+  const Vector3d anchor(0.1, 0.2, 0.0), normal = Vector3d(0.2, -0.1, 1.0).normalized();
+  const double k = 3e3, bound = 12.0;  // reach: 4 mm
+  const Vector3d x(0.13, 0.18, 0.004); // |P (x - a)| about 36 mm: sliding
+  const auto energy = [&](const Vector3d& y) {
+    return anchor_spring(k, y, anchor, normal, bound, Want::energy).energy;
+  };
+  const auto gradient = [&](const Vector3d& y) {
+    return anchor_spring(k, y, anchor, normal, bound, Want::gradient).gradient;
+  };
+  const PointResult exact = anchor_spring(k, x, anchor, normal, bound, Want::hessian);
+  const Vector3d stretch = (x - anchor) - normal.dot(x - anchor) * normal;
+  EXPECT_NEAR(exact.gradient.norm(), bound, 1e-12 * bound);
+  EXPECT_NEAR(exact.gradient.normalized().dot(stretch.normalized()), 1.0, 1e-12);
+  // E = bound (s - r/2), s = |stretch|, r = bound / k.
+  EXPECT_NEAR(exact.energy, bound * (stretch.norm() - 0.5 * bound / k), 1e-12);
+  EXPECT_LT((numeric_gradient<3>(energy, x, 1e-7) - exact.gradient).norm(), 1e-6 * bound);
+  EXPECT_LT((numeric_jacobian<3, 3>(gradient, x, 1e-7) - exact.hessian).norm(),
+            1e-5 * bound / stretch.norm());
+  EXPECT_LT((exact.hessian * stretch).norm(), 1e-9 * bound); // no stiffness along the slip
+  // Within the reach: the plain spring.
+  const Vector3d near = anchor + 0.5 * (bound / k) * stretch.normalized();
+  const PointResult held = anchor_spring(k, near, anchor, normal, bound, Want::hessian);
+  EXPECT_NEAR(held.gradient.norm(), 0.5 * bound, 1e-9 * bound);
+  EXPECT_LT((held.hessian - k * (Eigen::Matrix3d::Identity() - normal * normal.transpose())).norm(),
+            1e-9 * k);
 }
 
 TEST(Penalty, CoulombAnchorUpdate) {
