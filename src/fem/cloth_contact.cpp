@@ -87,7 +87,7 @@ double ClothProblem::contact_energy(const PetscScalar* x) const {
               .energy;
     }
   }
-  return energy;
+  return energy + edge_contact_energy(x);
 }
 
 void ClothProblem::add_contact_forces(const PetscScalar* x, PetscScalar* f) const {
@@ -100,6 +100,7 @@ void ClothProblem::add_contact_forces(const PetscScalar* x, PetscScalar* f) cons
         f[offset + d] += g[d];
     }
   }
+  add_edge_contact_forces(x, f);
 }
 
 PetscErrorCode ClothProblem::add_contact_jacobian(const PetscScalar* x, Mat J) const {
@@ -120,6 +121,7 @@ PetscErrorCode ClothProblem::add_contact_jacobian(const PetscScalar* x, Mat J) c
       PetscCall(MatSetValuesLocal(J, 3, dofs, 3, dofs, block.data(), ADD_VALUES));
     }
   }
+  PetscCall(add_edge_contact_jacobian(x, J));
   PetscFunctionReturn(0);
 }
 
@@ -181,6 +183,7 @@ PetscErrorCode ClothProblem::contact_step_bound(Vec x, Vec direction, double* bo
       smallest = std::min(smallest, vertex_step_bound(b, p, motion));
     }
   }
+  smallest = std::min(smallest, edge_step_bound(values, motions));
   PetscCall(VecRestoreArrayRead(local_direction, &motions));
   PetscCall(VecRestoreArrayRead(local_x_, &values));
   PetscCall(DMRestoreLocalVector(dm_, &local_direction));
@@ -208,6 +211,11 @@ PetscErrorCode ClothProblem::update_contact(Vec x) {
     const contact::Body& body = bodies[b];
     // Panels slide into place while they are sewn: friction starts after.
     if (!body.friction.active() || sewing()) continue;
+    // The edge samples' normal forces are frictionless; the anchors of their
+    // vertices carry friction for them: the vertex's share counts in the
+    // normal force that bounds its spring.
+    std::vector<Eigen::Vector3d> sample_loads;
+    PetscCall(edge_sample_loads(b, values, &sample_loads));
     for (int v : contact_vertices_) {
       const Eigen::Vector3d p = position(values, vertex_dof_[std::size_t(v)]);
       const contact::SurfaceQuery q = body.query(p, contact_clock());
@@ -224,9 +232,12 @@ PetscErrorCode ClothProblem::update_contact(Vec x) {
         const double k = contact_stiffness(v);
         const Eigen::Vector3d held = body.to_world(anchor.point, contact_clock());
         const Eigen::Vector3d normal = body.direction_to_world(anchor.normal, contact_clock());
-        const contact::AnchorUpdate update = contact::slide_anchor(
-            k, p, held, normal, k * gap * slope, body.friction.static_coefficient,
-            body.friction.kinetic_coefficient);
+        const double normal_force =
+            k * gap * slope + std::max(0.0, normal.dot(sample_loads[std::size_t(v)]));
+        const contact::AnchorUpdate update =
+            contact::slide_anchor(k, p, held, normal, normal_force,
+                                  body.friction.static_coefficient,
+                                  body.friction.kinetic_coefficient);
         if (!update.slid) continue;
         // An anchor that slid last time sits on the cone (mu_k = mu_s): it
         // slides again by round-off. It moves (continuously), but counts as
@@ -253,9 +264,11 @@ PetscErrorCode ClothProblem::contact_report(Vec x, std::vector<BodyContact>* rep
   report->assign(bodies.size(), {});
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const contact::Body& body = bodies[b];
-    // Sums: forces (6), contacting, anchored, sliding; extremes: penetration, -distance.
-    double sums[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    double extremes[2] = {0.0, -std::numeric_limits<double>::max()};
+    // Sums: forces (6), contacting, anchored, sliding, contacting edge
+    // samples; extremes: penetration, -distance, edge samples' penetration.
+    double sums[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    double extremes[3] = {0.0, -std::numeric_limits<double>::max(), 0.0};
+    add_edge_contact_report(b, values, sums, &sums[9], &extremes[2]);
     for (int v : contact_vertices_) {
       const Eigen::Vector3d p = position(values, vertex_dof_[std::size_t(v)]);
       const contact::SurfaceQuery q = body.query(p, contact_clock());
@@ -281,9 +294,9 @@ PetscErrorCode ClothProblem::contact_report(Vec x, std::vector<BodyContact>* rep
       }
     }
     if (sliding_.size() == bodies.size()) sums[8] = double(sliding_[b]);
-    double total[9], extreme[2];
-    PetscCallMPI(MPIU_Allreduce(sums, total, 9, MPI_DOUBLE, MPI_SUM, comm_));
-    PetscCallMPI(MPIU_Allreduce(extremes, extreme, 2, MPI_DOUBLE, MPI_MAX, comm_));
+    double total[10], extreme[3];
+    PetscCallMPI(MPIU_Allreduce(sums, total, 10, MPI_DOUBLE, MPI_SUM, comm_));
+    PetscCallMPI(MPIU_Allreduce(extremes, extreme, 3, MPI_DOUBLE, MPI_MAX, comm_));
     BodyContact& r = (*report)[b];
     r.normal_force = {total[0], total[1], total[2]};
     r.friction_force = {total[3], total[4], total[5]};
@@ -292,6 +305,8 @@ PetscErrorCode ClothProblem::contact_report(Vec x, std::vector<BodyContact>* rep
     r.sliding_vertices = long(total[8]);
     r.max_penetration = extreme[0];
     r.min_distance = -extreme[1];
+    r.contacting_edge_samples = long(total[9]);
+    r.edge_max_penetration = extreme[2];
   }
   PetscCall(VecRestoreArrayRead(local_x_, &values));
   PetscFunctionReturn(0);

@@ -13,6 +13,7 @@
 // depend on the number of ranks.
 
 #include "contact/body.hpp"
+#include "contact/edge_penalty.hpp"
 #include "contact/penalty.hpp"
 #include "element/bending.hpp"
 #include "element/membrane.hpp"
@@ -104,6 +105,10 @@ struct ContactSettings {
   // PSD-project each vertex's contact Hessian (its curvature term
   // -k (offset - d) H_d is negative on convex bodies).
   bool project_hessian = false;
+  // m: sample points on every edge longer than this, no further apart than
+  // it, carry the penalty too (fem/cloth_edge_contact.cpp), so that edges do
+  // not cut through curved bodies between vertices; 0: vertices only.
+  double edge_sample_spacing = 0.02;
 };
 
 // What one body does to the cloth, summed over all vertices (every rank).
@@ -115,6 +120,8 @@ struct BodyContact {
   long sliding_vertices = 0;                                // whose anchor slid at the last update
   double max_penetration = 0.0; // m: largest depth into the offset layer, offset - d
   double min_distance = 0.0;    // m: smallest signed distance of a vertex (< 0: inside)
+  long contacting_edge_samples = 0;  // edge sample points inside the contact offset
+  double edge_max_penetration = 0.0; // m: their largest depth into the offset layer
 };
 
 // Unloaded lengths that follow the element's own deformation within a step:
@@ -434,6 +441,33 @@ private:
   };
   mutable std::vector<std::vector<QueriedPlace>> queried_;
   bool surely_apart(std::size_t body, int vertex, const Eigen::Vector3d& x) const;
+
+  // Edge contact (cloth_edge_contact.cpp): the sample point at parameter s
+  // of the edge from mesh vertex a to b, on the edges this rank assembles.
+  struct EdgeSample {
+    int a, b;
+    double s;
+  };
+  // Built on first use, again when the spacing setting changes.
+  const std::vector<EdgeSample>& edge_samples() const;
+  double edge_sample_stiffness(const EdgeSample& sample) const;
+  contact::EdgeSampleResult edge_sample_contact(std::size_t body, std::size_t index,
+                                                const PetscScalar* x, element::Want want) const;
+  double edge_contact_energy(const PetscScalar* x) const;
+  void add_edge_contact_forces(const PetscScalar* x, PetscScalar* f) const;
+  PetscErrorCode add_edge_contact_jacobian(const PetscScalar* x, Mat J) const;
+  // The largest t in (0, 1] no sample point bounds the step at (as vertices).
+  double edge_step_bound(const PetscScalar* x, const PetscScalar* motions) const;
+  // Collective: per mesh vertex (those local to this rank), the normal
+  // forces of `body` on the samples of its edges, shared by the lever rule.
+  PetscErrorCode edge_sample_loads(std::size_t body, const PetscScalar* x,
+                                   std::vector<Eigen::Vector3d>* per_vertex);
+  // Adds the samples' normal force, count in contact and deepest depth.
+  void add_edge_contact_report(std::size_t body, const PetscScalar* x, double normal_force[3],
+                               double* contacting, double* deepest) const;
+  mutable std::vector<EdgeSample> edge_samples_;
+  mutable double edge_samples_spacing_ = -1.0;
+  mutable std::vector<std::vector<QueriedPlace>> sample_queried_; // per body and sample
 };
 
 } // namespace sartor
