@@ -212,7 +212,9 @@ PetscErrorCode ClothProblem::update_contact(Vec x) {
     // Panels slide into place while they are sewn: friction starts after.
     if (!body.friction.active() || sewing()) continue;
     // The edge samples' normal forces are frictionless; the anchors of their
-    // vertices carry friction for them: the vertex's share counts in the
+    // vertices carry friction for them: a vertex whose edges' samples press
+    // on the body is in contact (on a convex body the samples hold it off,
+    // outside the offset layer), and its share of their force counts in the
     // normal force that bounds its spring.
     std::vector<Eigen::Vector3d> sample_loads;
     PetscCall(edge_sample_loads(b, values, &sample_loads));
@@ -223,17 +225,17 @@ PetscErrorCode ClothProblem::update_contact(Vec x) {
       const double gap = contact.offset - q.distance;
       // A smooth body's gradient is not always of unit length (shape.hpp).
       const double slope = q.normal.norm();
-      if (gap <= 0.0 || slope == 0.0) {
+      const double k = contact_stiffness(v);
+      const double own = k * std::max(0.0, gap) * slope;
+      if (slope == 0.0 || own + std::max(0.0, q.normal.dot(sample_loads[std::size_t(v)])) <= 0.0) {
         anchor.active = false; // left the body: released
         continue;
       }
       Eigen::Vector3d place = q.closest; // a new contact sticks where it touched
       if (anchor.active) {
-        const double k = contact_stiffness(v);
         const Eigen::Vector3d held = body.to_world(anchor.point, contact_clock());
         const Eigen::Vector3d normal = body.direction_to_world(anchor.normal, contact_clock());
-        const double normal_force =
-            k * gap * slope + std::max(0.0, normal.dot(sample_loads[std::size_t(v)]));
+        const double normal_force = own + std::max(0.0, normal.dot(sample_loads[std::size_t(v)]));
         const contact::AnchorUpdate update =
             contact::slide_anchor(k, p, held, normal, normal_force,
                                   body.friction.static_coefficient,

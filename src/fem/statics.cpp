@@ -145,7 +145,8 @@ PetscErrorCode sewing_stage(IncrementalSystem& system, Vec x, StaticReport* repo
   PetscFunctionReturn(0);
 }
 
-// The deepest vertex in the offset layers and the anchors that slid, over all bodies.
+// The deepest vertex or edge sample in the offset layers and the anchors that
+// slid, over all bodies.
 PetscErrorCode measure_contact(ClothProblem& problem, Vec x, StaticReport* report) {
   std::vector<BodyContact> bodies;
   PetscFunctionBeginUser;
@@ -155,7 +156,8 @@ PetscErrorCode measure_contact(ClothProblem& problem, Vec x, StaticReport* repor
   report->smallest_distance = std::numeric_limits<double>::max();
   for (const BodyContact& body : bodies) {
     report->sliding_vertices += body.sliding_vertices;
-    report->deepest_offset_depth = std::max(report->deepest_offset_depth, body.max_penetration);
+    report->deepest_offset_depth = std::max(
+        {report->deepest_offset_depth, body.max_penetration, body.edge_max_penetration});
     report->smallest_distance = std::min(report->smallest_distance, body.min_distance);
   }
   PetscFunctionReturn(0);
