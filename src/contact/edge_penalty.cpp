@@ -5,8 +5,7 @@
 namespace sartor::contact {
 
 EdgeSampleResult edge_sample_penalty(double stiffness, double offset, double s,
-                                     const SurfaceQuery& query, element::Want want,
-                                     bool project) {
+                                     const SurfaceQuery& query, element::Want want, bool project) {
   EdgeSampleResult result;
   const PointResult point = penalty(stiffness, offset, query, want);
   result.energy = point.energy;

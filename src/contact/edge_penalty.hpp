@@ -23,9 +23,9 @@ using Vector6 = Eigen::Matrix<double, 6, 1>;
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
 
 struct EdgeSampleResult {
-  double energy = 0.0;                      // J
-  Vector6 gradient = Vector6::Zero();       // N: vertex a, then vertex b
-  Matrix6 hessian = Matrix6::Zero();        // N/m
+  double energy = 0.0;                             // J
+  Vector6 gradient = Vector6::Zero();              // N: vertex a, then vertex b
+  Matrix6 hessian = Matrix6::Zero();               // N/m
   Eigen::Vector3d force = Eigen::Vector3d::Zero(); // N: on the cloth at the sample point
 };
 
@@ -37,8 +37,7 @@ inline Eigen::Vector3d edge_point(const Eigen::Vector3d& a, const Eigen::Vector3
 // The penalty of the sample at parameter s, from the body's query at the
 // sample point; `project` PSD-projects the point Hessian first.
 EdgeSampleResult edge_sample_penalty(double stiffness, double offset, double s,
-                                     const SurfaceQuery& query, element::Want want,
-                                     bool project);
+                                     const SurfaceQuery& query, element::Want want, bool project);
 
 // The parameters of the samples on an edge of rest length `length`: equally
 // spaced, so that no two neighbouring points of the edge (vertices

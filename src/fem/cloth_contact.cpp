@@ -236,10 +236,9 @@ PetscErrorCode ClothProblem::update_contact(Vec x) {
         const Eigen::Vector3d held = body.to_world(anchor.point, contact_clock());
         const Eigen::Vector3d normal = body.direction_to_world(anchor.normal, contact_clock());
         const double normal_force = own + std::max(0.0, normal.dot(sample_loads[std::size_t(v)]));
-        const contact::AnchorUpdate update =
-            contact::slide_anchor(k, p, held, normal, normal_force,
-                                  body.friction.static_coefficient,
-                                  body.friction.kinetic_coefficient);
+        const contact::AnchorUpdate update = contact::slide_anchor(
+            k, p, held, normal, normal_force, body.friction.static_coefficient,
+            body.friction.kinetic_coefficient);
         if (!update.slid) continue;
         // An anchor that slid last time sits on the cone (mu_k = mu_s): it
         // slides again by round-off. It moves (continuously), but counts as

@@ -51,7 +51,8 @@ const std::vector<ClothProblem::EdgeSample>& ClothProblem::edge_samples() const 
     const auto corner = [&](int v) {
       return std::size_t(std::find(corners.begin(), corners.end(), v) - corners.begin());
     };
-    const double length = (mesh_.material_uv[t][corner(b)] - mesh_.material_uv[t][corner(a)]).norm();
+    const double length =
+        (mesh_.material_uv[t][corner(b)] - mesh_.material_uv[t][corner(a)]).norm();
     for (double s : contact::edge_sample_parameters(length, contact.edge_sample_spacing))
       edge_samples_.push_back({a, b, s});
   }

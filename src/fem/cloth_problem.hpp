@@ -118,8 +118,8 @@ struct BodyContact {
   long contacting_vertices = 0;                             // inside the contact offset
   long anchored_vertices = 0;                               // holding an anchor in the solved state
   long sliding_vertices = 0;                                // whose anchor slid at the last update
-  double max_penetration = 0.0; // m: largest depth into the offset layer, offset - d
-  double min_distance = 0.0;    // m: smallest signed distance of a vertex (< 0: inside)
+  double max_penetration = 0.0;      // m: largest depth into the offset layer, offset - d
+  double min_distance = 0.0;         // m: smallest signed distance of a vertex (< 0: inside)
   long contacting_edge_samples = 0;  // edge sample points inside the contact offset
   double edge_max_penetration = 0.0; // m: their largest depth into the offset layer
 };

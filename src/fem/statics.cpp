@@ -156,8 +156,8 @@ PetscErrorCode measure_contact(ClothProblem& problem, Vec x, StaticReport* repor
   report->smallest_distance = std::numeric_limits<double>::max();
   for (const BodyContact& body : bodies) {
     report->sliding_vertices += body.sliding_vertices;
-    report->deepest_offset_depth = std::max(
-        {report->deepest_offset_depth, body.max_penetration, body.edge_max_penetration});
+    report->deepest_offset_depth =
+        std::max({report->deepest_offset_depth, body.max_penetration, body.edge_max_penetration});
     report->smallest_distance = std::min(report->smallest_distance, body.min_distance);
   }
   PetscFunctionReturn(0);

@@ -93,8 +93,9 @@ struct StaticReport {
   // (with its residual), and sliding_vertices says what it left undone.
   bool contact_round_failed = false;
   double kept_residual_norm = 0.0;
-  double deepest_offset_depth = 0.0; // m: largest depth of a vertex or edge sample into the offset layer
-  double smallest_distance = 0.0;    // m: smallest signed distance to a body (< 0: inside)
+  double deepest_offset_depth =
+      0.0; // m: largest depth of a vertex or edge sample into the offset layer
+  double smallest_distance = 0.0; // m: smallest signed distance to a body (< 0: inside)
 };
 
 // Solves in place (the seam springs of a sewing stage do not change the

@@ -247,8 +247,8 @@ TEST(ContactProblem, CoulombFrictionSticksBelowAndSlidesAboveTheAngle) {
 // The static minimiser's step bound (ClothProblem::contact_step_bound): a
 // sheet above a ball, moved by steps of up to a metre straight down, across
 // the ball's top and away from it; along every bounded step, sampled
-// densely, each vertex and each edge's contact sample stays outside the ball (distance |p| - r, computed
-// here), and a step away from the ball is not cut.
+// densely, each vertex and each edge's contact sample stays outside the ball (distance |p| - r,
+// computed here), and a step away from the ball is not cut.
 TEST(ContactProblem, StepBoundKeepsEveryVertexOutsideABall) {
   const double offset = 2e-3, radius = 0.15;
   const TriangleMesh mesh = placed(mesh::rectangle(0.2, 0.2, 4, 4), Eigen::Matrix3d::Identity(),
@@ -287,7 +287,8 @@ TEST(ContactProblem, StepBoundKeepsEveryVertexOutsideABall) {
         for (std::size_t c = 0; c < 3; ++c) {
           const auto a = std::size_t(tri[c]), b = std::size_t(tri[(c + 1) % 3]);
           const double length = (mesh.positions[a] - mesh.positions[b]).norm();
-          for (double s : contact::edge_sample_parameters(length, problem.contact.edge_sample_spacing))
+          for (double s :
+               contact::edge_sample_parameters(length, problem.contact.edge_sample_spacing))
             ASSERT_GT(((1 - s) * at[a] + s * at[b]).norm() - radius, 0.0)
                 << "edge " << a << "-" << b << " sample " << s << " inside at t = " << t;
         }
@@ -356,10 +357,9 @@ CylinderDrape drape_over_cylinder(double edge_sample_spacing) {
   ClothProblem problem(PETSC_COMM_WORLD, mesh, fabric(1e-5), {});
   problem.contact.offset = offset;
   problem.contact.edge_sample_spacing = edge_sample_spacing;
-  contact::Body roller("roller",
-                       std::make_shared<contact::Capsule>(Vector3d(0, -1, 0), Vector3d(0, 1, 0),
-                                                          radius),
-                       Vector3d::Zero());
+  contact::Body roller(
+      "roller", std::make_shared<contact::Capsule>(Vector3d(0, -1, 0), Vector3d(0, 1, 0), radius),
+      Vector3d::Zero());
   roller.friction = {0.4, 0.4};
   problem.bodies = {roller};
   problem.loads.gravity = Vector3d(0, 0, -gravity);
@@ -368,10 +368,10 @@ CylinderDrape drape_over_cylinder(double edge_sample_spacing) {
   drape.deepest = std::numeric_limits<double>::infinity();
   for (const auto& t : mesh.triangles) {
     for (std::size_t c = 0; c < 3; ++c) {
-      drape.deepest = std::min(drape.deepest,
-                               deepest_chord_point(drape.out.positions[std::size_t(t[c])],
-                                                   drape.out.positions[std::size_t(t[(c + 1) % 3])],
-                                                   radius));
+      drape.deepest =
+          std::min(drape.deepest,
+                   deepest_chord_point(drape.out.positions[std::size_t(t[c])],
+                                       drape.out.positions[std::size_t(t[(c + 1) % 3])], radius));
     }
   }
   return drape;
