@@ -108,7 +108,7 @@ struct ContactSettings {
   // m: sample points on every edge longer than this, no further apart than
   // it, carry the penalty too (fem/cloth_edge_contact.cpp), so that edges do
   // not cut through curved bodies between vertices; 0: vertices only.
-  double edge_sample_spacing = 0.02;
+  double edge_sample_spacing = 0.015;
 };
 
 // What one body does to the cloth, summed over all vertices (every rank).
