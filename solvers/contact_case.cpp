@@ -49,6 +49,7 @@ void set_up_contact(const Options& options, ClothProblem& problem) {
     problem.contact.stiffness = options.positive_real("contact-stiffness");
   }
   problem.contact.stiffness_factor = options.positive_real("contact-stiffness-factor");
+  problem.contact.edge_sample_spacing = options.nonnegative_real("contact-edge-spacing");
   if (options.is_set("drape-support-radius")) options.positive_real("drape-support-radius");
 }
 
@@ -175,13 +176,16 @@ nlohmann::json contact_summary(const CaseContact& contact) {
                       {"anchored_vertices", r.anchored_vertices},
                       {"sliding_vertices", r.sliding_vertices},
                       {"max_penetration_m", r.max_penetration},
-                      {"min_distance_m", r.min_distance}});
+                      {"min_distance_m", r.min_distance},
+                      {"contacting_edge_samples", r.contacting_edge_samples},
+                      {"edge_max_penetration_m", r.edge_max_penetration}});
   }
   nlohmann::json summary = {{"offset_m", contact.settings.offset},
                             {"stiffness_N_per_m", contact.settings.stiffness > 0.0
                                                       ? nlohmann::json(contact.settings.stiffness)
                                                       : nlohmann::json("automatic")},
                             {"stiffness_factor", contact.settings.stiffness_factor},
+                            {"edge_sample_spacing_m", contact.settings.edge_sample_spacing},
                             {"max_penetration_m", penetration},
                             {"contacting_vertices", contacting},
                             {"bodies", bodies}};

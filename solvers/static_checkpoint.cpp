@@ -19,6 +19,11 @@ std::string state_text(const StaticReport& r) {
     steps.push_back({s.load_factor, s.converged, s.reason, s.newton_iterations, s.linear_iterations,
                      s.pseudo_steps, s.residual_norm});
   }
+  nlohmann::json rounds = nlohmann::json::array();
+  for (const ContactRound& c : r.rounds) {
+    rounds.push_back(
+        {c.newton_iterations, c.residual_norm, c.sliding_vertices, c.contact_stiffness_scale});
+  }
   const auto& m = r.minimiser;
   return nlohmann::json{{"kind", static_kind},
                         {"report",
@@ -38,7 +43,10 @@ std::string state_text(const StaticReport& r) {
                           {"contact_stiffness_scale", r.contact_stiffness_scale},
                           {"sliding_vertices", r.sliding_vertices},
                           {"contact_round_failed", r.contact_round_failed},
-                          {"kept_residual_norm", r.kept_residual_norm}}}}
+                          {"friction_consistent", r.friction_consistent},
+                          {"anchored_residual_norm", r.anchored_residual_norm},
+                          {"consistency_tolerance", r.consistency_tolerance},
+                          {"rounds", rounds}}}}
       .dump();
 }
 
@@ -67,7 +75,13 @@ StaticReport report_from(const std::string& text) {
   r.contact_stiffness_scale = j.at("contact_stiffness_scale").get<double>();
   r.sliding_vertices = j.at("sliding_vertices").get<long>();
   r.contact_round_failed = j.at("contact_round_failed").get<bool>();
-  r.kept_residual_norm = j.at("kept_residual_norm").get<double>();
+  r.friction_consistent = j.at("friction_consistent").get<bool>();
+  r.anchored_residual_norm = j.at("anchored_residual_norm").get<double>();
+  r.consistency_tolerance = j.at("consistency_tolerance").get<double>();
+  for (const nlohmann::json& c : j.at("rounds")) {
+    r.rounds.push_back({c.at(0).get<PetscInt>(), c.at(1).get<double>(), c.at(2).get<long>(),
+                        c.at(3).get<double>()});
+  }
   if (r.sewing_stages < 1 || r.contact_rounds < 0 || !(r.contact_stiffness_scale > 0.0)) {
     throw std::invalid_argument("its stage, round or penalty counts are not valid");
   }

@@ -17,7 +17,7 @@ namespace sartor {
 
 namespace {
 
-constexpr const char* format_tag = "sartor-checkpoint 2";
+constexpr const char* format_tag = "sartor-checkpoint 3";
 
 // FNV-1a over bytes: each byte is xor-ed into the state, which is then
 // multiplied by an odd number (a bijection modulo 2^64), so a change of any
@@ -191,7 +191,7 @@ std::vector<double> creep_rows(const std::vector<ElementCreep>& creep) {
   return values;
 }
 
-std::vector<double> anchor_rows(const std::vector<std::array<double, 8>>& anchors) {
+std::vector<double> anchor_rows(const std::vector<AnchorRow>& anchors) {
   std::vector<double> values;
   for (const auto& row : anchors)
     values.insert(values.end(), row.begin(), row.end());
@@ -234,7 +234,7 @@ void write_checkpoint(const std::string& path, const RunCheckpoint& checkpoint) 
       write_rows(f, "/velocities", flatten(checkpoint.velocities), 3, path);
     }
     write_rows(f, "/creep", creep_rows(checkpoint.creep), 6, path);
-    write_rows(f, "/anchors", anchor_rows(checkpoint.anchors), 8, path);
+    write_rows(f, "/anchors", anchor_rows(checkpoint.anchors), 10, path);
     const unsigned long long sum = checksum(checkpoint);
     write_set(f, "/checksum", H5T_NATIVE_ULLONG, &sum, {1}, path);
     write_set(f, "/history", H5T_NATIVE_CHAR, checkpoint.history.data(),
@@ -297,10 +297,10 @@ RunCheckpoint read_checkpoint(const std::string& path) {
     c.tension_weft = creep[i + 5];
     checkpoint.creep.push_back(c);
   }
-  const auto anchors = read_rows(f, "/anchors", 8, path);
-  for (std::size_t i = 0; i + 8 <= anchors.size(); i += 8) {
-    std::array<double, 8> row;
-    std::copy_n(anchors.begin() + long(i), 8, row.begin());
+  const auto anchors = read_rows(f, "/anchors", 10, path);
+  for (std::size_t i = 0; i + 10 <= anchors.size(); i += 10) {
+    AnchorRow row;
+    std::copy_n(anchors.begin() + long(i), 10, row.begin());
     checkpoint.anchors.push_back(row);
   }
   checkpoint.history = read_text(f, "/history", path, true);

@@ -12,12 +12,13 @@
 // Layout (all in SI units): /time, /next_step, /load_factor (scalars),
 // /step (int64), /positions (n x 3), /velocities (n x 3, optional),
 // /creep (t x 6: eps_v warp, eps_p warp, eps_v weft, eps_p weft, tension
-// warp, tension weft), /anchors (k x 8: body, vertex, point, normal),
+// warp, tension weft), /anchors (k x 10: body, vertex, point, normal, the lagged normal force
+// (N; inf where not known) and whether the anchor slid at its last update),
 // /history (the history CSV text), /state (optional: JSON text of the
 // controller of a dynamic run or a static drape, fem/run_state.hpp),
 // /checksum (uint64: FNV-1a over all of the above, verified on reading: a
 // corrupted file is refused), and the attribute /format = "sartor-checkpoint
-// 2". A file without /state sums as one with an empty /state, so checkpoints
+// 3". A file without /state sums as one with an empty /state, so checkpoints
 // written before /state existed still resume.
 
 #include "fem/creep_coupling.hpp"
@@ -30,6 +31,9 @@
 
 namespace sartor {
 
+// One friction anchor: body, vertex, point (3), normal (3), normal force, slid.
+using AnchorRow = std::array<double, 10>;
+
 struct RunCheckpoint {
   double time = 0.0;      // s
   double next_step = 0.0; // s
@@ -38,7 +42,7 @@ struct RunCheckpoint {
   std::vector<Eigen::Vector3d> positions;  // m, mesh numbering
   std::vector<Eigen::Vector3d> velocities; // m/s; empty for quasi-static runs
   std::vector<ElementCreep> creep;         // per mesh triangle
-  std::vector<std::array<double, 8>> anchors;
+  std::vector<AnchorRow> anchors;
   std::string history; // the run's history file (CSV) up to this state
   std::string state;   // JSON: the step controller and reports so far; "" for creep runs
 };

@@ -88,7 +88,7 @@ double ClothProblem::contact_energy(const PetscScalar* x) const {
               .energy;
     }
   }
-  return energy;
+  return energy + edge_contact_energy(x);
 }
 
 void ClothProblem::add_contact_forces(const PetscScalar* x, PetscScalar* f) const {
@@ -101,6 +101,7 @@ void ClothProblem::add_contact_forces(const PetscScalar* x, PetscScalar* f) cons
         f[offset + d] += g[d];
     }
   }
+  add_edge_contact_forces(x, f);
 }
 
 PetscErrorCode ClothProblem::add_contact_jacobian(const PetscScalar* x, Mat J) const {
@@ -121,6 +122,7 @@ PetscErrorCode ClothProblem::add_contact_jacobian(const PetscScalar* x, Mat J) c
       PetscCall(MatSetValuesLocal(J, 3, dofs, 3, dofs, block.data(), ADD_VALUES));
     }
   }
+  PetscCall(add_edge_contact_jacobian(x, J));
   PetscFunctionReturn(0);
 }
 
@@ -182,6 +184,7 @@ PetscErrorCode ClothProblem::contact_step_bound(Vec x, Vec direction, double* bo
       smallest = std::min(smallest, vertex_step_bound(b, p, motion));
     }
   }
+  smallest = std::min(smallest, edge_step_bound(values, motions));
   PetscCall(VecRestoreArrayRead(local_direction, &motions));
   PetscCall(VecRestoreArrayRead(local_x_, &values));
   PetscCall(DMRestoreLocalVector(dm_, &local_direction));
@@ -210,6 +213,13 @@ PetscErrorCode ClothProblem::update_contact(Vec x) {
     const contact::Body& body = bodies[b];
     // Panels slide into place while they are sewn: friction starts after.
     if (!body.friction.active() || sewing()) continue;
+    // The edge samples' normal forces are frictionless; the anchors of their
+    // vertices carry friction for them: a vertex whose edges' samples press
+    // on the body is in contact (on a convex body the samples hold it off,
+    // outside the offset layer), and its share of their force counts in the
+    // normal force that bounds its spring.
+    std::vector<Eigen::Vector3d> sample_loads;
+    PetscCall(edge_sample_loads(b, values, &sample_loads));
     for (int v : contact_vertices_) {
       const Eigen::Vector3d p = position(values, vertex_dof_[std::size_t(v)]);
       const contact::SurfaceQuery q = body.query(p, contact_clock());
@@ -217,13 +227,14 @@ PetscErrorCode ClothProblem::update_contact(Vec x) {
       const double gap = contact.offset - q.distance;
       // A smooth body's gradient is not always of unit length (shape.hpp).
       const double slope = q.normal.norm();
-      if (gap <= 0.0 || slope == 0.0) {
+      const double k = contact_stiffness(v);
+      const Eigen::Vector3d normal = slope > 0.0 ? Eigen::Vector3d(q.normal / slope) : q.normal;
+      const double normal_force =
+          k * std::max(0.0, gap) * slope + std::max(0.0, normal.dot(sample_loads[std::size_t(v)]));
+      if (slope == 0.0 || normal_force <= 0.0) {
         anchor.active = false; // left the body: released
         continue;
       }
-      const double k = contact_stiffness(v);
-      const double normal_force = k * gap * slope;
-      const Eigen::Vector3d normal = q.normal / slope;
       if (!anchor.active) { // a new contact sticks where it touched
         anchor = {true, body.to_body(q.closest, contact_clock()),
                   body.direction_to_body(normal, contact_clock()), normal_force, false};
@@ -267,9 +278,11 @@ PetscErrorCode ClothProblem::contact_report(Vec x, std::vector<BodyContact>* rep
   report->assign(bodies.size(), {});
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const contact::Body& body = bodies[b];
-    // Sums: forces (6), contacting, anchored, sliding; extremes: penetration, -distance.
-    double sums[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    double extremes[2] = {0.0, -std::numeric_limits<double>::max()};
+    // Sums: forces (6), contacting, anchored, sliding, contacting edge
+    // samples; extremes: penetration, -distance, edge samples' penetration.
+    double sums[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    double extremes[3] = {0.0, -std::numeric_limits<double>::max(), 0.0};
+    add_edge_contact_report(b, values, sums, &sums[9], &extremes[2]);
     for (int v : contact_vertices_) {
       const Eigen::Vector3d p = position(values, vertex_dof_[std::size_t(v)]);
       const contact::SurfaceQuery q = body.query(p, contact_clock());
@@ -296,9 +309,9 @@ PetscErrorCode ClothProblem::contact_report(Vec x, std::vector<BodyContact>* rep
       }
     }
     if (sliding_.size() == bodies.size()) sums[8] = double(sliding_[b]);
-    double total[9], extreme[2];
-    PetscCallMPI(MPIU_Allreduce(sums, total, 9, MPI_DOUBLE, MPI_SUM, comm_));
-    PetscCallMPI(MPIU_Allreduce(extremes, extreme, 2, MPI_DOUBLE, MPI_MAX, comm_));
+    double total[10], extreme[3];
+    PetscCallMPI(MPIU_Allreduce(sums, total, 10, MPI_DOUBLE, MPI_SUM, comm_));
+    PetscCallMPI(MPIU_Allreduce(extremes, extreme, 3, MPI_DOUBLE, MPI_MAX, comm_));
     BodyContact& r = (*report)[b];
     r.normal_force = {total[0], total[1], total[2]};
     r.friction_force = {total[3], total[4], total[5]};
@@ -307,6 +320,8 @@ PetscErrorCode ClothProblem::contact_report(Vec x, std::vector<BodyContact>* rep
     r.sliding_vertices = long(total[8]);
     r.max_penetration = extreme[0];
     r.min_distance = -extreme[1];
+    r.contacting_edge_samples = long(total[9]);
+    r.edge_max_penetration = extreme[2];
   }
   PetscCall(VecRestoreArrayRead(local_x_, &values));
   PetscFunctionReturn(0);

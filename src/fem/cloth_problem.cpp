@@ -780,7 +780,7 @@ PetscErrorCode ClothProblem::visit_owned_triangles(Vec x, const TriangleVisitor&
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ClothProblem::gather_anchors(std::vector<std::array<double, 8>>* rows) {
+PetscErrorCode ClothProblem::gather_anchors(std::vector<AnchorRow>* rows) {
   PetscFunctionBeginUser;
   std::vector<double> local;
   for (std::size_t body = 0; body < anchors_.size(); ++body) {
@@ -789,7 +789,8 @@ PetscErrorCode ClothProblem::gather_anchors(std::vector<std::array<double, 8>>* 
       if (!anchor.active || !vertex_owned_[vertex]) continue;
       local.insert(local.end(),
                    {double(body), double(vertex), anchor.point.x(), anchor.point.y(),
-                    anchor.point.z(), anchor.normal.x(), anchor.normal.y(), anchor.normal.z()});
+                    anchor.point.z(), anchor.normal.x(), anchor.normal.y(), anchor.normal.z(),
+                    anchor.normal_force, anchor.sliding ? 1.0 : 0.0});
     }
   }
   PetscMPIInt ranks = 1, rank = 0;
@@ -804,15 +805,15 @@ PetscErrorCode ClothProblem::gather_anchors(std::vector<std::array<double, 8>>* 
   PetscCallMPI(MPI_Gatherv(local.data(), count, MPI_DOUBLE, all.data(), counts.data(),
                            offsets.data(), MPI_DOUBLE, 0, comm_));
   rows->clear();
-  for (std::size_t i = 0; i + 8 <= all.size(); i += 8) {
-    std::array<double, 8> row;
-    std::copy(all.begin() + long(i), all.begin() + long(i + 8), row.begin());
+  for (std::size_t i = 0; i + 10 <= all.size(); i += 10) {
+    AnchorRow row;
+    std::copy(all.begin() + long(i), all.begin() + long(i + 10), row.begin());
     rows->push_back(row);
   }
   PetscFunctionReturn(0);
 }
 
-void ClothProblem::restore_anchors(const std::vector<std::array<double, 8>>& rows) {
+void ClothProblem::restore_anchors(const std::vector<AnchorRow>& rows) {
   anchors_.assign(bodies.size(), std::vector<FrictionAnchor>(mesh_.vertex_count()));
   for (const auto& row : rows) {
     const auto body = std::size_t(row[0]);
@@ -824,6 +825,8 @@ void ClothProblem::restore_anchors(const std::vector<std::array<double, 8>>& row
     anchors_[body][vertex].active = true;
     anchors_[body][vertex].point = {row[2], row[3], row[4]};
     anchors_[body][vertex].normal = {row[5], row[6], row[7]};
+    anchors_[body][vertex].normal_force = row[8];
+    anchors_[body][vertex].sliding = row[9] != 0.0;
   }
   solved_anchors_ = anchors_;
 }

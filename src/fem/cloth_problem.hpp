@@ -13,10 +13,12 @@
 // depend on the number of ranks.
 
 #include "contact/body.hpp"
+#include "contact/edge_penalty.hpp"
 #include "contact/penalty.hpp"
 #include "element/bending.hpp"
 #include "element/membrane.hpp"
 #include "element/patch_bending.hpp"
+#include "fem/checkpoint.hpp"
 #include "fem/cloth_output.hpp"
 #include "fem/pin_motion.hpp"
 #include "fem/seam_coupling.hpp"
@@ -111,6 +113,10 @@ struct ContactSettings {
   // turn it on (fem/statics.hpp); plain springs otherwise, whose anchors
   // slide between solves only.
   bool bounded_friction = false;
+  // m: sample points on every edge longer than this, no further apart than
+  // it, carry the penalty too (fem/cloth_edge_contact.cpp), so that edges do
+  // not cut through curved bodies between vertices; 0: vertices only.
+  double edge_sample_spacing = 0.015;
 };
 
 // What one body does to the cloth, summed over all vertices (every rank).
@@ -120,8 +126,10 @@ struct BodyContact {
   long contacting_vertices = 0;                             // inside the contact offset
   long anchored_vertices = 0;                               // holding an anchor in the solved state
   long sliding_vertices = 0;                                // whose anchor slid at the last update
-  double max_penetration = 0.0; // m: largest depth into the offset layer, offset - d
-  double min_distance = 0.0;    // m: smallest signed distance of a vertex (< 0: inside)
+  double max_penetration = 0.0;      // m: largest depth into the offset layer, offset - d
+  double min_distance = 0.0;         // m: smallest signed distance of a vertex (< 0: inside)
+  long contacting_edge_samples = 0;  // edge sample points inside the contact offset
+  double edge_max_penetration = 0.0; // m: their largest depth into the offset layer
 };
 
 // Unloaded lengths that follow the element's own deformation within a step:
@@ -307,8 +315,8 @@ public:
   // The friction anchors as (body, vertex, point xyz, normal xyz) rows, all
   // ranks' on rank 0, for checkpoints; restore_anchors takes the same rows on
   // every rank.
-  PetscErrorCode gather_anchors(std::vector<std::array<double, 8>>* rows);
-  void restore_anchors(const std::vector<std::array<double, 8>>& rows);
+  PetscErrorCode gather_anchors(std::vector<AnchorRow>* rows);
+  void restore_anchors(const std::vector<AnchorRow>& rows);
   // Sum over all vertices of the force the pins exert on the cloth, N.
   PetscErrorCode pin_reaction(Vec x, Eigen::Vector3d* reaction);
 
@@ -454,6 +462,33 @@ private:
   };
   mutable std::vector<std::vector<QueriedPlace>> queried_;
   bool surely_apart(std::size_t body, int vertex, const Eigen::Vector3d& x) const;
+
+  // Edge contact (cloth_edge_contact.cpp): the sample point at parameter s
+  // of the edge from mesh vertex a to b, on the edges this rank assembles.
+  struct EdgeSample {
+    int a, b;
+    double s;
+  };
+  // Built on first use, again when the spacing setting changes.
+  const std::vector<EdgeSample>& edge_samples() const;
+  double edge_sample_stiffness(const EdgeSample& sample) const;
+  contact::EdgeSampleResult edge_sample_contact(std::size_t body, std::size_t index,
+                                                const PetscScalar* x, element::Want want) const;
+  double edge_contact_energy(const PetscScalar* x) const;
+  void add_edge_contact_forces(const PetscScalar* x, PetscScalar* f) const;
+  PetscErrorCode add_edge_contact_jacobian(const PetscScalar* x, Mat J) const;
+  // The largest t in (0, 1] no sample point bounds the step at (as vertices).
+  double edge_step_bound(const PetscScalar* x, const PetscScalar* motions) const;
+  // Collective: per mesh vertex (those local to this rank), the normal
+  // forces of `body` on the samples of its edges, shared by the lever rule.
+  PetscErrorCode edge_sample_loads(std::size_t body, const PetscScalar* x,
+                                   std::vector<Eigen::Vector3d>* per_vertex);
+  // Adds the samples' normal force, count in contact and deepest depth.
+  void add_edge_contact_report(std::size_t body, const PetscScalar* x, double normal_force[3],
+                               double* contacting, double* deepest) const;
+  mutable std::vector<EdgeSample> edge_samples_;
+  mutable double edge_samples_spacing_ = -1.0;
+  mutable std::vector<std::vector<QueriedPlace>> sample_queried_; // per body and sample
 };
 
 } // namespace sartor

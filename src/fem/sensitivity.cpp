@@ -29,13 +29,15 @@ double mean_edge_length(const TriangleMesh& mesh) {
   return mesh.material_uv.empty() ? 0.0 : total / (3.0 * double(mesh.material_uv.size()));
 }
 
-PetscErrorCode broadcast_anchors(MPI_Comm comm, std::vector<std::array<double, 8>>* rows) {
+PetscErrorCode broadcast_anchors(MPI_Comm comm, std::vector<AnchorRow>* rows) {
   PetscFunctionBeginUser;
   auto count = static_cast<unsigned long>(rows->size());
   PetscCallMPI(MPI_Bcast(&count, 1, MPI_UNSIGNED_LONG, 0, comm));
   rows->resize(count);
   if (count > 0)
-    PetscCallMPI(MPI_Bcast(rows->data()->data(), PetscMPIInt(8 * count), MPI_DOUBLE, 0, comm));
+    PetscCallMPI(MPI_Bcast(rows->data()->data(),
+                           PetscMPIInt(std::tuple_size<AnchorRow>::value * count), MPI_DOUBLE, 0,
+                           comm));
   PetscFunctionReturn(0);
 }
 
@@ -82,7 +84,7 @@ PetscErrorCode copy_problem_state(ClothProblem& from, ClothProblem& to) {
   to.sewing_tension = from.sewing_tension;
   to.sewing_end_time = from.sewing_end_time;
   to.sewing_stage = from.sewing_stage;
-  std::vector<std::array<double, 8>> anchors;
+  std::vector<AnchorRow> anchors;
   PetscCall(from.gather_anchors(&anchors));
   PetscCall(broadcast_anchors(from.comm(), &anchors));
   to.restore_anchors(anchors);

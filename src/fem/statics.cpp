@@ -146,8 +146,8 @@ PetscErrorCode sewing_stage(IncrementalSystem& system, Vec x, StaticReport* repo
   PetscFunctionReturn(0);
 }
 
-// The deepest vertex in the offset layers, the anchors that slid, over all
-// bodies, and the residual with the anchors as updated (into f).
+// The deepest vertex or edge sample in the offset layers, the anchors that
+// slid, over all bodies, and the residual with the anchors as updated (into f).
 PetscErrorCode measure_contact(ClothProblem& problem, Vec x, Vec f, StaticReport* report) {
   std::vector<BodyContact> bodies;
   PetscFunctionBeginUser;
@@ -157,7 +157,8 @@ PetscErrorCode measure_contact(ClothProblem& problem, Vec x, Vec f, StaticReport
   report->smallest_distance = std::numeric_limits<double>::max();
   for (const BodyContact& body : bodies) {
     report->sliding_vertices += body.sliding_vertices;
-    report->deepest_offset_depth = std::max(report->deepest_offset_depth, body.max_penetration);
+    report->deepest_offset_depth =
+        std::max({report->deepest_offset_depth, body.max_penetration, body.edge_max_penetration});
     report->smallest_distance = std::min(report->smallest_distance, body.min_distance);
   }
   PetscCall(problem.residual(x, f));

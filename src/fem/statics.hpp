@@ -125,8 +125,9 @@ struct StaticReport {
   // A contact round that did not converge: the state before it is kept,
   // and sliding_vertices says what it left undone.
   bool contact_round_failed = false;
-  double deepest_offset_depth = 0.0; // m: largest depth of a vertex into the offset layer
-  double smallest_distance = 0.0;    // m: smallest signed distance to a body (< 0: inside)
+  // m: largest depth of a vertex or edge sample into the offset layer
+  double deepest_offset_depth = 0.0;
+  double smallest_distance = 0.0; // m: smallest signed distance to a body (< 0: inside)
 };
 
 // Solves in place (the seam springs of a sewing stage do not change the

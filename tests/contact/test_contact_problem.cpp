@@ -14,7 +14,9 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 
 namespace sartor {
@@ -107,6 +109,14 @@ TEST(ContactProblem, JacobianMatchesResidualDifferences) {
   std::vector<BodyContact> report;
   ASSERT_EQ(problem.contact_report(x, &report), 0);
   EXPECT_GT(report[0].contacting_vertices, 0);
+  // 3 mm lower, the samples of the edges round the centre (on the ball)
+  // are in the offset layer too: their terms are checked as well.
+  VecShift(x, -3e-3);
+  ASSERT_EQ(problem.contact_report(x, &report), 0);
+  EXPECT_GT(report[0].contacting_edge_samples, 0);
+  const double deeper = testing::directional_jacobian_error(problem, x, v, 1e-7, NORM_INFINITY);
+  EXPECT_GE(deeper, 0.0) << "assembly failed";
+  EXPECT_LT(deeper, 1e-6);
   VecDestroy(&x);
   VecDestroy(&v);
   PetscRandomDestroy(&random);
@@ -241,8 +251,8 @@ TEST(ContactProblem, CoulombFrictionSticksBelowAndSlidesAboveTheAngle) {
 // The static minimiser's step bound (ClothProblem::contact_step_bound): a
 // sheet above a ball, moved by steps of up to a metre straight down, across
 // the ball's top and away from it; along every bounded step, sampled
-// densely, each vertex stays outside the ball (distance |p| - r, computed
-// here), and a step away from the ball is not cut.
+// densely, each vertex and each edge's contact sample stays outside the ball (distance |p| - r,
+// computed here), and a step away from the ball is not cut.
 TEST(ContactProblem, StepBoundKeepsEveryVertexOutsideABall) {
   const double offset = 2e-3, radius = 0.15;
   const TriangleMesh mesh = placed(mesh::rectangle(0.2, 0.2, 4, 4), Eigen::Matrix3d::Identity(),
@@ -271,9 +281,21 @@ TEST(ContactProblem, StepBoundKeepsEveryVertexOutsideABall) {
     }
     for (int k = 0; k <= 1000; ++k) {
       const double t = bound * k / 1000.0;
+      std::vector<Vector3d> at(moved.size());
       for (std::size_t v = 0; v < moved.size(); ++v) {
-        const Vector3d p = mesh.positions[v] + t * (moved[v] - mesh.positions[v]);
-        ASSERT_GT(p.norm() - radius, 0.0) << "vertex " << v << " inside at t = " << t;
+        at[v] = mesh.positions[v] + t * (moved[v] - mesh.positions[v]);
+        ASSERT_GT(at[v].norm() - radius, 0.0) << "vertex " << v << " inside at t = " << t;
+      }
+      // The edges' contact samples too (the sheet starts at its rest shape).
+      for (const auto& tri : mesh.triangles) {
+        for (std::size_t c = 0; c < 3; ++c) {
+          const auto a = std::size_t(tri[c]), b = std::size_t(tri[(c + 1) % 3]);
+          const double length = (mesh.positions[a] - mesh.positions[b]).norm();
+          for (double s :
+               contact::edge_sample_parameters(length, problem.contact.edge_sample_spacing))
+            ASSERT_GT(((1 - s) * at[a] + s * at[b]).norm() - radius, 0.0)
+                << "edge " << a << "-" << b << " sample " << s << " inside at t = " << t;
+        }
       }
     }
   };
@@ -310,6 +332,81 @@ TEST(ContactProblem, MinimiserDrapesOverASphere) {
   EXPECT_LT(out.contact[0].max_penetration, 0.5 * offset);
   std::printf("minimiser sphere drape: %d Newton iterations, %d contact rounds\n",
               int(out.report.newton_iterations), out.report.contact_rounds);
+}
+
+// The deepest point of chord a-b below a horizontal cylinder of radius
+// `radius` about the y axis (distance to the axis minus the radius), by
+// dense sampling: independent of the contact code.
+double deepest_chord_point(const Vector3d& a, const Vector3d& b, double radius) {
+  double lowest = std::numeric_limits<double>::infinity();
+  for (int k = 0; k <= 2000; ++k) {
+    const Vector3d p = a + (k / 2000.0) * (b - a);
+    lowest = std::min(lowest, std::hypot(p.x(), p.z()) - radius);
+  }
+  return lowest;
+}
+
+struct CylinderDrape {
+  Outcome out;
+  double deepest = 0.0; // m: the lowest point of any edge, its distance to the body
+};
+
+// A 0.4 m x 0.2 m sheet of 6 x 2 cells (edges 6.7 cm and longer) dropped
+// onto a horizontal cylinder of radius 0.1 m (a capsule longer than the
+// sheet), with friction, by the static minimiser.
+CylinderDrape drape_over_cylinder(double edge_sample_spacing) {
+  const double offset = 1e-3, radius = 0.1;
+  const TriangleMesh mesh = placed(mesh::rectangle(0.4, 0.2, 6, 2), Eigen::Matrix3d::Identity(),
+                                   Vector3d(-0.2, -0.1, radius + 0.5 * offset));
+  ClothProblem problem(PETSC_COMM_WORLD, mesh, fabric(1e-5), {});
+  problem.contact.offset = offset;
+  problem.contact.edge_sample_spacing = edge_sample_spacing;
+  contact::Body roller(
+      "roller", std::make_shared<contact::Capsule>(Vector3d(0, -1, 0), Vector3d(0, 1, 0), radius),
+      Vector3d::Zero());
+  roller.friction = {0.4, 0.4};
+  problem.bodies = {roller};
+  problem.loads.gravity = Vector3d(0, 0, -gravity);
+  CylinderDrape drape;
+  drape.out = solve(problem, 1, true);
+  drape.deepest = std::numeric_limits<double>::infinity();
+  for (const auto& t : mesh.triangles) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      drape.deepest =
+          std::min(drape.deepest,
+                   deepest_chord_point(drape.out.positions[std::size_t(t[c])],
+                                       drape.out.positions[std::size_t(t[(c + 1) % 3])], radius));
+    }
+  }
+  return drape;
+}
+
+// With vertex contact only, the coarse sheet's edges cut chords into the
+// cylinder (sag ~ h^2 / (8 R) = 5.6 mm for its 6.7 cm edges, more than
+// the 1 mm offset); with samples every 2 cm along the edges none does, and
+// the cylinder still carries exactly the weight rho g A (normal force from
+// vertices and samples, friction from the vertices' anchors).
+TEST(ContactProblem, EdgeSamplesKeepCoarseEdgesOutOfACylinder) {
+  const CylinderDrape vertices_only = drape_over_cylinder(0.0);
+  ASSERT_TRUE(vertices_only.out.report.converged) << vertices_only.out.report.reason;
+  EXPECT_LT(vertices_only.deepest, -1e-3);
+  EXPECT_EQ(vertices_only.out.contact[0].contacting_edge_samples, 0);
+
+  const CylinderDrape sampled = drape_over_cylinder(0.02);
+  ASSERT_TRUE(sampled.out.report.converged) << sampled.out.report.reason;
+  EXPECT_GT(sampled.deepest, 0.0);
+  const BodyContact& c = sampled.out.contact[0];
+  EXPECT_GT(c.contacting_edge_samples, 0);
+  EXPECT_LT(c.edge_max_penetration, 1e-3); // no sample inside the body either
+  const double weight = density * 0.4 * 0.2 * gravity;
+  const Vector3d reaction = c.normal_force + c.friction_force;
+  EXPECT_NEAR(reaction.z(), weight, 1e-6 * weight);
+  EXPECT_LT(reaction.head<2>().norm(), 1e-6 * weight);
+  std::printf("cylinder drape: deepest edge point %.3e m (vertices only: %.3e m), %ld samples "
+              "in contact, %d Newton iterations (vertices only: %d)\n",
+              sampled.deepest, vertices_only.deepest, c.contacting_edge_samples,
+              int(sampled.out.report.newton_iterations),
+              int(vertices_only.out.report.newton_iterations));
 }
 
 TEST(ContactProblem, DrapeOverASphereStaysOutside) {
