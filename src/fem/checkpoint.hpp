@@ -21,6 +21,7 @@
 // 3". A file without /state sums as one with an empty /state, so checkpoints
 // written before /state existed still resume.
 
+#include "fem/cloth_problem.hpp"
 #include "fem/creep_coupling.hpp"
 
 #include <Eigen/Core>
@@ -30,9 +31,6 @@
 #include <vector>
 
 namespace sartor {
-
-// One friction anchor: body, vertex, point (3), normal (3), normal force, slid.
-using AnchorRow = std::array<double, 10>;
 
 struct RunCheckpoint {
   double time = 0.0;      // s

@@ -18,7 +18,6 @@
 #include "element/bending.hpp"
 #include "element/membrane.hpp"
 #include "element/patch_bending.hpp"
-#include "fem/checkpoint.hpp"
 #include "fem/cloth_output.hpp"
 #include "fem/pin_motion.hpp"
 #include "fem/seam_coupling.hpp"
@@ -39,6 +38,10 @@
 #include <vector>
 
 namespace sartor {
+
+// One friction anchor as checkpoints hold it: body, vertex, point (3),
+// normal (3), the lagged normal force (N; inf: not known), slid (0 or 1).
+using AnchorRow = std::array<double, 10>;
 
 namespace fem {
 struct BlockLayout;
