@@ -40,9 +40,11 @@ std::vector<bool> free_vertices(const ClothProblem& problem) {
 
 // The forces at x, per mesh vertex on rank 0: the residual F, what contact
 // must supply for equilibrium (F without the bodies: F_nc), what the contact
-// model applies (F_nc - F), and the applied loads (F without loads - F).
+// model applies (F_nc - F), the applied loads (F without loads - F), and per
+// body the normal forces of the edge samples shared to their edges' vertices.
 struct VertexForces {
   std::vector<Eigen::Vector3d> positions, residual, needed_contact, applied_contact, load;
+  std::vector<std::vector<Eigen::Vector3d>> sample_loads;
   double residual_norm = 0.0;
 };
 
@@ -76,6 +78,7 @@ PetscErrorCode gather_forces(ClothProblem& problem, Vec x, VertexForces* forces)
   }
   PetscCall(VecWAXPY(difference, -1.0, f, other));
   PetscCall(problem.gather_positions(difference, &forces->load));
+  PetscCall(problem.gather_edge_sample_loads(x, &forces->sample_loads));
   for (Vec* v : {&f, &other, &difference})
     PetscCall(VecDestroy(v));
   PetscFunctionReturn(0);
@@ -166,9 +169,17 @@ void check_coulomb(const ClothProblem& problem, const VertexForces& forces,
     }
     if (query.normal.norm() == 0.0) continue; // no direction (a medial point)
     const Eigen::Vector3d n = query.normal.normalized();
-    const Eigen::Vector3d& f = forces.needed_contact[v];
-    const double normal = f.dot(n);
-    const double tangential = (f - normal * n).norm();
+    // The edge samples' share is frictionless normal contact along the body
+    // normal at each sample's own point: what the vertex's own contact (its
+    // penalty and friction) must supply is the rest. The samples' normal
+    // force on the vertex counts in its cone, as it bounds its anchor's
+    // spring (ClothProblem::update_contact).
+    Eigen::Vector3d f = forces.needed_contact[v];
+    for (const auto& loads : forces.sample_loads)
+      f -= loads[v];
+    const double own_normal = f.dot(n);
+    const double tangential = (f - own_normal * n).norm();
+    const double normal = own_normal + std::max(0.0, n.dot(forces.sample_loads[nearest][v]));
     const contact::Friction& friction = problem.bodies[nearest].friction;
     ++check.contacts;
     if (normal < -tolerance * f.norm() - floor) {

@@ -190,6 +190,32 @@ PetscErrorCode ClothProblem::edge_sample_loads(std::size_t body, const PetscScal
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode
+ClothProblem::gather_edge_sample_loads(Vec x, std::vector<std::vector<Eigen::Vector3d>>* per_body) {
+  const PetscScalar* values = nullptr;
+  PetscInt size = 0;
+  PetscFunctionBeginUser;
+  PetscCall(to_local(x));
+  PetscCall(VecGetLocalSize(local_x_, &size));
+  per_body->assign(bodies.size(), {});
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    std::vector<Eigen::Vector3d> loads;
+    PetscCall(VecGetArrayRead(local_x_, &values));
+    const PetscErrorCode failed = edge_sample_loads(b, values, &loads);
+    PetscCall(VecRestoreArrayRead(local_x_, &values));
+    PetscCall(failed);
+    // In the local-vector layout gather_vertex_triples reads.
+    std::vector<PetscScalar> local(std::size_t(size), 0.0);
+    for (std::size_t v = 0; v < mesh_.vertex_count(); ++v) {
+      if (vertex_dof_[v] < 0) continue;
+      for (int d = 0; d < 3; ++d)
+        local[std::size_t(vertex_dof_[v] + d)] = loads[v][d];
+    }
+    PetscCall(gather_vertex_triples(local.data(), &(*per_body)[b]));
+  }
+  PetscFunctionReturn(0);
+}
+
 void ClothProblem::add_edge_contact_report(std::size_t body, const PetscScalar* x,
                                            double normal_force[3], double* contacting,
                                            double* deepest) const {

@@ -306,6 +306,11 @@ public:
 
   // All vertex positions, in mesh numbering, on rank 0 (empty elsewhere).
   PetscErrorCode gather_positions(Vec x, std::vector<Eigen::Vector3d>* positions);
+  // Per body, the normal forces of its edge samples at x shared to the
+  // edges' vertices by the lever rule, in mesh numbering, on rank 0 (empty
+  // elsewhere).
+  PetscErrorCode gather_edge_sample_loads(Vec x,
+                                          std::vector<std::vector<Eigen::Vector3d>>* per_body);
   // Strains and tensions of every triangle, in mesh numbering, on rank 0.
   PetscErrorCode gather_strains(Vec x, std::vector<element::MembraneStrain>* strains);
   // Mesh indices of the triangles this rank assembles.
