@@ -18,9 +18,10 @@
 // ramp of gradual sewing, fem/seam_coupling.hpp, at progress 0, 1/(n-1),
 // ..., 1), the loads growing from start_load_factor to the target with the
 // same progress, the bodies without friction until the last; every stage but the
-// last is solved to `stage_rtol` of its first residual or for at most
+// last two is solved to `stage_rtol` of its first residual or for at most
 // `stage_max_iterations` Newton iterations (it only starts the next), the
-// last to the full tolerance. The friction anchors are lagged: set for what touches a
+// last two to the full tolerance (the last sets its friction anchors at
+// the state the one before ends in). The friction anchors are lagged: set for what touches a
 // body at the start of a stage, and updated (Coulomb's law) between solves.
 //
 // Contact rounds (minimiser, bodies): friction is lagged, so a solved state
