@@ -8,17 +8,18 @@
 # final.obj within 1e-6 m (issue 18: drapes agree within 1e-6 m on another
 # machine; the garments agree to about 1e-8 m, the solver's tolerance).
 #
-#   drape_prescott_agrees.sh SARTOR PATTERN CASE OUT_DIR
+#   drape_prescott_agrees.sh SARTOR PATTERN CASE OUT_DIR [DRAPE_OPTION ...]
 set -euo pipefail
-[ $# -eq 4 ] || { echo "usage: $0 SARTOR PATTERN CASE OUT_DIR" >&2; exit 2; }
+[ $# -ge 4 ] || { echo "usage: $0 SARTOR PATTERN CASE OUT_DIR [DRAPE_OPTION ...]" >&2; exit 2; }
 sartor=$1 pattern=$2 case=$3 dir=$4
+shift 4
 python=/usr/bin/python3
 [ -x "$python" ] || { echo "error: $python not found (./dev deps installs it)" >&2; exit 1; }
 rm -rf "$dir"
 mkdir -p "$dir"
-"$sartor" drape "$pattern" -options_file_yaml "$case" --no-plot --output "$dir/default" \
+"$sartor" drape "$pattern" -options_file_yaml "$case" --no-plot "$@" --output "$dir/default" \
   > "$dir/default.log"
-OPENBLAS_CORETYPE=Prescott "$sartor" drape "$pattern" -options_file_yaml "$case" --no-plot \
+OPENBLAS_CORETYPE=Prescott "$sartor" drape "$pattern" -options_file_yaml "$case" --no-plot "$@" \
   --output "$dir/prescott" > "$dir/prescott.log"
 "$python" - "$dir" <<'PY'
 import json, os, sys
