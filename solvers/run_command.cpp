@@ -108,8 +108,9 @@ const std::vector<OptionSpec>& case_option_specs() {
       {"contact-stiffness", "N/M", "",
        "penalty stiffness per vertex, N/m [factor * E_max * vertex area / h^2]"},
       {"contact-stiffness-factor", "C", "1", "the factor of the automatic penalty stiffness"},
-      {"contact-edge-spacing", "M", "0.015",
-       "penalty samples along cloth edges at most this far apart, m (0: vertices only)"},
+      {"contact-edge-spacing", "M", "0",
+       "penalty samples along cloth edges at most this far apart, m (0: vertices only; "
+       "static drapes: 0.015)"},
       {"drape-support-radius", "M", "",
        "report the Cusick drape coefficient for a support disk of this radius, m"},
       {"load-steps", "N", "1", "load increments (each halved up to 8 times on failure)"},

@@ -118,8 +118,9 @@ struct ContactSettings {
   bool bounded_friction = false;
   // m: sample points on every edge longer than this, no further apart than
   // it, carry the penalty too (fem/cloth_edge_contact.cpp), so that edges do
-  // not cut through curved bodies between vertices; 0: vertices only.
-  double edge_sample_spacing = 0.015;
+  // not cut through curved bodies between vertices; 0: vertices only
+  // (static drapes: 0.015, solvers/drape_command.cpp).
+  double edge_sample_spacing = 0.0;
 };
 
 // What one body does to the cloth, summed over all vertices (every rank).
