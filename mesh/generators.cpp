@@ -337,10 +337,20 @@ TriangleMesh annulus(double inner_radius, double outer_radius, int rings, int se
   require_at_least("annulus", "segments", segments, 1);
   require_at_least("annulus", "refinements", refinements, 0);
   TriangleMesh mesh = rectangle(1.0, 1.0, rings, segments, pattern);
+  // A perturbed grid line at angle 0 (a slit's clamp) moves only along itself.
+  const double zero_row = -start_angle / span * segments;
+  if (pattern == RectanglePattern::perturbed && zero_row > 0.0 && zero_row < segments &&
+      std::abs(zero_row - std::round(zero_row)) < 1e-9) {
+    const int row = static_cast<int>(std::round(zero_row));
+    for (int i = 0; i <= rings; ++i)
+      mesh.positions[static_cast<std::size_t>(row * (rings + 1) + i)].y() =
+          fraction(1.0, row, segments);
+  }
   for (int level = 0; level < refinements; ++level)
     mesh = refine(mesh);
   // (radial, angular) fractions to the plane: orientation kept (the polar
-  // map's Jacobian determinant is r > 0); z holds the angle until the lift.
+  // map's Jacobian determinant is r > 0); z holds the angle until the lift,
+  // and uv is set from the mapped positions.
   const auto map = [&](const Eigen::Vector3d& p) {
     const double r = inner_radius + p.x() * (outer_radius - inner_radius);
     const double angle = p.y() == 1.0 ? end_angle : start_angle + p.y() * span;

@@ -74,6 +74,8 @@ TriangleMesh sphere_cap(double sphere_radius, double cap_angle, int rings);
 // vertices at angles <= 0 stay in z = 0, the others at z = lift * angle /
 // end_angle (end_angle > 0), so that the two edges of a slit can be told
 // apart by position (a start for Newton; the solution does not depend on it).
+// With the perturbed pattern, a grid line at angle 0 (a clamp beyond a slit)
+// stays straight: its vertices move only along it.
 // (rings 2^k + 1)(segments 2^k + 1) vertices, 2 rings segments 4^k triangles.
 TriangleMesh annulus(double inner_radius, double outer_radius, int rings, int segments,
                      double start_angle, double end_angle,

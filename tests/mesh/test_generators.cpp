@@ -397,6 +397,16 @@ TEST(Annulus, RefinedVerticesStayOnCirclesAndTheSlitStaysOpen) {
     EXPECT_EQ(boundary_vertices(m).size(),
               static_cast<std::size_t>(2 * (segments * n + rings * n)));
   }
+  // Perturbed, with a sector beyond the slit: the grid line at angle 0 stays
+  // straight (beside the loaded edge at 2 pi).
+  for (const int refinements : {0, 1}) {
+    const auto m = mesh::annulus(inner, outer, rings, 33, -pi / 16, 2 * pi,
+                                 RectanglePattern::perturbed, refinements, lift);
+    int on_positive_x_axis = 0;
+    for (const auto& p : m.positions)
+      on_positive_x_axis += std::abs(p.y()) < 1e-12 && p.x() > 0.0;
+    EXPECT_EQ(on_positive_x_axis, 2 * (rings * (1 << refinements) + 1));
+  }
   // The area converges to the annulus' at second order (chords of the circles).
   const auto error = [&](int refinements) {
     return pi * (outer * outer - inner * inner) -
