@@ -3,6 +3,7 @@
 #include "common/csv.hpp"
 #include "common/error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -312,6 +313,60 @@ TriangleMesh refine(const TriangleMesh& mesh) {
     fine.creases.push_back({m, crease.b, crease.rest_angle});
   }
   return fine;
+}
+
+TriangleMesh annulus(double inner_radius, double outer_radius, int rings, int segments,
+                     double start_angle, double end_angle, RectanglePattern pattern,
+                     int refinements, double lift) {
+  require_positive("annulus", "inner_radius", inner_radius, "m");
+  if (!(std::isfinite(outer_radius) && outer_radius > inner_radius)) {
+    throw InputError("annulus: outer_radius must be a finite number above inner_radius (" +
+                     format_number(inner_radius) + " m), got " + format_number(outer_radius));
+  }
+  const double span = end_angle - start_angle;
+  if (!(std::isfinite(start_angle) && std::isfinite(span) && span > 0.0 && span <= 4.0 * pi)) {
+    throw InputError("annulus: the angles must be finite with 0 < end_angle - start_angle <= 4 "
+                     "pi (rad), got " +
+                     format_number(start_angle) + " to " + format_number(end_angle));
+  }
+  if (!std::isfinite(lift) || (lift != 0.0 && !(end_angle > 0.0))) {
+    throw InputError("annulus: lift must be finite, and 0 unless end_angle > 0, got lift " +
+                     format_number(lift) + " m and end_angle " + format_number(end_angle));
+  }
+  require_at_least("annulus", "rings", rings, 1);
+  require_at_least("annulus", "segments", segments, 1);
+  require_at_least("annulus", "refinements", refinements, 0);
+  TriangleMesh mesh = rectangle(1.0, 1.0, rings, segments, pattern);
+  // A perturbed grid line at angle 0 (a slit's clamp) moves only along itself.
+  const double zero_row = -start_angle / span * segments;
+  if (pattern == RectanglePattern::perturbed && zero_row > 0.0 && zero_row < segments &&
+      std::abs(zero_row - std::round(zero_row)) < 1e-9) {
+    const int row = static_cast<int>(std::round(zero_row));
+    for (int i = 0; i <= rings; ++i)
+      mesh.positions[static_cast<std::size_t>(row * (rings + 1) + i)].y() =
+          fraction(1.0, row, segments);
+  }
+  for (int level = 0; level < refinements; ++level)
+    mesh = refine(mesh);
+  // (radial, angular) fractions to the plane: orientation kept (the polar
+  // map's Jacobian determinant is r > 0); z holds the angle until the lift,
+  // and uv is set from the mapped positions.
+  const auto map = [&](const Eigen::Vector3d& p) {
+    const double r = inner_radius + p.x() * (outer_radius - inner_radius);
+    const double angle = p.y() == 1.0 ? end_angle : start_angle + p.y() * span;
+    return Eigen::Vector3d(r * std::cos(angle), r * std::sin(angle), angle);
+  };
+  for (auto& p : mesh.positions)
+    p = map(p);
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    for (std::size_t c = 0; c < 3; ++c)
+      mesh.material_uv[t][c] =
+          mesh.positions[static_cast<std::size_t>(mesh.triangles[t][c])].head<2>();
+  }
+  for (auto& p : mesh.positions)
+    p.z() = lift == 0.0 ? 0.0 : lift * std::max(p.z(), 0.0) / end_angle;
+  validate(mesh, "annulus");
+  return mesh;
 }
 
 } // namespace sartor::mesh

@@ -61,6 +61,27 @@ TriangleMesh cylinder_band(double radius, double height, int segments, int rows,
 // 0 < cap_angle < pi (rad).
 TriangleMesh sphere_cap(double sphere_radius, double cap_angle, int rings);
 
+// An annular sector in z = 0 around the origin: inner_radius <= r <=
+// outer_radius, start_angle <= angle <= end_angle (rad, 0 < end - start <=
+// 4 pi). It is the rectangle mesh of `rings` (across the radii) by
+// `segments` (around) cells of `pattern` on the parameter square, refined
+// `refinements` times there and then mapped to polar coordinates, so every
+// vertex of every refinement lies exactly on its circle and radial line (a
+// refined polygon would converge to the polygon). The first and last radial
+// edges are never joined, even for a full turn: a slit; a span over 2 pi
+// overlaps itself in the plane. uv = (x, y) of the flat sector. With a
+// nonzero `lift` the placement (not the rest shape) rises along a helix:
+// vertices at angles <= 0 stay in z = 0, the others at z = lift * angle /
+// end_angle (end_angle > 0), so that the two edges of a slit can be told
+// apart by position (a start for Newton; the solution does not depend on it).
+// With the perturbed pattern, a grid line at angle 0 (a clamp beyond a slit)
+// stays straight: its vertices move only along it.
+// (rings 2^k + 1)(segments 2^k + 1) vertices, 2 rings segments 4^k triangles.
+TriangleMesh annulus(double inner_radius, double outer_radius, int rings, int segments,
+                     double start_angle, double end_angle,
+                     RectanglePattern pattern = RectanglePattern::alternating, int refinements = 0,
+                     double lift = 0.0);
+
 // Uniform refinement: each triangle into four through its edge midpoints,
 // midpoints shared by the triangles of an edge and placed at the average of
 // the edge's ends; each triangle's uv midpoints come from its own corners (so

@@ -35,16 +35,23 @@ namespace sartor {
 const std::vector<OptionSpec>& case_option_specs() {
   static const std::vector<OptionSpec> specs{
       {"mesh", "KIND", "rectangle",
-       "rectangle, disk, cylinder_band, sphere_cap, tube_panels or obj"},
+       "rectangle, disk, annulus, cylinder_band, sphere_cap, tube_panels or obj"},
       {"mesh-file", "FILE", "", "OBJ file (mesh obj): texture coordinates give the rest shape"},
       {"mesh-width", "M", "1", "rectangle width (along warp), m"},
       {"mesh-height", "M", "1", "rectangle or band height (along weft), m"},
       {"mesh-nx", "N", "10", "rectangle divisions along the width"},
       {"mesh-ny", "N", "10", "rectangle divisions along the height"},
-      {"mesh-pattern", "P", "alternating", "rectangle diagonals: alternating, right, perturbed"},
-      {"mesh-radius", "M", "0.5", "disk, band or sphere radius, m"},
-      {"mesh-rings", "N", "8", "disk or cap rings"},
-      {"mesh-segments", "N", "32", "band segments around"},
+      {"mesh-pattern", "P", "alternating",
+       "rectangle (and annulus) diagonals: alternating, right, perturbed"},
+      {"mesh-radius", "M", "0.5", "disk, band or sphere radius, annulus outer radius, m"},
+      {"mesh-inner-radius", "M", "0.25", "annulus inner radius, m"},
+      {"mesh-angles", "A0,A1", "0,360",
+       "annulus: from angle A0 to A1, degrees (a full turn stays slit along A0)"},
+      {"mesh-lift", "M", "0",
+       "annulus: start placement on a helix rising from z = 0 at angle 0 to this at A1, m "
+       "(tells the slit's edges apart; the rest shape stays flat)"},
+      {"mesh-rings", "N", "8", "disk or cap rings; annulus cells across the radii"},
+      {"mesh-segments", "N", "32", "band segments around; annulus cells around"},
       {"mesh-rows", "N", "8", "band rows along the axis"},
       {"mesh-cap-angle", "RAD", "0.5", "sphere cap half angle, rad"},
       {"mesh-nx-front", "N", "", "tube_panels: front panel divisions around [mesh-nx]"},
@@ -241,6 +248,7 @@ double generated_triangles(const Options& options, const std::string& kind) {
   if (kind == "disk" || kind == "sphere_cap")
     return 6.0 * count("mesh-rings") * count("mesh-rings");
   if (kind == "cylinder_band") return 2.0 * count("mesh-segments") * count("mesh-rows");
+  if (kind == "annulus") return 2.0 * count("mesh-rings") * count("mesh-segments");
   return 0.0;
 }
 
@@ -283,6 +291,15 @@ TriangleMesh build_mesh(const Options& options, int extra_refinements, int* refi
   } else if (kind == "disk") {
     cloth =
         mesh::disk(options.positive_real("mesh-radius"), count_option(options, "mesh-rings", 1));
+  } else if (kind == "annulus") {
+    // Refined in its polar parameters, so refined vertices stay on the circles.
+    const auto angles = option_numbers(options, "mesh-angles", 2);
+    cloth = mesh::annulus(
+        options.positive_real("mesh-inner-radius"), options.positive_real("mesh-radius"),
+        count_option(options, "mesh-rings", 1), count_option(options, "mesh-segments", 1),
+        angles[0] * M_PI / 180.0, angles[1] * M_PI / 180.0,
+        mesh::rectangle_pattern(options.text("mesh-pattern")), refine + extra_refinements,
+        options.real("mesh-lift"));
   } else if (kind == "cylinder_band") {
     cloth = mesh::cylinder_band(
         options.positive_real("mesh-radius"), options.positive_real("mesh-height"),
@@ -298,7 +315,7 @@ TriangleMesh build_mesh(const Options& options, int extra_refinements, int* refi
     cloth = read_obj(options.text("mesh-file"));
   } else {
     throw InputError("option --mesh: unknown kind '" + kind +
-                     "' (rectangle, disk, cylinder_band, sphere_cap, tube_panels, obj)");
+                     "' (rectangle, disk, annulus, cylinder_band, sphere_cap, tube_panels, obj)");
   }
   const bool snap = options.flag("mesh-snap-boundary");
   if (snap && kind != "disk") {
@@ -308,7 +325,8 @@ TriangleMesh build_mesh(const Options& options, int extra_refinements, int* refi
   check_mesh_size(double(cloth.triangle_count()), refine + extra_refinements,
                   "option --mesh-refine");
   *refinements = refine + extra_refinements;
-  for (int level = *refinements; level > 0; --level) {
+  const bool refined_by_generator = !given && kind == "annulus";
+  for (int level = refined_by_generator ? 0 : *refinements; level > 0; --level) {
     cloth = mesh::refine(cloth);
     if (snap) snap_to_circle(cloth, options.positive_real("mesh-radius"));
   }

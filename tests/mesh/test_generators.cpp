@@ -363,6 +363,59 @@ TEST(Refine, RefinedBandKeepsItsSeam) {
   EXPECT_EQ(seam_hinges, 2); // the seam edge, split in two
 }
 
+TEST(Annulus, RefinedVerticesStayOnCirclesAndTheSlitStaysOpen) {
+  const double inner = 6.0, outer = 10.0, lift = 1e-3;
+  const int rings = 2, segments = 8;
+  for (const int refinements : {0, 1, 2}) {
+    const auto m = mesh::annulus(inner, outer, rings, segments, 0.0, 2 * pi,
+                                 RectanglePattern::perturbed, refinements, lift);
+    const int n = 1 << refinements;
+    EXPECT_EQ(m.vertex_count(), static_cast<std::size_t>((rings * n + 1) * (segments * n + 1)));
+    EXPECT_EQ(m.triangle_count(), static_cast<std::size_t>(2 * rings * segments * n * n));
+    expect_positive_material_areas(m);
+    int on_inner = 0, on_outer = 0, at_slit_start = 0, at_slit_end = 0;
+    for (const auto& p : m.positions) {
+      const double r = p.head<2>().norm();
+      EXPECT_GE(r, inner - 1e-12);
+      EXPECT_LE(r, outer + 1e-12);
+      on_inner += std::abs(r - inner) < 1e-12;
+      on_outer += std::abs(r - outer) < 1e-12;
+      // The helix: z grows with the angle from 0 to `lift` across the slit.
+      const double angle = std::atan2(p.y(), p.x());
+      if (std::abs(p.y()) < 1e-12 && p.x() > 0.0) {
+        (p.z() < 0.5 * lift ? at_slit_start : at_slit_end) += 1;
+      } else {
+        EXPECT_NEAR(p.z(), lift * (angle < 0.0 ? angle + 2 * pi : angle) / (2 * pi), 1e-12);
+      }
+    }
+    // Refined in the polar parameters: every boundary vertex on its circle.
+    EXPECT_EQ(on_inner, segments * n + 1);
+    EXPECT_EQ(on_outer, segments * n + 1);
+    // Two edges of rings * n + 1 vertices each on the slit, never joined.
+    EXPECT_EQ(at_slit_start, rings * n + 1);
+    EXPECT_EQ(at_slit_end, rings * n + 1);
+    EXPECT_EQ(boundary_vertices(m).size(),
+              static_cast<std::size_t>(2 * (segments * n + rings * n)));
+  }
+  // Perturbed, with a sector beyond the slit: the grid line at angle 0 stays
+  // straight (beside the loaded edge at 2 pi).
+  for (const int refinements : {0, 1}) {
+    const auto m = mesh::annulus(inner, outer, rings, 33, -pi / 16, 2 * pi,
+                                 RectanglePattern::perturbed, refinements, lift);
+    int on_positive_x_axis = 0;
+    for (const auto& p : m.positions)
+      on_positive_x_axis += std::abs(p.y()) < 1e-12 && p.x() > 0.0;
+    EXPECT_EQ(on_positive_x_axis, 2 * (rings * (1 << refinements) + 1));
+  }
+  // The area converges to the annulus' at second order (chords of the circles).
+  const auto error = [&](int refinements) {
+    return pi * (outer * outer - inner * inner) -
+           total_material_area(mesh::annulus(inner, outer, rings, segments, 0.0, 2 * pi,
+                                             RectanglePattern::alternating, refinements));
+  };
+  EXPECT_NEAR(error(2) / error(3), 4.0, 0.05);
+}
+
 TEST(Generators, RejectBadArgumentsNamingTheParameter) {
   const std::vector<std::pair<std::function<void()>, std::string>> cases{
       {[] { mesh::rectangle(0.0, 1.0, 2, 2); }, "rectangle: width must be a positive"},
@@ -382,6 +435,13 @@ TEST(Generators, RejectBadArgumentsNamingTheParameter) {
       {[] { mesh::sphere_cap(1.0, pi, 2); }, "sphere_cap: cap_angle must lie strictly between"},
       {[] { mesh::sphere_cap(1.0, 0.0, 2); }, "sphere_cap: cap_angle"},
       {[] { mesh::sphere_cap(1.0, 1.0, 0); }, "sphere_cap: rings must be at least 1"},
+      {[] { mesh::annulus(0.0, 1.0, 2, 8, 0.0, 1.0); }, "annulus: inner_radius must be a positive"},
+      {[] { mesh::annulus(1.0, 1.0, 2, 8, 0.0, 1.0); }, "annulus: outer_radius must be"},
+      {[] { mesh::annulus(1.0, 2.0, 2, 8, 1.0, 1.0); }, "annulus: the angles must be"},
+      {[] { mesh::annulus(1.0, 2.0, 2, 8, 0.0, 13.0); }, "annulus: the angles must be"},
+      {[] { mesh::annulus(1.0, 2.0, 2, 8, -2.0, -1.0, RectanglePattern::right, 0, 1.0); },
+       "annulus: lift must be finite, and 0 unless end_angle > 0"},
+      {[] { mesh::annulus(1.0, 2.0, 0, 8, 0.0, 1.0); }, "annulus: rings must be at least 1"},
       {[] {
          mesh::refine(TriangleMesh{{}, {{0, 1, 2}}, {}, {}, {}});
        },

@@ -4,7 +4,8 @@
 // strip's 5 w L^4 / 384 D, on rectangle meshes of every diagonal pattern,
 // cells of aspect 4, and irregular meshes (random diagonals, perturbed
 // interior vertices) refined three times; the simply supported square plate
-// (Navier's double series) on three Delaunay meshes.
+// (Navier's double series) on three Delaunay meshes; the slit annular plate
+// of Sze, Liu & Lo (no closed form: their converged values).
 
 #include "fem/cloth_problem.hpp"
 #include "fem/statics.hpp"
@@ -12,9 +13,11 @@
 #include "mesh/generators.hpp"
 #include "mesh/panel_mesher.hpp"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -124,10 +127,11 @@ ClothMaterial strip_material(double membrane, double rigidity, double density,
   return m;
 }
 
-// Mean displacement of the vertices at x = x_tip after a static solve.
-Eigen::Vector3d tip_displacement(const TriangleMesh& mesh, const ClothMaterial& material,
-                                 const std::vector<int>& pins, const ClothLoads& loads,
-                                 double x_tip, int steps) {
+// The vertex positions after a static solve in `steps` load increments.
+std::vector<Eigen::Vector3d> solved_positions(const TriangleMesh& mesh,
+                                              const ClothMaterial& material,
+                                              const std::vector<int>& pins, const ClothLoads& loads,
+                                              int steps) {
   ClothProblem problem(PETSC_COMM_WORLD, mesh, material, pins);
   problem.loads = loads;
   Vec x = nullptr;
@@ -140,6 +144,15 @@ Eigen::Vector3d tip_displacement(const TriangleMesh& mesh, const ClothMaterial& 
   std::vector<Eigen::Vector3d> positions;
   EXPECT_EQ(problem.gather_positions(x, &positions), 0);
   VecDestroy(&x);
+  return positions;
+}
+
+// Mean displacement of the vertices at x = x_tip after a static solve.
+Eigen::Vector3d tip_displacement(const TriangleMesh& mesh, const ClothMaterial& material,
+                                 const std::vector<int>& pins, const ClothLoads& loads,
+                                 double x_tip, int steps) {
+  const std::vector<Eigen::Vector3d> positions =
+      solved_positions(mesh, material, pins, loads, steps);
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   int count = 0;
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
@@ -259,9 +272,28 @@ TriangleMesh delaunay_square(double edge_length) {
   return mesh_panel(pattern.panels.front(), options).mesh;
 }
 
-// Deflection error at the vertex nearest the centre, relative to the series
-// there; the plate's boundary vertices pinned (simple support).
-double square_plate_error(const TriangleMesh& mesh, element::BendingModel model) {
+// The plate's mean deflection from the same series: 64 q a^4 / (pi^8 D) times
+// the sum over odd m, n of 1 / (m^2 n^2 (m^2 + n^2)^2).
+double navier_mean_deflection(double a, double q, double rigidity) {
+  const double pi = std::acos(-1.0);
+  double sum = 0.0;
+  for (int m = 1; m < 400; m += 2) {
+    for (int n = 1; n < 400; n += 2) {
+      const double mn2 = double(m * m + n * n);
+      sum += 1.0 / (double(m * m) * double(n * n) * mn2 * mn2);
+    }
+  }
+  return 64.0 * q * std::pow(a, 4) / (std::pow(pi, 8) * rigidity) * sum;
+}
+
+struct PlateErrors {
+  double centre = 0.0;     // at the vertex nearest the centre, against the series there
+  double compliance = 0.0; // of the mean deflection (the load's work per q), a global measure
+};
+
+// Errors of the simply supported plate (boundary vertices pinned) under a
+// uniform load, relative to Navier's series.
+PlateErrors square_plate_errors(const TriangleMesh& mesh, element::BendingModel model) {
   const double rigidity = 1.0, density = 1e-3; // deflection 4e-5 of the side: linear
   std::vector<int> pins;
   std::size_t centre = 0;
@@ -281,33 +313,85 @@ double square_plate_error(const TriangleMesh& mesh, element::BendingModel model)
   std::vector<Eigen::Vector3d> positions;
   EXPECT_EQ(problem.gather_positions(x, &positions), 0);
   VecDestroy(&x);
+  const double q = density * gravity;
   const Eigen::Vector3d& p = mesh.positions[centre];
-  const double reference = navier_deflection(p.x(), p.y(), 1.0, density * gravity, rigidity);
-  return (p.z() - positions[centre].z()) / reference - 1.0;
+  const double reference = navier_deflection(p.x(), p.y(), 1.0, q, rigidity);
+  // The integral of the piecewise-linear deflection: a third of each
+  // triangle's area per corner (the load's work over q).
+  double integral = 0.0;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    const Eigen::Vector3d& a = mesh.positions[std::size_t(tri[0])];
+    const double area = 0.5 * (mesh.positions[std::size_t(tri[1])] - a)
+                                  .cross(mesh.positions[std::size_t(tri[2])] - a)
+                                  .norm();
+    for (const int v : tri)
+      integral += area / 3.0 * (mesh.positions[std::size_t(v)].z() - positions[std::size_t(v)].z());
+  }
+  return {(p.z() - positions[centre].z()) / reference - 1.0,
+          integral / navier_mean_deflection(1.0, q, rigidity) - 1.0};
 }
 
 TEST(BendingVerification, SimplySupportedSquarePlateOnDelaunayMeshes) {
-  // Series check: the centre deflection 0.00406235 q a^4 / D (Timoshenko).
+  // Series checks: the centre deflection 0.00406235 q a^4 / D (Timoshenko);
+  // the mean deflection by the midpoint rule on a 200 x 200 grid.
   EXPECT_NEAR(navier_deflection(0.5, 0.5, 1.0, 1.0, 1.0), 0.00406235, 1e-7);
-  std::vector<double> patch;
+  double mean = 0.0;
+  for (int i = 0; i < 200; ++i)
+    for (int j = 0; j < 200; ++j)
+      mean += navier_deflection((i + 0.5) / 200, (j + 0.5) / 200, 1.0, 1.0, 1.0) / 40000.0;
+  EXPECT_NEAR(navier_mean_deflection(1.0, 1.0, 1.0) / mean, 1.0, 1e-4);
+  std::vector<PlateErrors> patch;
   for (const double edge : {0.2, 0.1, 0.05, 0.025}) {
     const TriangleMesh mesh = delaunay_square(edge);
-    patch.push_back(square_plate_error(mesh, element::BendingModel::patch));
-    const double hinge = square_plate_error(mesh, element::BendingModel::discrete_shell);
-    const double quadratic = square_plate_error(mesh, element::BendingModel::quadratic);
+    patch.push_back(square_plate_errors(mesh, element::BendingModel::patch));
+    const double hinge = square_plate_errors(mesh, element::BendingModel::discrete_shell).centre;
+    const double quadratic = square_plate_errors(mesh, element::BendingModel::quadratic).centre;
     std::printf("simply supported square plate, Delaunay edges <= %g m (%zu triangles): patch "
-                "%+.3f %%, discrete shell %+.3f %%, quadratic %+.3f %%\n",
-                edge, mesh.triangle_count(), 100 * patch.back(), 100 * hinge, 100 * quadratic);
+                "%+.3f %% (mean deflection %+.3f %%), discrete shell %+.3f %%, quadratic "
+                "%+.3f %%\n",
+                edge, mesh.triangle_count(), 100 * patch.back().centre,
+                100 * patch.back().compliance, 100 * hinge, 100 * quadratic);
   }
-  std::printf("square plate, patch: observed orders %.2f, %.2f, %.2f\n",
-              observed_order(patch[0], patch[1]), observed_order(patch[1], patch[2]),
-              observed_order(patch[2], patch[3]));
-  // Measured -5.1, +0.50, -0.36, -0.22 %: the coarse Delaunay meshes are not
-  // in the asymptotic range (the error changes sign), the finer ones
-  // converge at about order 0.7 (the hinges stay 7 % too stiff).
-  EXPECT_LT(std::abs(patch[3]), 0.005);
-  EXPECT_LT(std::abs(patch[3]), std::abs(patch[2]));
-  EXPECT_LT(std::abs(patch[2]), 0.2 * std::abs(patch[0]));
+  std::printf("square plate, patch: observed orders %.2f, %.2f, %.2f (mean deflection %.2f, "
+              "%.2f, %.2f)\n",
+              observed_order(patch[0].centre, patch[1].centre),
+              observed_order(patch[1].centre, patch[2].centre),
+              observed_order(patch[2].centre, patch[3].centre),
+              observed_order(patch[0].compliance, patch[1].compliance),
+              observed_order(patch[1].compliance, patch[2].compliance),
+              observed_order(patch[2].compliance, patch[3].compliance));
+  // Measured -5.1, +0.50, -0.36, -0.22 %: on these non-nested Delaunay
+  // meshes the error follows the mesh's irregularity (it changes sign; 0.7
+  // between the two finest), and falls to -0.006 and +0.002 % on the finer
+  // meshes of the benchmark below (the hinges stay 7 % too stiff).
+  EXPECT_LT(std::abs(patch[3].centre), 0.005);
+  EXPECT_LT(std::abs(patch[3].centre), std::abs(patch[2].centre));
+  EXPECT_LT(std::abs(patch[2].centre), 0.2 * std::abs(patch[0].centre));
+}
+
+// A benchmark, not run by ctest (about a minute of CPU, 4 GB): the patch
+// model's square plate on two more Delaunay meshes (edges <= 0.0125 and
+// 0.00625 m, 33,262 and 134,110 triangles), for the observed orders between
+// the finer meshes (docs/finite-elements.md).
+// Run: sartor_verification_tests --gtest_also_run_disabled_tests
+//      --gtest_filter='*DISABLED_SquarePlateOnFinerDelaunayMeshes'
+TEST(BendingVerification, DISABLED_SquarePlateOnFinerDelaunayMeshes) {
+  std::vector<PlateErrors> errors;
+  for (const double edge : {0.1, 0.05, 0.025, 0.0125, 0.00625}) {
+    const TriangleMesh mesh = delaunay_square(edge);
+    errors.push_back(square_plate_errors(mesh, element::BendingModel::patch));
+    std::printf("square plate, patch, edges <= %g m (%zu triangles): centre %+.4f %%, mean "
+                "deflection %+.4f %%\n",
+                edge, mesh.triangle_count(), 100 * errors.back().centre,
+                100 * errors.back().compliance);
+    if (errors.size() > 1) {
+      const PlateErrors& coarse = errors[errors.size() - 2];
+      std::printf("  observed orders: centre %.2f, mean deflection %.2f\n",
+                  observed_order(coarse.centre, errors.back().centre),
+                  observed_order(coarse.compliance, errors.back().compliance));
+    }
+  }
 }
 
 // --- Cantilevers ------------------------------------------------------------
@@ -481,6 +565,63 @@ TEST(BendingVerification, SzeEndShearCantileverMatchesTheElastica) {
       EXPECT_LT(errors[2].cwiseAbs().maxCoeff(), 0.01);
     }
   }
+}
+
+// --- Slit annular plate (Sze, Liu & Lo 2004) ---------------------------------
+
+// An annulus of radii 6 and 10, slit along +x, E = 21e6, nu = 0, t = 0.03
+// (membrane E t = 6.3e5 N/m, D = E t^3 / 12 = 47.25 N m), clamped along one
+// edge of the slit and lifted by 0.8 N/m along the other. Sze et al.'s values
+// at full load (S4R shells, 10 x 80; no closed form exists): the lift of the
+// loaded edge's inner corner A (r = 6) and outer corner B (r = 10).
+constexpr double sze_slit_plate_wa = 13.891, sze_slit_plate_wb = 17.528;
+
+struct SlitPlateLift {
+  double inner = 0.0, outer = 0.0; // W_A, W_B
+};
+
+// The plate with the patch model on 4 x 32 free cells refined `refinements`
+// times, clamped by a pinned sector one coarse cell wide beyond the slit
+// (angles -11.25..0 degrees, overlapping the loaded end in the plane), in 40
+// load steps. The start placement rises by 1 um along a helix to the loaded
+// edge, which tells the slit's two edges apart.
+SlitPlateLift slit_annular_plate(int refinements) {
+  const double pi = std::acos(-1.0), lift = 1e-6, line_load = 0.8;
+  const TriangleMesh mesh = mesh::annulus(6.0, 10.0, 4, 33, -pi / 16.0, 2.0 * pi,
+                                          mesh::RectanglePattern::alternating, refinements, lift);
+  std::vector<int> clamp;
+  std::vector<std::pair<double, int>> loaded; // radius, vertex
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const Eigen::Vector3d& p = mesh.positions[v];
+    if (std::abs(p.z()) < 1e-9 && p.y() < 1e-9) clamp.push_back(int(v));
+    if (std::abs(p.y()) < 1e-9 && p.z() > 0.5 * lift) loaded.emplace_back(p.x(), int(v));
+  }
+  std::sort(loaded.begin(), loaded.end());
+  // The line load's consistent shares: half of each edge to either end.
+  ClothLoads loads;
+  for (std::size_t i = 0; i + 1 < loaded.size(); ++i) {
+    const double half = 0.5 * line_load * (loaded[i + 1].first - loaded[i].first);
+    loads.point_forces.push_back({loaded[i].second, Eigen::Vector3d(0.0, 0.0, half)});
+    loads.point_forces.push_back({loaded[i + 1].second, Eigen::Vector3d(0.0, 0.0, half)});
+  }
+  const std::vector<Eigen::Vector3d> positions = solved_positions(
+      mesh, strip_material(6.3e5, 47.25, 0.0, element::BendingModel::patch), clamp, loads, 40);
+  return {positions[std::size_t(loaded.front().second)].z(),
+          positions[std::size_t(loaded.back().second)].z()};
+}
+
+TEST(BendingVerification, SlitAnnularPlateMatchesSzeLiuLo) {
+  // 8 x 64 free cells (1,056 triangles); measured -2.7 % (A) and -2.1 % (B),
+  // converging at orders 1.1 to 1.4 on finer meshes (docs/finite-elements.md).
+  const SlitPlateLift patch = slit_annular_plate(1);
+  const double error_a = patch.inner / sze_slit_plate_wa - 1.0;
+  const double error_b = patch.outer / sze_slit_plate_wb - 1.0;
+  std::printf("slit annular plate, 8 x 64 cells, patch: W_A %.4f (%+.2f %%), W_B %.4f (%+.2f %%)\n",
+              patch.inner, 100 * error_a, patch.outer, 100 * error_b);
+  EXPECT_LT(std::abs(error_a), 0.05);
+  EXPECT_LT(std::abs(error_b), 0.05);
+  // The twist lifts the outer corner more than the inner one.
+  EXPECT_GT(patch.outer - patch.inner, 0.5 * (sze_slit_plate_wb - sze_slit_plate_wa));
 }
 
 } // namespace
