@@ -86,6 +86,7 @@ TEST(ContactProblem, JacobianMatchesResidualDifferences) {
                                    Vector3d(-0.2, -0.2, 0.1 + 0.5 * offset));
   ClothProblem problem(PETSC_COMM_WORLD, mesh, fabric(1e-4), {});
   problem.contact.offset = offset;
+  problem.contact.edge_sample_spacing = 0.015; // the edges' samples too
   contact::Body ball("ball", std::make_shared<contact::Sphere>(Vector3d::Zero(), 0.1),
                      Vector3d::Zero());
   ball.friction = {0.3, 0.2};
@@ -133,6 +134,7 @@ TEST(ContactProblem, SkippedQueriesChangeNothing) {
                                    Vector3d(-0.2, -0.2, 0.1 + 1.5 * offset));
   const auto set_up = [&](ClothProblem& problem) {
     problem.contact.offset = offset;
+    problem.contact.edge_sample_spacing = 0.015; // the edges' samples too
     problem.bodies = {contact::Body(
         "ball", std::make_shared<contact::Sphere>(Vector3d::Zero(), 0.1), Vector3d::Zero())};
     problem.loads.gravity = Vector3d(0, 0, -gravity);
@@ -259,6 +261,7 @@ TEST(ContactProblem, StepBoundKeepsEveryVertexOutsideABall) {
                                    Vector3d(-0.1, -0.1, radius + 0.5 * offset));
   ClothProblem problem(PETSC_COMM_WORLD, mesh, fabric(1e-4), {});
   problem.contact.offset = offset;
+  problem.contact.edge_sample_spacing = 0.015; // the edges' samples too
   problem.bodies = {contact::Body(
       "ball", std::make_shared<contact::Sphere>(Vector3d::Zero(), radius), Vector3d::Zero())};
   Vec x = nullptr, d = nullptr;
