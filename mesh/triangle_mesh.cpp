@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <set>
 
 namespace sartor {
 
@@ -181,6 +182,17 @@ std::vector<std::array<int, 2>> boundary_edges(const TriangleMesh& mesh) {
     edges.push_back({sides[i].lo, sides[i].hi});
   }
   return edges;
+}
+
+std::vector<std::array<int, 2>> mesh_edges(const TriangleMesh& mesh) {
+  std::set<std::array<int, 2>> edges;
+  for (const auto& corners : mesh.triangles) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      const int a = corners[c], b = corners[(c + 1) % 3];
+      edges.insert({std::min(a, b), std::max(a, b)});
+    }
+  }
+  return {edges.begin(), edges.end()};
 }
 
 std::vector<int> boundary_vertices(const TriangleMesh& mesh) {

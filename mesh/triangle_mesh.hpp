@@ -68,5 +68,7 @@ std::vector<Hinge> interior_edges(const TriangleMesh& mesh);
 std::vector<int> boundary_vertices(const TriangleMesh& mesh);
 // Edges of one triangle only, (lower, higher vertex index), sorted.
 std::vector<std::array<int, 2>> boundary_edges(const TriangleMesh& mesh);
+// Every edge once, (lower, higher vertex index), sorted; any connectivity.
+std::vector<std::array<int, 2>> mesh_edges(const TriangleMesh& mesh);
 
 } // namespace sartor

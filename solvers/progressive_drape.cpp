@@ -17,7 +17,6 @@
 #include <ctime>
 #include <memory>
 #include <optional>
-#include <set>
 
 namespace sartor {
 
@@ -190,18 +189,6 @@ void lift_edges_out_of_body(const contact::Body& body, double offset, double spa
     }
     if (!lifted) return;
   }
-}
-
-// Each edge of the mesh once.
-std::vector<std::array<int, 2>> mesh_edges(const TriangleMesh& mesh) {
-  std::set<std::array<int, 2>> edges;
-  for (const auto& corners : mesh.triangles) {
-    for (std::size_t c = 0; c < 3; ++c) {
-      const int a = corners[c], b = corners[(c + 1) % 3];
-      edges.insert({std::min(a, b), std::max(a, b)});
-    }
-  }
-  return {edges.begin(), edges.end()};
 }
 
 // Moves the vertices of a prolonged drape that lie deeper than half the

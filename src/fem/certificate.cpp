@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <set>
 #include <utility>
 
 namespace sartor {
@@ -100,17 +99,6 @@ double lowest_distance_along(const contact::Body& body, double clock, const Eige
     s = std::min(length, s + std::max(std::abs(d) / slope, floor_step));
   }
   return lowest;
-}
-
-std::vector<std::pair<int, int>> mesh_edges(const TriangleMesh& mesh) {
-  std::set<std::pair<int, int>> edges;
-  for (const auto& t : mesh.triangles) {
-    for (std::size_t c = 0; c < 3; ++c) {
-      const int a = t[c], b = t[(c + 1) % 3];
-      edges.insert({std::min(a, b), std::max(a, b)});
-    }
-  }
-  return {edges.begin(), edges.end()};
 }
 
 // Rank 0: depth and edge checks.

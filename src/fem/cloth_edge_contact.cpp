@@ -199,9 +199,9 @@ ClothProblem::gather_edge_sample_loads(Vec x, std::vector<std::vector<Eigen::Vec
   PetscCall(VecGetLocalSize(local_x_, &size));
   per_body->assign(bodies.size(), {});
   for (std::size_t b = 0; b < bodies.size(); ++b) {
-    std::vector<Eigen::Vector3d> loads;
+    std::vector<Eigen::Vector3d> sample_loads;
     PetscCall(VecGetArrayRead(local_x_, &values));
-    const PetscErrorCode failed = edge_sample_loads(b, values, &loads);
+    const PetscErrorCode failed = edge_sample_loads(b, values, &sample_loads);
     PetscCall(VecRestoreArrayRead(local_x_, &values));
     PetscCall(failed);
     // In the local-vector layout gather_vertex_triples reads.
@@ -209,7 +209,7 @@ ClothProblem::gather_edge_sample_loads(Vec x, std::vector<std::vector<Eigen::Vec
     for (std::size_t v = 0; v < mesh_.vertex_count(); ++v) {
       if (vertex_dof_[v] < 0) continue;
       for (int d = 0; d < 3; ++d)
-        local[std::size_t(vertex_dof_[v] + d)] = loads[v][d];
+        local[std::size_t(vertex_dof_[v] + d)] = sample_loads[v][d];
     }
     PetscCall(gather_vertex_triples(local.data(), &(*per_body)[b]));
   }
