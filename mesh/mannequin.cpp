@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 #include <unordered_map>
+#include <utility>
 
 namespace sartor {
 
@@ -1062,11 +1063,15 @@ Pose parse_pose(const std::string& text) {
 }
 
 struct MannequinModel::Parts {
+  explicit Parts(Design body)
+      : design(std::move(body)), slope_bound(ellipsoid_slope_bound(design)) {}
   Design design;
+  // Asked for at every contact query's cache check: computed once.
+  double slope_bound;
 };
 
 MannequinModel::MannequinModel()
-    : sized_(std::make_shared<Parts>(Parts{default_design()})), posed_(sized_) {}
+    : sized_(std::make_shared<Parts>(default_design())), posed_(sized_) {}
 
 MannequinModel::MannequinModel(const Measurements& requested, const Pose& pose) : MannequinModel() {
   requested_ = default_measurements();
@@ -1085,7 +1090,7 @@ MannequinModel::MannequinModel(const Measurements& requested, const Pose& pose) 
                            1e3 * (default_crown - default_hps);
   check_plausible(requested_);
   if (!is_default) {
-    sized_ = std::make_shared<Parts>(Parts{sized_design(requested_)});
+    sized_ = std::make_shared<Parts>(sized_design(requested_));
     const VerticalMap map = vertical_map(requested_, crotch_height(default_design()));
     achieved_ = requested_;
     for (const auto& [name, value] : measure_girths(sized_->design, requested_, map))
@@ -1101,7 +1106,7 @@ MannequinModel MannequinModel::posed(const Pose& pose) const {
   MannequinModel model = *this;
   model.pose_ = pose;
   model.posed_ =
-      pose.neutral() ? sized_ : std::make_shared<Parts>(Parts{posed_design(sized_->design, pose)});
+      pose.neutral() ? sized_ : std::make_shared<Parts>(posed_design(sized_->design, pose));
   return model;
 }
 
@@ -1109,12 +1114,16 @@ double MannequinModel::field(const Eigen::Vector3d& p) const {
   return body_field<false>(posed_->design, p).value;
 }
 
+MannequinFieldValue MannequinModel::field_gradient(const Eigen::Vector3d& p) const {
+  return body_field<false>(posed_->design, p);
+}
+
 MannequinFieldValue MannequinModel::field_derivatives(const Eigen::Vector3d& p) const {
   return body_field<true>(posed_->design, p);
 }
 
 double MannequinModel::slope_bound() const {
-  return ellipsoid_slope_bound(posed_->design);
+  return posed_->slope_bound;
 }
 
 Mannequin MannequinModel::generate() const {

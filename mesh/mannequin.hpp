@@ -121,6 +121,8 @@ public:
   MannequinModel posed(const Pose& pose) const;
 
   double field(const Eigen::Vector3d& p) const;
+  // The value and gradient alone (the Hessian zero): cheaper by about half.
+  MannequinFieldValue field_gradient(const Eigen::Vector3d& p) const;
   MannequinFieldValue field_derivatives(const Eigen::Vector3d& p) const;
   // A bound on |gradient| outside the body (8 for the default's hands).
   double slope_bound() const;

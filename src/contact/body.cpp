@@ -62,17 +62,25 @@ Eigen::Vector3d Body::direction_to_body(const Eigen::Vector3d& direction, double
 }
 
 SurfaceQuery Body::query(const Eigen::Vector3d& x, double time) const {
+  return query(x, time, QueryNeeds::curvature);
+}
+
+SurfaceQuery Body::query(const Eigen::Vector3d& x, double time, QueryNeeds needs) const {
   const Eigen::Matrix3d r = rotation(time);
   const double s = motion.scale.at(time);
   const Eigen::Vector3d shift = pivot_ + motion.translation.at(time);
-  const SurfaceQuery local = shape_->query(pivot_ + r.transpose() * (x - shift) / s);
+  const Eigen::Vector3d p = pivot_ + r.transpose() * (x - shift) / s;
+  const SurfaceQuery local =
+      needs == QueryNeeds::curvature ? shape_->query(p) : shape_->partial_query(p, needs);
   // d(x) = s d_b(p(x)), dp/dx = R^T / s: the normal rotates, the curvature
   // shrinks by the scale.
   SurfaceQuery world;
   world.distance = s * local.distance;
+  if (needs == QueryNeeds::distance) return world;
   world.normal = r * local.normal;
-  world.hessian = r * local.hessian * r.transpose() / s;
   world.closest = shift + s * r * (local.closest - pivot_);
+  if (needs == QueryNeeds::normal) return world;
+  world.hessian = r * local.hessian * r.transpose() / s;
   return world;
 }
 

@@ -70,6 +70,8 @@ public:
 
   // The shape's query at world point x and time t, in world terms.
   SurfaceQuery query(const Eigen::Vector3d& x, double time) const;
+  // Only what `needs` asks for (Shape::partial_query), in world terms.
+  SurfaceQuery query(const Eigen::Vector3d& x, double time, QueryNeeds needs) const;
   // Body-frame point -> world point at time t, and back.
   Eigen::Vector3d to_world(const Eigen::Vector3d& p, double time) const;
   Eigen::Vector3d to_body(const Eigen::Vector3d& x, double time) const;

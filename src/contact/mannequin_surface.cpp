@@ -15,13 +15,16 @@ public:
       : model_(std::move(model)), description_(std::move(description)) {}
 
   SurfaceQuery query(const Eigen::Vector3d& p) const override {
-    const MannequinFieldValue field = model_.field_derivatives(p);
+    return from_field(p, model_.field_derivatives(p));
+  }
+
+  // The field's value and gradient come out of the same arithmetic whether
+  // or not its Hessian is computed too.
+  SurfaceQuery partial_query(const Eigen::Vector3d& p, QueryNeeds needs) const override {
+    if (needs == QueryNeeds::curvature) return query(p);
+    if (needs == QueryNeeds::normal) return from_field(p, model_.field_gradient(p));
     SurfaceQuery result;
-    result.distance = field.value;
-    result.normal = field.gradient;
-    result.hessian = field.hessian;
-    const double slope = field.gradient.squaredNorm();
-    result.closest = slope > 0.0 ? Eigen::Vector3d(p - field.value / slope * field.gradient) : p;
+    result.distance = model_.field(p);
     return result;
   }
 
@@ -35,6 +38,16 @@ public:
   double slope_bound() const override { return model_.slope_bound(); }
 
 private:
+  static SurfaceQuery from_field(const Eigen::Vector3d& p, const MannequinFieldValue& field) {
+    SurfaceQuery result;
+    result.distance = field.value;
+    result.normal = field.gradient;
+    result.hessian = field.hessian;
+    const double slope = field.gradient.squaredNorm();
+    result.closest = slope > 0.0 ? Eigen::Vector3d(p - field.value / slope * field.gradient) : p;
+    return result;
+  }
+
   MannequinModel model_;
   std::string description_;
 };

@@ -31,6 +31,18 @@
 
 namespace sartor::contact {
 
+// The part of a body's query the penalty's level `want` reads.
+inline QueryNeeds query_needs(element::Want want) {
+  switch (want) {
+  case element::Want::energy:
+    return QueryNeeds::distance;
+  case element::Want::gradient:
+    return QueryNeeds::normal;
+  default:
+    return QueryNeeds::curvature;
+  }
+}
+
 struct PointResult {
   double energy = 0.0;                                // J
   Eigen::Vector3d gradient = Eigen::Vector3d::Zero(); // N

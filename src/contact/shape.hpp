@@ -20,6 +20,10 @@ struct SurfaceQuery {
   Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero(); // d^2 distance / d p^2, 1/m
 };
 
+// How much of a query a caller needs: energies and step bounds the distance
+// alone, forces the normal (and closest point) too, Jacobians everything.
+enum class QueryNeeds { distance, normal, curvature };
+
 class Shape {
 public:
   virtual ~Shape() = default;
@@ -27,6 +31,14 @@ public:
   // (inside and outside); where the distance is not differentiable (a medial
   // axis) any one-sided value is acceptable.
   virtual SurfaceQuery query(const Eigen::Vector3d& p) const = 0;
+  // The query computing only what `needs` asks for (the fields not asked for
+  // keep their defaults). The fields asked for are those of query(p), bit
+  // for bit. Shapes whose curvature is costly (the mannequin's implicit
+  // surface, where it took most of a drape's contact time) override it.
+  virtual SurfaceQuery partial_query(const Eigen::Vector3d& p, QueryNeeds needs) const {
+    (void)needs;
+    return query(p);
+  }
   // One line for logs and summaries, e.g. "sphere r=0.3".
   virtual std::string describe() const = 0;
   // A bound on |normal| outside the body: the distance falls by at most this

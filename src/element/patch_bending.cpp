@@ -2,8 +2,10 @@
 
 #include "common/error.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <Eigen/QR>
 #include <Eigen/SVD>
 
 #include <algorithm>
@@ -343,6 +345,30 @@ Result<36> patch_bending(const PatchRest& rest, const Vector36& x, Want want) {
   result.hessian = rest.area * (b.transpose() * response.tangent * b + cross_terms);
   result.hessian = 0.5 * (result.hessian + result.hessian.transpose()).eval();
   return result;
+}
+
+void project_patch_hessian_to_psd(const PatchRest& rest, Eigen::Matrix<double, 36, 36>& hessian) {
+  // An orthonormal basis of the subspace: the corners' dofs, and Q (x) I3 on
+  // the other nodes, with Q R = W^T the weights over those nodes (Householder:
+  // span(Q) holds span(W^T) whatever its rank, with no rank decided).
+  const Eigen::Matrix<double, 9, 3> others = rest.weights.rightCols<9>().transpose();
+  const Eigen::Matrix<double, 9, 3> q =
+      Eigen::HouseholderQR<Eigen::Matrix<double, 9, 3>>(others).householderQ() *
+      Eigen::Matrix<double, 9, 3>::Identity();
+  Eigen::Matrix<double, 36, 18> basis = Eigen::Matrix<double, 36, 18>::Zero();
+  basis.topLeftCorner<9, 9>().setIdentity();
+  for (int i = 0; i < 9; ++i) {
+    for (int c = 0; c < 3; ++c)
+      basis.block<3, 3>(9 + 3 * i, 9 + 3 * c) = q(i, c) * Matrix3d::Identity();
+  }
+  Eigen::Matrix<double, 18, 18> reduced = basis.transpose() * hessian * basis;
+  reduced = (0.5 * (reduced + reduced.transpose())).eval();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 18, 18>> eigen(reduced);
+  if (eigen.eigenvalues().minCoeff() >= 0.0) return;
+  const Eigen::Matrix<double, 36, 18> vectors = basis * eigen.eigenvectors();
+  const Eigen::Matrix<double, 36, 36> projected =
+      vectors * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() * vectors.transpose();
+  hessian = 0.5 * (projected + projected.transpose());
 }
 
 } // namespace sartor::element

@@ -60,7 +60,7 @@ contact::PointResult ClothProblem::vertex_contact(std::size_t body, int vertex,
   const double k = contact_stiffness(vertex);
   contact::PointResult result;
   if (!surely_apart(body, vertex, x)) {
-    const contact::SurfaceQuery query = b.query(x, contact_clock());
+    const contact::SurfaceQuery query = b.query(x, contact_clock(), contact::query_needs(want));
     queried_[body][std::size_t(vertex)] = {x, query.distance, contact_clock()};
     result = contact::penalty(k, contact.offset, query, want);
   }
@@ -132,7 +132,10 @@ double ClothProblem::vertex_step_bound(std::size_t body, const Eigen::Vector3d& 
   const double length = motion.norm();
   const double slope = b.shape().slope_bound();
   if (length == 0.0) return 1.0;
-  double distance = b.query(p, contact_clock()).distance;
+  const auto distance_at = [&](const Eigen::Vector3d& at) {
+    return b.query(at, contact_clock(), contact::QueryNeeds::distance).distance;
+  };
+  double distance = distance_at(p);
   if (distance <= 0.0) return 1.0; // inside: the penalty pushes it out
   // Never closer than a tenth of the offset in one step (nor than half its
   // distance when it is closer already): the penalty, which acts within the
@@ -152,7 +155,7 @@ double ClothProblem::vertex_step_bound(std::size_t body, const Eigen::Vector3d& 
     if (t + room >= 1.0) return 1.0;
     t += room;
     if (room <= 1e-14) break;
-    distance = b.query(p + t * motion, contact_clock()).distance;
+    distance = distance_at(p + t * motion);
   }
   return t;
 }

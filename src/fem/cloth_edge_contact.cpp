@@ -79,7 +79,7 @@ contact::EdgeSampleResult ClothProblem::edge_sample_contact(std::size_t body, st
   if (last.clock == contact_clock() &&
       last.distance - b.shape().slope_bound() * (p - last.point).norm() > contact.offset)
     return {};
-  const contact::SurfaceQuery query = b.query(p, contact_clock());
+  const contact::SurfaceQuery query = b.query(p, contact_clock(), contact::query_needs(want));
   last = {p, query.distance, contact_clock()};
   return contact::edge_sample_penalty(edge_sample_stiffness(sample), contact.offset, sample.s,
                                       query, want, contact.project_hessian && !exact_hessian);

@@ -84,6 +84,34 @@ TEST(PatchBending, DerivativesMatchFiniteDifferences) {
   }
 }
 
+// The projection in the Hessian's 18-dimensional range is the full 36 x 36
+// projection: on bent, twisted and stretched patches whose Hessians are
+// indefinite (so that the projection changes them), with and without a
+// boundary edge.
+TEST(PatchBending, ProjectionInTheHessiansRangeIsTheFullProjection) {
+  const auto uv = irregular_patch();
+  int projected = 0;
+  for (const bool boundary : {false, true}) {
+    for (const double bend : {0.4, -1.5, 3.0}) {
+      const PatchRest rest =
+          rest_of(uv, orthotropic(), {true, !boundary, true}, Vector3d(-bend, 0.8, 0.5));
+      Vector36 x = lift(uv, [bend](const Vector2d& p) {
+        return Vector3d(1.2 * p.x() + 0.1 * p.y() * p.y(), p.y() - 0.05 * p.x() * p.y(),
+                        bend * p.x() * p.x() - 0.3 * p.x() * p.y() + 0.2 * p.y() * p.y());
+      });
+      x(17) += 0.05;
+      x(9) -= 0.03;
+      const Eigen::Matrix<double, 36, 36> hessian = patch_bending(rest, x, Want::hessian).hessian;
+      Eigen::Matrix<double, 36, 36> full = hessian, reduced = hessian;
+      project_to_psd<36>(full);
+      project_patch_hessian_to_psd(rest, reduced);
+      if ((full - hessian).norm() > 1e-3 * hessian.norm()) ++projected;
+      EXPECT_LT((reduced - full).norm(), 1e-10 * hessian.norm()) << bend << " " << boundary;
+    }
+  }
+  EXPECT_GE(projected, 4); // indefinite Hessians, not only the early return
+}
+
 TEST(PatchBending, RigidMotionsStoreNothing) {
   const auto uv = irregular_patch();
   const PatchRest rest = rest_of(uv, orthotropic());
