@@ -26,13 +26,4 @@ enum class Want { energy, gradient, hessian };
 template <int N>
 void project_to_psd(Eigen::Matrix<double, N, N>& matrix);
 
-// The same projection of the Hessian of an energy of N/3 points that depends
-// on their differences only (a membrane triangle, a bending hinge): the
-// translations are in its null space, so it is projected in their
-// orthogonal complement, by an eigenproblem of N - 3 (a third to a half of
-// the cost). Equal to project_to_psd<N> to round-off; left exactly as it is
-// when positive semi-definite there. Compiled for N = 9 and 12.
-template <int N>
-void project_translation_free_to_psd(Eigen::Matrix<double, N, N>& matrix);
-
 } // namespace sartor::element

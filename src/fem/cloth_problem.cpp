@@ -566,8 +566,7 @@ PetscErrorCode ClothProblem::jacobian(Vec x, Mat J) {
     }
     auto result = element::membrane(t.material->membrane_model, t.material->membrane, t.rest,
                                     response.strain, xe, element::Want::hessian);
-    if (t.material->project_membrane && !exact_hessian)
-      element::project_translation_free_to_psd<9>(result.hessian);
+    if (t.material->project_membrane && !exact_hessian) element::project_to_psd<9>(result.hessian);
     if (nonelastic_response) {
       // The force also moves with the unloaded lengths: dF/dn dn/dx.
       result.hessian +=
@@ -587,7 +586,7 @@ PetscErrorCode ClothProblem::jacobian(Vec x, Mat J) {
   for (const LocalHinge& h : hinges_) {
     auto result = element::bending(materials_.front().bending_model, h.stiffness, h.rest,
                                    gather<12>(values, h.dofs), element::Want::hessian);
-    if (h.project && !exact_hessian) element::project_translation_free_to_psd<12>(result.hessian);
+    if (h.project && !exact_hessian) element::project_to_psd<12>(result.hessian);
     if (scatter)
       PetscCall(scatter->add<12>(result.hessian));
     else

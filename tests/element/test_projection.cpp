@@ -71,45 +71,5 @@ TEST(ProjectToPsd, Size12) {
   check_projection<12>(random);
 }
 
-// A random symmetric matrix that annihilates the translations of its N/3
-// points (as a Hessian of point differences does): projected in their
-// complement it is the full projection, and a positive semi-definite one is
-// left as it is.
-template <int N>
-void check_translation_free_projection(std::mt19937& random) {
-  using Matrix = Eigen::Matrix<double, N, N>;
-  Matrix centring = Matrix::Identity();
-  for (int i = 0; i < N; ++i) {
-    for (int j = 0; j < N; ++j)
-      centring(i, j) -= (i % 3 == j % 3) ? 3.0 / N : 0.0;
-  }
-  for (int sample = 0; sample < 20; ++sample) {
-    const Matrix b = random_matrix<N>(random);
-    const Matrix indefinite = centring * (b + b.transpose()) * centring;
-    Matrix full = indefinite, reduced = indefinite;
-    project_to_psd<N>(full);
-    project_translation_free_to_psd<N>(reduced);
-    ASSERT_GT((full - indefinite).norm(), 1e-3 * indefinite.norm()); // it was projected
-    EXPECT_EQ(reduced, reduced.transpose());
-    EXPECT_LT((reduced - full).cwiseAbs().maxCoeff(), 1e-12 * indefinite.norm());
-
-    const Matrix low_rank = centring * random_matrix<N>(random);
-    Matrix psd = low_rank * low_rank.transpose();
-    const Matrix original = psd;
-    project_translation_free_to_psd<N>(psd);
-    EXPECT_EQ(psd, original);
-  }
-}
-
-TEST(ProjectToPsd, TranslationFreeSize9) {
-  std::mt19937 random(4);
-  check_translation_free_projection<9>(random);
-}
-
-TEST(ProjectToPsd, TranslationFreeSize12) {
-  std::mt19937 random(5);
-  check_translation_free_projection<12>(random);
-}
-
 } // namespace
 } // namespace sartor::element
