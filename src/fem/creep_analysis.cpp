@@ -89,6 +89,18 @@ PetscErrorCode resume_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
   PetscFunctionReturn(0);
 }
 
+// A dynamic run's starting velocities: zero, or the checkpoint's.
+PetscErrorCode initial_velocity(const ClothProblem& problem, Vec x, const RunCheckpoint* resume,
+                                Vec* velocity) {
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(x, velocity));
+  PetscCall(VecSet(*velocity, 0.0));
+  if (resume && !resume->velocities.empty()) {
+    PetscCall(problem.set_solution(resume->velocities, *velocity));
+  }
+  PetscFunctionReturn(0);
+}
+
 // The equilibrium at the start, reported as the run's first step; *ok is
 // false (and the report says why) when it does not converge.
 PetscErrorCode initial_creep_state(ClothProblem& problem, CreepCoupling& creep,
@@ -292,13 +304,7 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
   if (monolithic) creep.couple(0.0);
   IncrementalSystem system(problem, x);
   PetscCall(VecDuplicate(x, &last));
-  if (options.dynamic) {
-    PetscCall(VecDuplicate(x, &velocity));
-    PetscCall(VecSet(velocity, 0.0));
-    if (resume && !resume->velocities.empty()) {
-      PetscCall(problem.set_solution(resume->velocities, velocity));
-    }
-  }
+  if (options.dynamic) PetscCall(initial_velocity(problem, x, resume, &velocity));
   // Every way out of this function destroys both.
   const DestroyAtExit destroy_at_exit{&last, &velocity};
 
