@@ -556,6 +556,13 @@ DrapeMeasures measure_drape(const Options& options, const CaseResult& result,
   return m;
 }
 
+// The settled state's certificate verdict (its details: summary.json's certificate).
+std::string certificate_verdict(const Options& options, const CaseResult& result) {
+  return result.certified                 ? result.certified->certificate.verdict()
+         : options.flag("no-certificate") ? "skipped"
+                                          : "not certified";
+}
+
 // summary.json's construction section (its details: construct.json).
 nlohmann::json construction_json(const ConstructedGarment& constructed,
                                  const SewableGarment& sewable,
@@ -739,10 +746,7 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
       constructed.construction.placement_seconds + constructed.construction.seam_seconds;
   const double total_seconds = std::chrono::duration<double>(Clock::now() - started).count();
 
-  // The settled state's certificate (summary.json: certificate).
-  const std::string verdict = result.certified ? result.certified->certificate.verdict()
-                              : options.flag("no-certificate") ? "skipped"
-                                                               : "not certified";
+  const std::string verdict = certificate_verdict(options, result);
   nlohmann::json summary = run_metadata(invocation, command);
   summary["pattern"] = path;
   summary["fabrics"] = cloth.fabrics;
