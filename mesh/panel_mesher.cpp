@@ -122,6 +122,7 @@ double constraint_angle(const Triangulation& triangulation, Vertex v) {
 struct Attempt {
   Triangulation triangulation;
   std::vector<InsertedLine> outline, interior;
+  std::vector<std::vector<Vertex>> outline_paths; // after refinement
 };
 
 void insert_line(Triangulation& triangulation, const std::vector<Vector2d>& points,
@@ -132,15 +133,7 @@ void insert_line(Triangulation& triangulation, const std::vector<Vector2d>& poin
     triangulation.insert_constraint(line.vertices[k], line.vertices[k + 1]);
 }
 
-} // namespace
-
-int pieces_for(double length, double edge_length) {
-  return std::max(
-      1, static_cast<int>(std::ceil(length / (boundary_piece_fraction * edge_length) - 1e-9)));
-}
-
-PanelMesh mesh_panel(const garment::Panel& panel, const PanelMeshOptions& options) {
-  const std::string where = "panel '" + panel.id + "'";
+void check_mesh_options(const std::string& where, const PanelMeshOptions& options) {
   if (!(options.edge_length > 0))
     throw InputError(where + ": the edge length must be > 0, got " +
                      format_number(options.edge_length));
@@ -149,30 +142,46 @@ PanelMesh mesh_panel(const garment::Panel& panel, const PanelMeshOptions& option
                      "refinement need not terminate above), got " +
                      format_number(options.min_angle_deg));
   }
-  // A polygon needs three corners: one or two outline lines get more pieces.
-  const int at_least = panel.outline.size() >= 3 ? 1 : panel.outline.size() == 2 ? 2 : 3;
+}
 
+// The pieces of each outline line, and whether options.pieces forces them.
+struct OutlinePieces {
   std::vector<int> pieces;
   std::vector<bool> forced;
+};
+
+OutlinePieces outline_pieces(const garment::Panel& panel, const PanelMeshOptions& options,
+                             const std::string& where) {
+  // A polygon needs three corners: one or two outline lines get more pieces.
+  const int at_least = panel.outline.size() >= 3 ? 1 : panel.outline.size() == 2 ? 2 : 3;
+  OutlinePieces result;
   for (const auto& line : panel.outline) {
     const auto found = options.pieces.find(line.id);
-    forced.push_back(found != options.pieces.end());
+    result.forced.push_back(found != options.pieces.end());
     if (found != options.pieces.end() && found->second < at_least) {
       throw InputError(where + ": line '" + line.id + "' is forced to " +
                        std::to_string(found->second) + " pieces; it needs at least " +
                        std::to_string(at_least));
     }
-    pieces.push_back(
-        forced.back() ? found->second
-                      : std::max(at_least, pieces_for(line.curve.length(), options.edge_length)));
+    result.pieces.push_back(
+        result.forced.back()
+            ? found->second
+            : std::max(at_least, pieces_for(line.curve.length(), options.edge_length)));
   }
+  return result;
+}
 
+// The panel's lines inserted as constraints and refined by CGAL; an outline
+// line the mesher split is inserted again with twice the pieces (unless
+// forced, or after options.max_rounds rounds), so that outline vertices
+// stay equally spaced. `outline.pieces` ends as used; *rounds counts them.
+std::unique_ptr<Attempt> refine_panel(const garment::Panel& panel, const PanelMeshOptions& options,
+                                      OutlinePieces& outline, int* rounds) {
   const double sine = std::sin(options.min_angle_deg / degrees);
+  std::vector<int>& pieces = outline.pieces;
   std::unique_ptr<Attempt> attempt;
-  int rounds = 0;
-  std::vector<std::vector<Vertex>> outline_paths;
   for (;;) {
-    ++rounds;
+    ++*rounds;
     attempt = std::make_unique<Attempt>();
     attempt->outline.resize(panel.outline.size());
     for (std::size_t l = 0; l < panel.outline.size(); ++l) {
@@ -189,37 +198,107 @@ PanelMesh mesh_panel(const garment::Panel& panel, const PanelMeshOptions& option
     CGAL::refine_Delaunay_mesh_2(attempt->triangulation,
                                  Criteria(sine * sine, options.edge_length));
 
-    outline_paths.clear();
     bool again = false;
     for (std::size_t l = 0; l < panel.outline.size(); ++l) {
-      outline_paths.push_back(walk_line(attempt->triangulation, attempt->outline[l]));
-      const bool split = outline_paths.back().size() != attempt->outline[l].vertices.size();
-      if (split && !forced[l] && rounds < options.max_rounds) {
+      attempt->outline_paths.push_back(walk_line(attempt->triangulation, attempt->outline[l]));
+      const bool split =
+          attempt->outline_paths.back().size() != attempt->outline[l].vertices.size();
+      if (split && !outline.forced[l] && *rounds < options.max_rounds) {
         pieces[l] *= 2;
         again = true;
       }
     }
-    if (!again) break;
+    if (!again) return attempt;
   }
+}
+
+// Mesh vertex numbers in the order vertices are first met; a vertex met
+// for the first time is added to the mesh.
+struct VertexNumbering {
+  TriangleMesh& mesh;
+  std::map<Vertex, int> index;
+  int operator()(Vertex v) {
+    const auto [it, inserted] = index.emplace(v, int(mesh.positions.size()));
+    if (inserted) {
+      const Vector2d p = to_eigen(v->point());
+      mesh.positions.emplace_back(p.x(), p.y(), 0.0);
+    }
+    return it->second;
+  }
+};
+
+// The triangles of the domain with their material coordinates, the area,
+// and the smallest angles (overall, and away from input corners sharper
+// than the minimum angle, which no refinement can improve).
+void add_triangles(const Attempt& attempt, const garment::Panel& panel,
+                   const PanelMeshOptions& options, VertexNumbering& number, PanelMesh* result) {
+  result->min_angle_deg = 180;
+  result->min_angle_regular_deg = 180;
+  std::map<Vertex, bool> sharp_input;
+  for (auto face = attempt.triangulation.finite_faces_begin();
+       face != attempt.triangulation.finite_faces_end(); ++face) {
+    if (!face->is_in_domain()) continue;
+    std::array<int, 3> triangle{};
+    std::array<Eigen::Vector2d, 3> uv;
+    std::array<Vector2d, 3> xy;
+    bool near_sharp_input = false;
+    for (int c = 0; c < 3; ++c) {
+      const Vertex v = face->vertex(c);
+      triangle[c] = number(v);
+      xy[c] = to_eigen(v->point());
+      uv[c] = panel.grain.material_uv(xy[c]);
+      auto [it, inserted] = sharp_input.emplace(v, false);
+      if (inserted) it->second = constraint_angle(attempt.triangulation, v) < options.min_angle_deg;
+      near_sharp_input = near_sharp_input || it->second;
+    }
+    const double angle = triangle_min_angle(xy[0], xy[1], xy[2]);
+    result->min_angle_deg = std::min(result->min_angle_deg, angle);
+    if (!near_sharp_input)
+      result->min_angle_regular_deg = std::min(result->min_angle_regular_deg, angle);
+    const Vector2d e1 = xy[1] - xy[0], e2 = xy[2] - xy[0];
+    result->area += 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
+    result->mesh.triangles.push_back(triangle);
+    result->mesh.material_uv.push_back(uv);
+  }
+}
+
+// The signed area of a closed polygon (the shoelace formula).
+double polygon_area(const std::vector<Vector2d>& boundary) {
+  double twice = 0;
+  for (std::size_t i = 0; i < boundary.size(); ++i) {
+    const Vector2d& a = boundary[i];
+    const Vector2d& b = boundary[(i + 1) % boundary.size()];
+    twice += a.x() * b.y() - a.y() * b.x();
+  }
+  return 0.5 * twice;
+}
+
+} // namespace
+
+int pieces_for(double length, double edge_length) {
+  return std::max(
+      1, static_cast<int>(std::ceil(length / (boundary_piece_fraction * edge_length) - 1e-9)));
+}
+
+PanelMesh mesh_panel(const garment::Panel& panel, const PanelMeshOptions& options) {
+  const std::string where = "panel '" + panel.id + "'";
+  check_mesh_options(where, options);
+  OutlinePieces outline = outline_pieces(panel, options, where);
+  int rounds = 0;
+  const std::unique_ptr<Attempt> attempt = refine_panel(panel, options, outline, &rounds);
+  const std::vector<int>& pieces = outline.pieces;
+  const std::vector<std::vector<Vertex>>& outline_paths = attempt->outline_paths;
 
   // Number the vertices: the outline's first, in counter-clockwise order.
   PanelMesh result;
   result.rounds = rounds;
-  std::map<Vertex, int> index;
-  const auto number = [&](Vertex v) {
-    const auto [it, inserted] = index.emplace(v, int(result.mesh.positions.size()));
-    if (inserted) {
-      const Vector2d p = to_eigen(v->point());
-      result.mesh.positions.emplace_back(p.x(), p.y(), 0.0);
-    }
-    return it->second;
-  };
+  VertexNumbering number{result.mesh, {}};
   std::vector<Vector2d> boundary;
   for (std::size_t l = 0; l < panel.outline.size(); ++l) {
     MeshedLine line;
     line.id = panel.outline[l].id;
     line.pieces = pieces[l];
-    line.forced = forced[l];
+    line.forced = outline.forced[l];
     line.split_by_mesher = outline_paths[l].size() != std::size_t(pieces[l]) + 1;
     for (Vertex v : outline_paths[l]) {
       line.vertices.push_back(number(v));
@@ -236,43 +315,8 @@ PanelMesh mesh_panel(const garment::Panel& panel, const PanelMeshOptions& option
       line.vertices.push_back(number(v));
     result.lines.push_back(std::move(line));
   }
-
-  result.min_angle_deg = 180;
-  result.min_angle_regular_deg = 180;
-  std::map<Vertex, bool> sharp_input;
-  for (auto face = attempt->triangulation.finite_faces_begin();
-       face != attempt->triangulation.finite_faces_end(); ++face) {
-    if (!face->is_in_domain()) continue;
-    std::array<int, 3> triangle{};
-    std::array<Eigen::Vector2d, 3> uv;
-    std::array<Vector2d, 3> xy;
-    bool near_sharp_input = false;
-    for (int c = 0; c < 3; ++c) {
-      const Vertex v = face->vertex(c);
-      triangle[c] = number(v);
-      xy[c] = to_eigen(v->point());
-      uv[c] = panel.grain.material_uv(xy[c]);
-      auto [it, inserted] = sharp_input.emplace(v, false);
-      if (inserted)
-        it->second = constraint_angle(attempt->triangulation, v) < options.min_angle_deg;
-      near_sharp_input = near_sharp_input || it->second;
-    }
-    const double angle = triangle_min_angle(xy[0], xy[1], xy[2]);
-    result.min_angle_deg = std::min(result.min_angle_deg, angle);
-    if (!near_sharp_input)
-      result.min_angle_regular_deg = std::min(result.min_angle_regular_deg, angle);
-    const Vector2d e1 = xy[1] - xy[0], e2 = xy[2] - xy[0];
-    result.area += 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
-    result.mesh.triangles.push_back(triangle);
-    result.mesh.material_uv.push_back(uv);
-  }
-  double twice = 0;
-  for (std::size_t i = 0; i < boundary.size(); ++i) {
-    const Vector2d& a = boundary[i];
-    const Vector2d& b = boundary[(i + 1) % boundary.size()];
-    twice += a.x() * b.y() - a.y() * b.x();
-  }
-  result.boundary_area = 0.5 * twice;
+  add_triangles(*attempt, panel, options, number, &result);
+  result.boundary_area = polygon_area(boundary);
   validate(result.mesh, where);
   return result;
 }

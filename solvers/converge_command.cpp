@@ -191,6 +191,85 @@ std::string order_text(double order) {
   return text;
 }
 
+// convergence.json's header: the case, the quantity, the reference and the levels.
+nlohmann::json convergence_report(const Invocation& invocation, const std::string& case_file,
+                                  const Quantity& quantity, const std::optional<double>& reference,
+                                  long base, long level_count) {
+  nlohmann::json report = run_metadata(invocation, "converge");
+  report["case"] = case_file;
+  report["quantity"] = {
+      {"name", quantity.name}, {"unit", quantity.unit}, {"description", quantity.description}};
+  report["reference"] = reference ? nlohmann::json(*reference) : nlohmann::json(nullptr);
+  report["error_kind"] = reference ? "absolute difference from the reference"
+                                   : "absolute change from the previous level";
+  report["base_mesh_refine"] = base;
+  report["levels"] = level_count;
+  report["warnings"] = nlohmann::json::array();
+  return report;
+}
+
+// The level's results in its directory; its positions and strains dropped
+// once written.
+void write_level(const Invocation& invocation, const std::string& case_file, Level& level) {
+  CaseResult& r = level.result;
+  nlohmann::json summary = run_metadata(invocation, "converge");
+  summary["case"] = case_file;
+  summary["level"] = level.level;
+  summary["mesh_refine"] = r.mesh_refine;
+  summary["h"] = r.h;
+  add_case_summary(r, summary);
+  write_case_results(level.directory, r, summary);
+  r.positions.clear();
+  r.strains.clear();
+}
+
+// The rest of the table's row of the level just solved (the last of `levels`).
+void print_level_row(const std::vector<Level>& levels, const ConvergenceAnalysis& analysis,
+                     const std::optional<double>& reference) {
+  const int k = levels.back().level;
+  const CaseResult& done = levels.back().result;
+  double order = std::numeric_limits<double>::quiet_NaN();
+  if (reference && k > 0) order = analysis.pairs.back().order;
+  if (!reference && k > 1) order = analysis.triplets.back().order;
+  const double error = analysis.error.back();
+  char error_text[32] = "-";
+  if (std::isfinite(error)) std::snprintf(error_text, sizeof error_text, "%.4g", error);
+  char relative[32] = "";
+  if (reference && *reference != 0.0) {
+    std::snprintf(relative, sizeof relative, "%.3e", error / std::abs(*reference));
+  }
+  print(" %11.5g %9zu %8ld %15.9g %11s %9s %7s %6ld %9.3g%s\n", done.h, done.mesh.triangle_count(),
+        long(done.dofs), levels.back().value, error_text, relative, order_text(order).c_str(),
+        long(done.report.newton_iterations), done.solve_seconds,
+        done.converged ? "" : "  NOT CONVERGED");
+}
+
+// The observed orders, the self-convergence of each triplet and the fitted order.
+void print_orders(const ConvergenceAnalysis& analysis, const std::optional<double>& reference,
+                  const Quantity& quantity) {
+  if (reference) {
+    for (const auto& pair : analysis.pairs) {
+      print("  observed order, levels %d-%d: %s\n", pair.from, pair.from + 1,
+            order_text(pair.order).c_str());
+    }
+  }
+  for (const auto& triplet : analysis.triplets) {
+    if (triplet.monotone) {
+      print("  self-convergence, levels %d-%d-%d: order %s, Richardson estimate %.9g %s, GCI "
+            "%.2e\n",
+            triplet.from, triplet.from + 1, triplet.from + 2, order_text(triplet.order).c_str(),
+            triplet.extrapolated, quantity.unit.c_str(), triplet.gci);
+    } else {
+      print("  self-convergence, levels %d-%d-%d: not monotone (no order, no extrapolation)\n",
+            triplet.from, triplet.from + 1, triplet.from + 2);
+    }
+  }
+  if (analysis.fitted_points >= 2) {
+    print("  least-squares order over %d level(s): %s\n", analysis.fitted_points,
+          order_text(analysis.fitted_order).c_str());
+  }
+}
+
 } // namespace
 
 int run_converge(const Invocation& invocation) {
@@ -211,16 +290,8 @@ int run_converge(const Invocation& invocation) {
   const std::string directory = options.text("output");
   const long base = options.integer("mesh-refine");
 
-  nlohmann::json report = run_metadata(invocation, "converge");
-  report["case"] = case_file;
-  report["quantity"] = {
-      {"name", quantity.name}, {"unit", quantity.unit}, {"description", quantity.description}};
-  report["reference"] = reference ? nlohmann::json(*reference) : nlohmann::json(nullptr);
-  report["error_kind"] = reference ? "absolute difference from the reference"
-                                   : "absolute change from the previous level";
-  report["base_mesh_refine"] = base;
-  report["levels"] = level_count;
-  report["warnings"] = nlohmann::json::array();
+  nlohmann::json report =
+      convergence_report(invocation, case_file, quantity, reference, base, level_count);
   if (is_root()) make_output_directory(directory);
 
   print("sartor converge: %s, %ld level(s) (mesh_refine %ld..%ld), quantity %s (%s)%s\n",
@@ -245,23 +316,14 @@ int run_converge(const Invocation& invocation) {
       print("\n");
       throw;
     }
-    CaseResult& r = level.result;
+    const CaseResult& r = level.result;
     level.value = measure(quantity, r);
     if (k > 0 && !(r.h < levels.back().result.h)) {
       print("\n");
       throw InputError("level " + std::to_string(k) +
                        ": the mesh size did not decrease (h = " + format_number(r.h) + " m)");
     }
-
-    nlohmann::json summary = run_metadata(invocation, "converge");
-    summary["case"] = case_file;
-    summary["level"] = k;
-    summary["mesh_refine"] = r.mesh_refine;
-    summary["h"] = r.h;
-    add_case_summary(r, summary);
-    write_case_results(level.directory, r, summary);
-    r.positions.clear();
-    r.strains.clear();
+    write_level(invocation, case_file, level);
 
     if (r.probe && k > 0 &&
         (r.probe->initial_position - levels.front().result.probe->initial_position).norm() >
@@ -278,20 +340,7 @@ int run_converge(const Invocation& invocation) {
     levels.push_back(std::move(level));
     const ConvergenceAnalysis analysis = analyse_convergence(h, values, reference);
     const CaseResult& done = levels.back().result;
-    double order = std::numeric_limits<double>::quiet_NaN();
-    if (reference && k > 0) order = analysis.pairs.back().order;
-    if (!reference && k > 1) order = analysis.triplets.back().order;
-    const double error = analysis.error.back();
-    char error_text[32] = "-";
-    if (std::isfinite(error)) std::snprintf(error_text, sizeof error_text, "%.4g", error);
-    char relative[32] = "";
-    if (reference && *reference != 0.0) {
-      std::snprintf(relative, sizeof relative, "%.3e", error / std::abs(*reference));
-    }
-    print(" %11.5g %9zu %8ld %15.9g %11s %9s %7s %6ld %9.3g%s\n", done.h,
-          done.mesh.triangle_count(), long(done.dofs), levels.back().value, error_text, relative,
-          order_text(order).c_str(), long(done.report.newton_iterations), done.solve_seconds,
-          done.converged ? "" : "  NOT CONVERGED");
+    print_level_row(levels, analysis, reference);
     if (report["warnings"].size() == 1 && !warned) {
       print("  warning: %s\n", report["warnings"][0].get<std::string>().c_str());
       warned = true;
@@ -314,29 +363,7 @@ int run_converge(const Invocation& invocation) {
     }
   }
   write_petsc_options(directory);
-
-  const ConvergenceAnalysis analysis = analyse_convergence(h, values, reference);
-  if (reference) {
-    for (const auto& pair : analysis.pairs) {
-      print("  observed order, levels %d-%d: %s\n", pair.from, pair.from + 1,
-            order_text(pair.order).c_str());
-    }
-  }
-  for (const auto& triplet : analysis.triplets) {
-    if (triplet.monotone) {
-      print("  self-convergence, levels %d-%d-%d: order %s, Richardson estimate %.9g %s, GCI "
-            "%.2e\n",
-            triplet.from, triplet.from + 1, triplet.from + 2, order_text(triplet.order).c_str(),
-            triplet.extrapolated, quantity.unit.c_str(), triplet.gci);
-    } else {
-      print("  self-convergence, levels %d-%d-%d: not monotone (no order, no extrapolation)\n",
-            triplet.from, triplet.from + 1, triplet.from + 2);
-    }
-  }
-  if (analysis.fitted_points >= 2) {
-    print("  least-squares order over %d level(s): %s\n", analysis.fitted_points,
-          order_text(analysis.fitted_order).c_str());
-  }
+  print_orders(analyse_convergence(h, values, reference), reference, quantity);
   if (plot) make_plot("plot_converge.py", directory);
   print("sartor converge: wrote %s\n", directory.c_str());
   return 0;

@@ -124,11 +124,9 @@ std::string file_label(const MaterialChoice& choice) {
   return label;
 }
 
-} // namespace
-
-int run_creep(const Invocation& invocation) {
-  const Options& options = invocation.options;
-  const auto started = std::chrono::steady_clock::now();
+// The fabrics and directions --fabric names, checked for creep, their
+// elastic curves linear where --elastic-modulus is given.
+std::vector<MaterialChoice> creep_choices(const Options& options) {
   std::vector<MaterialChoice> choices = resolve_fabrics(options.text("fabric"));
   for (const auto& choice : choices) {
     print_warnings(choice.fabric.warnings);
@@ -143,6 +141,15 @@ int run_creep(const Invocation& invocation) {
       material->elastic = TensionCurve::linear(modulus, context);
     }
   }
+  return choices;
+}
+
+} // namespace
+
+int run_creep(const Invocation& invocation) {
+  const Options& options = invocation.options;
+  const auto started = std::chrono::steady_clock::now();
+  const std::vector<MaterialChoice> choices = creep_choices(options);
 
   nlohmann::json load;
   const bool from_file = options.is_set("tension-history");

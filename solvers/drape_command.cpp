@@ -358,14 +358,11 @@ int run_drape(const Invocation& invocation) {
   return drape_pattern(invocation, nullptr);
 }
 
-int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
-  using Clock = std::chrono::steady_clock;
-  const auto started = Clock::now();
-  const double started_cpu = process_cpu_seconds();
-  const std::string command = edit ? "edit" : "drape";
-  const Options& options = invocation.options;
-  const std::string path = invocation.command_line.positionals.at(0);
-  const std::string directory = options.text("output");
+namespace {
+
+// Options of `sartor run` that drape makes no sense of, and a body without
+// the skeleton that construction needs, are refused before any work.
+void check_drape_options(const Options& options) {
   for (const OptionSpec& option : drape_command().options) {
     if (is_mesh_option(option.name) && options.is_set(option.name)) {
       throw InputError("option --" + option.name +
@@ -382,23 +379,21 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
                      "mu=...\", got '" +
                      body + "'");
   }
+}
 
-  // 1. The garment, constructed and written as `sartor construct` writes it.
-  const std::string user_seams = options.is_set("seams-file") ? options.text("seams-file") : "";
-  const ConstructedGarment constructed = construct_garment(
-      path, panel_mesh_options(options), user_seams, !options.flag("no-prefold"), body);
-  print_construction(constructed);
-  const auto constructed_at = Clock::now();
-  write_construction(directory, constructed,
-                     construction_summary(invocation, "drape", path, constructed));
+// The body as draped on, body.obj (rank 0 writes it).
+void write_drape_body(const std::string& directory, const ConstructedGarment& constructed,
+                      const std::string& path) {
   if (is_root()) {
     write_body_obj(directory + "/body.obj", constructed.body->mannequin.mesh,
                    {"Sartor body: " + constructed.body->source,
                     "the body sartor drape draped " + path + " on; metres"});
   }
+}
 
-  // 2. The cloth: the sewn panels, one material per distinct fabric.
-  const SewableGarment sewable = sewable_garment(constructed);
+// Warns of the panels left out and of seams whose springs cross the body;
+// the crossings for the summary.
+nlohmann::json report_sewing(const SewableGarment& sewable, const ConstructedGarment& constructed) {
   for (const std::string& panel : sewable.left_out) {
     SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD,
                                 "sartor drape: panel '%s' is left out: no sewn seam attaches it\n",
@@ -418,82 +413,309 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
                                 "cloth into it\n",
                                 seam.c_str(), entry.pairs, 1e3 * entry.depth));
   }
-  const std::string seams_file = directory + "/drape_seams.json";
-  if (is_root()) write_seams(seams_file, sewable.seams);
-  // Every rank reads it in solve_case.
-  SartorPetscCall(MPI_Barrier(PETSC_COMM_WORLD));
+  return crossing_json;
+}
+
+// The cloth: the sewn panels, one material per distinct fabric (or the one
+// --fabric names); `labels` gets the panels' names.
+CaseCloth drape_cloth(const Options& options, const ConstructedGarment& constructed,
+                      const SewableGarment& sewable, ClothOutputLabels* labels) {
   CaseCloth cloth;
   cloth.mesh = sewable.mesh;
-  ClothOutputLabels labels{{}, {}, sewable.mesh.material_ids};
   for (const auto& panel : constructed.pattern.panels)
-    labels.panels.push_back(panel.id);
+    labels->panels.push_back(panel.id);
   if (options.is_set("fabric")) {
     cloth.fabrics = {options.text("fabric")};
     cloth.mesh.material_ids.clear();
-  } else {
-    std::vector<int> fabric_of_panel;
-    for (const auto& panel : constructed.pattern.panels) {
-      auto found = std::find(cloth.fabrics.begin(), cloth.fabrics.end(), panel.fabric);
-      if (found == cloth.fabrics.end()) found = cloth.fabrics.insert(found, panel.fabric);
-      fabric_of_panel.push_back(int(found - cloth.fabrics.begin()));
-    }
-    for (int& id : cloth.mesh.material_ids)
-      id = fabric_of_panel[std::size_t(id)];
-    // One fabric: --fabric names it, for what reads it (creep parameters).
-    if (cloth.fabrics.size() == 1)
-      SartorPetscCall(PetscOptionsSetValue(nullptr, "-fabric", cloth.fabrics.front().c_str()));
+    return cloth;
   }
+  std::vector<int> fabric_of_panel;
+  for (const auto& panel : constructed.pattern.panels) {
+    auto found = std::find(cloth.fabrics.begin(), cloth.fabrics.end(), panel.fabric);
+    if (found == cloth.fabrics.end()) found = cloth.fabrics.insert(found, panel.fabric);
+    fabric_of_panel.push_back(int(found - cloth.fabrics.begin()));
+  }
+  for (int& id : cloth.mesh.material_ids)
+    id = fabric_of_panel[std::size_t(id)];
+  // One fabric: --fabric names it, for what reads it (creep parameters).
+  if (cloth.fabrics.size() == 1)
+    SartorPetscCall(PetscOptionsSetValue(nullptr, "-fabric", cloth.fabrics.front().c_str()));
+  return cloth;
+}
 
-  // 3. Sew and drape: the options of `sartor run` with drape's defaults.
-  SartorPetscCall(PetscOptionsSetValue(nullptr, "-seams_file", seams_file.c_str()));
-  // In the options database, not only in the spec: the pipeline asks
-  // whether --body is set, and a flag's default is off.
-  const auto set_default = [](const std::string& name, const std::string& value) {
-    std::string key = name;
-    std::replace(key.begin(), key.end(), '-', '_');
-    key = "-" + key;
-    SartorPetscCall(set_default_option(key.c_str(), value.c_str()));
-  };
+// A default in the options database, not only in the spec: the pipeline
+// asks whether --body is set, and a flag's default is off.
+void set_drape_default(const std::string& name, const std::string& value) {
+  std::string key = name;
+  std::replace(key.begin(), key.end(), '-', '_');
+  key = "-" + key;
+  SartorPetscCall(set_default_option(key.c_str(), value.c_str()));
+}
+
+// Drape's defaults over those of `sartor run`; whether the drape is dynamic.
+bool set_drape_defaults(const Options& options, bool sewn) {
   for (const auto& [name, value] : drape_defaults())
-    set_default(name, value);
+    set_drape_default(name, value);
   // --analysis creep: the static drape, then wear (docs/wear.md).
   if (options.text("analysis") == "creep") {
     SartorPetscCall(PetscOptionsSetValue(nullptr, "-analysis", "static"));
-    set_default("wear-time", "28800");
+    set_drape_default("wear-time", "28800");
   }
   // A time-stepping option asks for dynamics (drape's default before the
   // static minimiser; such command lines keep their meaning).
   if (!options.is_set("analysis")) {
     for (const std::string& name : time_stepping_options()) {
-      if (options.is_set(name)) set_default("analysis", "dynamic");
+      if (options.is_set(name)) set_drape_default("analysis", "dynamic");
     }
   }
   const bool dynamic = options.text("analysis") == "dynamic";
   for (const auto& [name, value] : dynamic ? drape_dynamic_defaults() : drape_static_defaults())
-    set_default(name, value);
-  if (!sewable.seams.empty()) {
+    set_drape_default(name, value);
+  if (sewn) {
     for (const auto& [name, value] : drape_sewing_defaults(dynamic))
-      set_default(name, value);
+      set_drape_default(name, value);
   }
   for (const std::string& flag : drape_flags(dynamic))
-    set_default(flag, "true");
-  // The time steps of the relaxation are solved loosely; the settle solves
-  // fully: to 1e-6 of the garment's weight (1.4e-6 N for the skirt), above
-  // the round-off the stiff seam and contact springs leave in the residual
-  // (1e-7 to 1e-6 N on the skirt, growing as the mesh is refined).
-  double area = 0.0;
-  for (const auto& uv : cloth.mesh.material_uv)
-    area += 0.5 * std::abs((uv[1] - uv[0]).x() * (uv[2] - uv[0]).y() -
-                           (uv[1] - uv[0]).y() * (uv[2] - uv[0]).x());
-  const double mass = options.nonnegative_real("density") * area;
+    set_drape_default(flag, "true");
+  return dynamic;
+}
+
+struct GarmentWeight {
+  double area = 0.0;                                // m^2 of material
+  double mass = 0.0;                                // kg
+  Eigen::Vector3d weight = Eigen::Vector3d::Zero(); // N
+};
+
+GarmentWeight garment_weight(const Options& options, const TriangleMesh& mesh) {
+  GarmentWeight garment;
+  for (const auto& uv : mesh.material_uv)
+    garment.area += 0.5 * std::abs((uv[1] - uv[0]).x() * (uv[2] - uv[0]).y() -
+                                   (uv[1] - uv[0]).y() * (uv[2] - uv[0]).x());
+  garment.mass = options.nonnegative_real("density") * garment.area;
   const std::vector<double> gravity = option_numbers(options, "gravity", 3);
-  const Eigen::Vector3d weight = mass * Eigen::Vector3d(gravity[0], gravity[1], gravity[2]);
+  garment.weight = garment.mass * Eigen::Vector3d(gravity[0], gravity[1], gravity[2]);
+  return garment;
+}
+
+// The time steps of the relaxation are solved loosely; the settle solves
+// fully: to 1e-6 of the garment's weight (1.4e-6 N for the skirt), above
+// the round-off the stiff seam and contact springs leave in the residual
+// (1e-7 to 1e-6 N on the skirt, growing as the mesh is refined).
+void set_drape_tolerances(bool dynamic, const Eigen::Vector3d& weight) {
   if (dynamic) SartorPetscCall(set_default_option("-snes_rtol", "1e-4"));
   // The minimiser's last stage may crawl for a while where the garment
   // slides along a soft direction (the T-shirt needs about 150 iterations).
   if (!dynamic) SartorPetscCall(set_default_option("-snes_max_it", "300"));
   if (weight.norm() > 0.0)
     SartorPetscCall(set_default_option("-snes_atol", format_number(1e-6 * weight.norm()).c_str()));
+}
+
+// What the drape achieved.
+struct DrapeMeasures {
+  Eigen::Vector3d reaction = Eigen::Vector3d::Zero();  // N, the body's on the garment
+  double penetration = 0.0;                            // m, deepest into the offset layer
+  double closest = std::numeric_limits<double>::max(); // m, nearest vertex to the body
+  double offset = 0.0;                                 // m, --contact-offset
+  Eigen::Vector3d imbalance = Eigen::Vector3d::Zero(); // N
+  double seam_gap = 0.0;                               // m
+  double residual = -1.0; // N of the final static solve; < 0 when there is none
+  bool equilibrium = false;
+  DrapeEndLimits end_limits;
+  DrapeOutcome outcome;
+  bool converged = false;
+};
+
+DrapeMeasures measure_drape(const Options& options, const CaseResult& result,
+                            const contact::GarmentBody& body, const Eigen::Vector3d& weight) {
+  DrapeMeasures m;
+  for (const BodyContact& report : result.contact.reports) {
+    m.reaction += report.normal_force + report.friction_force;
+    m.penetration = std::max(m.penetration, report.max_penetration);
+    m.closest = std::min(m.closest, report.min_distance);
+  }
+  m.offset = options.real("contact-offset");
+  // At rest the body's reaction on the garment cancels its weight (pins, when
+  // a user adds some, take their share: pin_reaction_N).
+  m.imbalance = m.reaction + result.pin_reaction + weight;
+  m.seam_gap = result.seams ? result.seams->gap : 0.0;
+  // The residual force of the final static solve (the settle, or statics),
+  // N; negative when there is none (dynamics without --settle). A solve can
+  // stop on a small Newton step (CONVERGED_SNORM_RELATIVE) far from
+  // equilibrium: the drape converged only when the residual is below 1e-3
+  // of the garment's weight.
+  if (result.dynamics && !result.dynamics->settle_reason.empty()) {
+    m.residual = result.dynamics->settle_residual_norm;
+  } else if (!result.dynamics && !result.creep) {
+    m.residual = result.report.final_residual_norm;
+  }
+  m.equilibrium = m.residual >= 0.0 && m.residual <= 1e-3 * weight.norm();
+  m.end_limits.drop_tolerance = options.nonnegative_real("drop-tolerance");
+  m.outcome = drape_outcome(result, m.end_limits, body);
+  m.converged =
+      result.converged && (m.residual < 0.0 || m.equilibrium) && m.outcome.end == DrapeEnd::on_body;
+  return m;
+}
+
+// The settled state's certificate verdict (its details: summary.json's certificate).
+std::string certificate_verdict(const Options& options, const CaseResult& result) {
+  return result.certified                 ? result.certified->certificate.verdict()
+         : options.flag("no-certificate") ? "skipped"
+                                          : "not certified";
+}
+
+// summary.json's construction section (its details: construct.json).
+nlohmann::json construction_json(const ConstructedGarment& constructed,
+                                 const SewableGarment& sewable,
+                                 const nlohmann::json& crossing_json) {
+  return {{"panels", constructed.pattern.panels.size()},
+          {"seams", constructed.construction.seams.size()},
+          {"sewn_seams", constructed.garment.seams.size()},
+          {"panels_left_out", sewable.left_out},
+          {"seams_across_body", crossing_json},
+          {"unseamed_lines", constructed.construction.unseamed.size()},
+          {"file", "construct.json"}};
+}
+
+// summary.json's drape section; `timing` its timing_s.
+nlohmann::json drape_json(const DrapeMeasures& m, const GarmentWeight& garment,
+                          const CaseResult& result, const std::string& verdict,
+                          nlohmann::json timing, const std::vector<LevelRun>& levels) {
+  const auto to_json = [](const Eigen::Vector3d& v) { return nlohmann::json{v.x(), v.y(), v.z()}; };
+  const Eigen::Vector3d& weight = garment.weight;
+  const double residual = m.residual;
+  return {
+      {"converged", m.converged},
+      {"outcome", drape_outcome_json(m.outcome, m.end_limits)},
+      {"equilibrium_checked", residual >= 0.0},
+      {"residual_force_N", residual >= 0.0 ? nlohmann::json(residual) : nlohmann::json(nullptr)},
+      {"material_area_m2", garment.area},
+      {"mass_kg", garment.mass},
+      {"weight_N", to_json(weight)},
+      {"body_reaction_N", to_json(m.reaction)},
+      {"relative_imbalance", weight.norm() > 0 ? m.imbalance.norm() / weight.norm() : 0.0},
+      {"largest_seam_gap_m", m.seam_gap},
+      {"max_penetration_m", m.penetration},
+      {"contact_offset_m", m.offset},
+      {"residual_relative_to_weight", residual >= 0.0 && weight.norm() > 0.0
+                                          ? nlohmann::json(residual / weight.norm())
+                                          : nlohmann::json(nullptr)},
+      // The deepest vertex in the offset layer as a fraction of the offset
+      // (1: on the body's surface), and whether any vertex is inside the body.
+      {"deepest_vertex_relative_to_offset", m.penetration / m.offset},
+      {"vertex_inside_body", m.closest < 0.0},
+      {"method", result.dynamics           ? "dynamics"
+                 : result.report.minimised ? "minimise"
+                                           : "snes"},
+      // The certificate's verdict (its details: summary.json's certificate).
+      {"certificate", verdict},
+      {"timing_s", std::move(timing)},
+      {"levels", levels_json(levels)}};
+}
+
+// The seams file is drape's own (the pattern's seams, written above): the
+// echoed options re-run the job, and drape refuses a --seams-file given to it.
+void echo_user_seams_file(const std::string& user_seams) {
+  SartorPetscCall(PetscOptionsClearValue(nullptr, "-seams_file"));
+  if (!user_seams.empty()) {
+    // The user's seams file, echoed (and queried, so as not to be reported unused).
+    SartorPetscCall(PetscOptionsSetValue(nullptr, "-seams_file", user_seams.c_str()));
+    PetscBool echoed = PETSC_FALSE;
+    SartorPetscCall(PetscOptionsHasName(nullptr, nullptr, "-seams_file", &echoed));
+  }
+}
+
+void print_drape(const CaseResult& result, std::size_t seams_sewn, double construction_seconds,
+                 const DrapeMeasures& m, const Eigen::Vector3d& weight, const std::string& verdict,
+                 const std::string& directory) {
+  const double residual = m.residual;
+  SartorPetscCall(PetscPrintf(
+      PETSC_COMM_WORLD,
+      "sartor drape: %zu triangles, %zu seams sewn; construction %.3f s, drape %.1f s (%s, "
+      "%s); residual force %s of the weight; seam gap %.2e m, deepest vertex %.2e m into the "
+      "%.2g m offset (%s); body reaction %.6g N for a weight of %.6g N; certificate: "
+      "%s; wrote %s\n",
+      result.mesh.triangle_count(), seams_sewn, construction_seconds, result.solve_seconds,
+      result.dynamics ? "dynamics" : "static minimiser",
+      m.outcome.end != DrapeEnd::on_body ? ("garment " + m.outcome.description()).c_str()
+      : !m.converged                     ? "not converged"
+      : residual < 0.0 ? "dynamics completed; equilibrium not checked without --settle"
+                       : "converged",
+      residual >= 0.0 && weight.norm() > 0.0 ? format_number(residual / weight.norm()).c_str()
+                                             : "unknown",
+      m.seam_gap, m.penetration, m.offset,
+      m.closest < 0.0 ? "a vertex inside the body" : "outside the body", m.reaction.norm(),
+      weight.norm(), verdict.c_str(), directory.c_str()));
+}
+
+// Throws the drape's failure, if any (the wear's report printed once the
+// drape itself succeeded).
+void check_drape(const Options& options, const CaseResult& result, const DrapeMeasures& m,
+                 const Eigen::Vector3d& weight, const WearRun& wear, const std::string& directory) {
+  if (!result.converged) {
+    const std::string reason = result.dynamics ? result.dynamics->reason : result.report.reason;
+    throw SolveFailure("the drape did not converge (" + reason + "); " + directory +
+                       " holds the last state. Try -snes_monitor" +
+                       (result.dynamics ? ", a longer --time-end or a smaller --time-step" : ""));
+  }
+  if (m.outcome.end != DrapeEnd::on_body) {
+    throw SolveFailure("the drape did not drape the garment: it ended " + m.outcome.description() +
+                       "; " + directory + " holds its state (summary.json: drape.outcome)");
+  }
+  if (wear.ran) print_wear(wear);
+  if (!m.converged) {
+    throw SolveFailure("the drape is not in equilibrium: the final static solve stopped with a "
+                       "residual force of " +
+                       format_number(m.residual) + " N for a weight of " +
+                       format_number(weight.norm()) + " N; " + directory +
+                       " holds its state. Look for seams across the body (warnings above) or "
+                       "penetration (summary.json)");
+  }
+  if (wear_requested(options) && !(wear.ran && wear.report.wear.completed)) {
+    throw SolveFailure("the wear did not complete (" +
+                       (wear.ran ? wear.report.wear.reason : std::string("no converged drape")) +
+                       "); " + directory + " holds the states reached (wear.csv)");
+  }
+}
+
+} // namespace
+
+int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
+  using Clock = std::chrono::steady_clock;
+  const auto started = Clock::now();
+  const double started_cpu = process_cpu_seconds();
+  const std::string command = edit ? "edit" : "drape";
+  const Options& options = invocation.options;
+  const std::string path = invocation.command_line.positionals.at(0);
+  const std::string directory = options.text("output");
+  check_drape_options(options);
+  const std::string body = options.text("body");
+
+  // 1. The garment, constructed and written as `sartor construct` writes it.
+  const std::string user_seams = options.is_set("seams-file") ? options.text("seams-file") : "";
+  const ConstructedGarment constructed = construct_garment(
+      path, panel_mesh_options(options), user_seams, !options.flag("no-prefold"), body);
+  print_construction(constructed);
+  const auto constructed_at = Clock::now();
+  write_construction(directory, constructed,
+                     construction_summary(invocation, "drape", path, constructed));
+  write_drape_body(directory, constructed, path);
+
+  // 2. The cloth: the sewn panels, one material per distinct fabric.
+  const SewableGarment sewable = sewable_garment(constructed);
+  const nlohmann::json crossing_json = report_sewing(sewable, constructed);
+  const std::string seams_file = directory + "/drape_seams.json";
+  if (is_root()) write_seams(seams_file, sewable.seams);
+  // Every rank reads it in solve_case.
+  SartorPetscCall(MPI_Barrier(PETSC_COMM_WORLD));
+  ClothOutputLabels labels{{}, {}, sewable.mesh.material_ids};
+  CaseCloth cloth = drape_cloth(options, constructed, sewable, &labels);
+
+  // 3. Sew and drape: the options of `sartor run` with drape's defaults.
+  SartorPetscCall(PetscOptionsSetValue(nullptr, "-seams_file", seams_file.c_str()));
+  const bool dynamic = set_drape_defaults(options, !sewable.seams.empty());
+  const GarmentWeight garment = garment_weight(options, cloth.mesh);
+  const Eigen::Vector3d& weight = garment.weight;
+  set_drape_tolerances(dynamic, weight);
   labels.fabrics = cloth.fabrics;
   const auto wear = std::make_shared<WearRun>();
   if (wear_requested(options)) {
@@ -519,149 +741,41 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
       directory, labels, &levels, case_checkpointing(options, directory));
 
   // 4. What the drape achieved.
-  Eigen::Vector3d reaction = Eigen::Vector3d::Zero();
-  double penetration = 0.0, closest = std::numeric_limits<double>::max();
-  for (const BodyContact& report : result.contact.reports) {
-    reaction += report.normal_force + report.friction_force;
-    penetration = std::max(penetration, report.max_penetration);
-    closest = std::min(closest, report.min_distance);
-  }
-  const double offset = options.real("contact-offset");
-  // At rest the body's reaction on the garment cancels its weight (pins, when
-  // a user adds some, take their share: pin_reaction_N).
-  const Eigen::Vector3d imbalance = reaction + result.pin_reaction + weight;
-  const double seam_gap = result.seams ? result.seams->gap : 0.0;
-  // The residual force of the final static solve (the settle, or statics),
-  // N; negative when there is none (dynamics without --settle). A solve can
-  // stop on a small Newton step (CONVERGED_SNORM_RELATIVE) far from
-  // equilibrium: the drape converged only when the residual is below 1e-3
-  // of the garment's weight.
-  double residual = -1.0;
-  if (result.dynamics && !result.dynamics->settle_reason.empty()) {
-    residual = result.dynamics->settle_residual_norm;
-  } else if (!result.dynamics && !result.creep) {
-    residual = result.report.final_residual_norm;
-  }
-  const bool equilibrium = residual >= 0.0 && residual <= 1e-3 * weight.norm();
-  DrapeEndLimits end_limits;
-  end_limits.drop_tolerance = options.nonnegative_real("drop-tolerance");
-  const DrapeOutcome outcome = drape_outcome(result, end_limits, *constructed.body);
-  const bool converged =
-      result.converged && (residual < 0.0 || equilibrium) && outcome.end == DrapeEnd::on_body;
+  const DrapeMeasures measures = measure_drape(options, result, *constructed.body, weight);
   const double construction_seconds =
       constructed.construction.placement_seconds + constructed.construction.seam_seconds;
   const double total_seconds = std::chrono::duration<double>(Clock::now() - started).count();
 
-  // The settled state's certificate (summary.json: certificate).
-  const std::string verdict = result.certified ? result.certified->certificate.verdict()
-                              : options.flag("no-certificate") ? "skipped"
-                                                               : "not certified";
+  const std::string verdict = certificate_verdict(options, result);
   nlohmann::json summary = run_metadata(invocation, command);
   summary["pattern"] = path;
   summary["fabrics"] = cloth.fabrics;
-  summary["construction"] = {{"panels", constructed.pattern.panels.size()},
-                             {"seams", constructed.construction.seams.size()},
-                             {"sewn_seams", constructed.garment.seams.size()},
-                             {"panels_left_out", sewable.left_out},
-                             {"seams_across_body", crossing_json},
-                             {"unseamed_lines", constructed.construction.unseamed.size()},
-                             {"file", "construct.json"}};
+  summary["construction"] = construction_json(constructed, sewable, crossing_json);
   add_case_summary(result, summary);
-  const auto to_json = [](const Eigen::Vector3d& v) { return nlohmann::json{v.x(), v.y(), v.z()}; };
-  summary["drape"] = {
-      {"converged", converged},
-      {"outcome", drape_outcome_json(outcome, end_limits)},
-      {"equilibrium_checked", residual >= 0.0},
-      {"residual_force_N", residual >= 0.0 ? nlohmann::json(residual) : nlohmann::json(nullptr)},
-      {"material_area_m2", area},
-      {"mass_kg", mass},
-      {"weight_N", to_json(weight)},
-      {"body_reaction_N", to_json(reaction)},
-      {"relative_imbalance", weight.norm() > 0 ? imbalance.norm() / weight.norm() : 0.0},
-      {"largest_seam_gap_m", seam_gap},
-      {"max_penetration_m", penetration},
-      {"contact_offset_m", offset},
-      {"residual_relative_to_weight", residual >= 0.0 && weight.norm() > 0.0
-                                          ? nlohmann::json(residual / weight.norm())
-                                          : nlohmann::json(nullptr)},
-      // The deepest vertex in the offset layer as a fraction of the offset
-      // (1: on the body's surface), and whether any vertex is inside the body.
-      {"deepest_vertex_relative_to_offset", penetration / offset},
-      {"vertex_inside_body", closest < 0.0},
-      {"method", result.dynamics           ? "dynamics"
-                 : result.report.minimised ? "minimise"
-                                           : "snes"},
-      // The certificate's verdict (its details: summary.json's certificate).
-      {"certificate", verdict},
-      {"timing_s",
-       {{"construction", construction_seconds},
-        {"meshing", constructed.mesh_seconds},
-        {"construct_total", std::chrono::duration<double>(constructed_at - started).count()},
-        {"drape", result.solve_seconds},
-        {"drape_setup", result.setup_seconds},
-        {"total", total_seconds}}},
-      {"levels", levels_json(levels)}};
+  summary["drape"] = drape_json(
+      measures, garment, result, verdict,
+      {{"construction", construction_seconds},
+       {"meshing", constructed.mesh_seconds},
+       {"construct_total", std::chrono::duration<double>(constructed_at - started).count()},
+       {"drape", result.solve_seconds},
+       {"drape_setup", result.setup_seconds},
+       {"total", total_seconds}},
+      levels);
   if (edit && edit->run->ran) summary["edit"] = edit->run->summary;
   if (wear->ran) {
     add_wear_summary(*wear, labels, summary);
     write_wear_tables(directory, *wear);
   }
   write_case_results(directory, result, summary, labels);
-  // The seams file is drape's own (the pattern's seams, written above): the
-  // echoed options re-run the job, and drape refuses a --seams-file given to it.
-  SartorPetscCall(PetscOptionsClearValue(nullptr, "-seams_file"));
-  if (!user_seams.empty()) {
-    // The user's seams file, echoed (and queried, so as not to be reported unused).
-    SartorPetscCall(PetscOptionsSetValue(nullptr, "-seams_file", user_seams.c_str()));
-    PetscBool echoed = PETSC_FALSE;
-    SartorPetscCall(PetscOptionsHasName(nullptr, nullptr, "-seams_file", &echoed));
-  }
+  echo_user_seams_file(user_seams);
   write_petsc_options(directory);
   if (invocation.keep_result) invocation.keep_result(result, summary, labels);
 
-  SartorPetscCall(PetscPrintf(
-      PETSC_COMM_WORLD,
-      "sartor drape: %zu triangles, %zu seams sewn; construction %.3f s, drape %.1f s (%s, "
-      "%s); residual force %s of the weight; seam gap %.2e m, deepest vertex %.2e m into the "
-      "%.2g m offset (%s); body reaction %.6g N for a weight of %.6g N; certificate: "
-      "%s; wrote %s\n",
-      result.mesh.triangle_count(), constructed.garment.seams.size(), construction_seconds,
-      result.solve_seconds, result.dynamics ? "dynamics" : "static minimiser",
-      outcome.end != DrapeEnd::on_body ? ("garment " + outcome.description()).c_str()
-      : !converged                     ? "not converged"
-      : residual < 0.0 ? "dynamics completed; equilibrium not checked without --settle"
-                       : "converged",
-      residual >= 0.0 && weight.norm() > 0.0 ? format_number(residual / weight.norm()).c_str()
-                                             : "unknown",
-      seam_gap, penetration, offset,
-      closest < 0.0 ? "a vertex inside the body" : "outside the body", reaction.norm(),
-      weight.norm(), verdict.c_str(), directory.c_str()));
+  print_drape(result, constructed.garment.seams.size(), construction_seconds, measures, weight,
+              verdict, directory);
   // The picture helps most when the drape failed.
   if (!options.flag("no-plot")) make_plot("plot_drape.py", directory);
-  if (!result.converged) {
-    const std::string reason = result.dynamics ? result.dynamics->reason : result.report.reason;
-    throw SolveFailure("the drape did not converge (" + reason + "); " + directory +
-                       " holds the last state. Try -snes_monitor" +
-                       (result.dynamics ? ", a longer --time-end or a smaller --time-step" : ""));
-  }
-  if (outcome.end != DrapeEnd::on_body) {
-    throw SolveFailure("the drape did not drape the garment: it ended " + outcome.description() +
-                       "; " + directory + " holds its state (summary.json: drape.outcome)");
-  }
-  if (wear->ran) print_wear(*wear);
-  if (!converged) {
-    throw SolveFailure("the drape is not in equilibrium: the final static solve stopped with a "
-                       "residual force of " +
-                       format_number(residual) + " N for a weight of " +
-                       format_number(weight.norm()) + " N; " + directory +
-                       " holds its state. Look for seams across the body (warnings above) or "
-                       "penetration (summary.json)");
-  }
-  if (wear_requested(options) && !(wear->ran && wear->report.wear.completed)) {
-    throw SolveFailure("the wear did not complete (" +
-                       (wear->ran ? wear->report.wear.reason : std::string("no converged drape")) +
-                       "); " + directory + " holds the states reached (wear.csv)");
-  }
+  check_drape(options, result, measures, weight, *wear, directory);
   return 0;
 }
 

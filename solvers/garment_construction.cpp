@@ -125,31 +125,24 @@ void print_construction(const ConstructedGarment& constructed) {
   }
 }
 
-nlohmann::json construction_summary(const Invocation& invocation, const std::string& command,
-                                    const std::string& pattern_path,
-                                    const ConstructedGarment& constructed) {
-  nlohmann::json summary = run_metadata(invocation, command);
-  summary["pattern"] = pattern_path;
-  if (!constructed.seams_file.empty()) summary["seams_file"] = constructed.seams_file;
-  summary["body"] = constructed.body->is_default ? "default" : constructed.body->source;
-  summary["units"] = "m";
-  const garment::Pattern& pattern = constructed.pattern;
-  const garment::TagconOptions& tagcon = constructed.tagcon;
-  const PanelMeshOptions& mesh_options = constructed.mesh_options;
-  const garment::Construction& construction = constructed.construction;
-  const garment::GarmentMesh& garment = constructed.garment;
-  summary["tagcon_options"] = {{"clearance_m", tagcon.clearance},
-                               {"layer_gap_m", tagcon.layer_gap},
-                               {"lid_depth_m", tagcon.lid_depth},
-                               {"max_widening", tagcon.max_widening},
-                               {"fov_half_angle_deg", tagcon.fov_half_angle_deg},
-                               {"intra_distance_m", tagcon.intra_distance},
-                               {"d_max_m", tagcon.d_max},
-                               {"length_diff_m", tagcon.length_diff},
-                               {"curvature_diff_per_m", tagcon.curvature_diff},
-                               {"min_match", tagcon.min_match},
-                               {"clicks", tagcon.clicks},
-                               {"penetration_m", tagcon.penetration}};
+namespace {
+
+nlohmann::json tagcon_json(const garment::TagconOptions& tagcon) {
+  return {{"clearance_m", tagcon.clearance},
+          {"layer_gap_m", tagcon.layer_gap},
+          {"lid_depth_m", tagcon.lid_depth},
+          {"max_widening", tagcon.max_widening},
+          {"fov_half_angle_deg", tagcon.fov_half_angle_deg},
+          {"intra_distance_m", tagcon.intra_distance},
+          {"d_max_m", tagcon.d_max},
+          {"length_diff_m", tagcon.length_diff},
+          {"curvature_diff_per_m", tagcon.curvature_diff},
+          {"min_match", tagcon.min_match},
+          {"clicks", tagcon.clicks},
+          {"penetration_m", tagcon.penetration}};
+}
+
+nlohmann::json cylinders_json(const garment::Construction& construction) {
   nlohmann::json cylinders = nlohmann::json::array();
   for (const auto& c : construction.cylinders) {
     cylinders.push_back({{"cylinder", garment::name_of(c.cylinder)},
@@ -163,7 +156,12 @@ nlohmann::json construction_summary(const Invocation& invocation, const std::str
                          {"anchor", c.anchor},
                          {"bones", c.bones}});
   }
-  summary["cylinders"] = cylinders;
+  return cylinders;
+}
+
+// The packs as placed on their cylinders.
+nlohmann::json placed_packs_json(const garment::Pattern& pattern,
+                                 const garment::Construction& construction) {
   nlohmann::json packs = nlohmann::json::array();
   for (const auto& placed : construction.packs) {
     nlohmann::json members = nlohmann::json::array();
@@ -177,7 +175,10 @@ nlohmann::json construction_summary(const Invocation& invocation, const std::str
                      {"unrolled_offset", {placed.offset.x(), placed.offset.y()}},
                      {"radius_m", placed.radius}});
   }
-  summary["packs"] = packs;
+  return packs;
+}
+
+nlohmann::json panels_json(const garment::Pattern& pattern, const garment::GarmentMesh& garment) {
   nlohmann::json panels = nlohmann::json::array();
   for (std::size_t p = 0; p < pattern.panels.size(); ++p) {
     panels.push_back({{"id", pattern.panels[p].id},
@@ -187,28 +188,32 @@ nlohmann::json construction_summary(const Invocation& invocation, const std::str
                       {"first_vertex", garment.first_vertex[p]},
                       {"triangles", garment.triangle_count[p]}});
   }
-  summary["panels"] = panels;
+  return panels;
+}
+
+nlohmann::json seams_json(const garment::Construction& construction,
+                          const std::vector<garment::FoundSeam>& found) {
   nlohmann::json seams = nlohmann::json::array();
-  const auto seam_json = [&](const garment::FoundSeam& seam) {
-    return nlohmann::json{{"kind", garment::name_of(seam.kind)},
-                          {"line_a", construction.lines[std::size_t(seam.line_a)].id},
-                          {"line_b", construction.lines[std::size_t(seam.line_b)].id},
-                          {"reverse", seam.reverse},
-                          {"certainty", seam.certainty},
-                          {"M",
-                           {{"distance", seam.score.distance},
-                            {"orientation", seam.score.orientation},
-                            {"length", seam.score.length},
-                            {"curvature", seam.score.curvature},
-                            {"seamable", seam.score.seamable}}}};
-  };
-  for (const auto& seam : construction.seams)
-    seams.push_back(seam_json(seam));
-  summary["seams"] = seams;
-  nlohmann::json deleted = nlohmann::json::array();
-  for (const auto& seam : construction.deleted)
-    deleted.push_back(seam_json(seam));
-  summary["deleted_seams"] = deleted;
+  for (const auto& seam : found) {
+    seams.push_back({{"kind", garment::name_of(seam.kind)},
+                     {"line_a", construction.lines[std::size_t(seam.line_a)].id},
+                     {"line_b", construction.lines[std::size_t(seam.line_b)].id},
+                     {"reverse", seam.reverse},
+                     {"certainty", seam.certainty},
+                     {"M",
+                      {{"distance", seam.score.distance},
+                       {"orientation", seam.score.orientation},
+                       {"length", seam.score.length},
+                       {"curvature", seam.score.curvature},
+                       {"seamable", seam.score.seamable}}}});
+  }
+  return seams;
+}
+
+// Every line in 3D, with its mesh vertices and why it is unseamed, if it is.
+nlohmann::json lines_json(const garment::Pattern& pattern,
+                          const garment::Construction& construction,
+                          const garment::GarmentMesh& garment) {
   nlohmann::json lines = nlohmann::json::array();
   std::vector<std::string> reason(construction.lines.size());
   for (const auto& u : construction.unseamed)
@@ -230,16 +235,22 @@ nlohmann::json construction_summary(const Invocation& invocation, const std::str
     if (!reason[k].empty()) entry["unseamed"] = reason[k];
     lines.push_back(entry);
   }
-  summary["lines"] = lines;
+  return lines;
+}
+
+nlohmann::json stitches_json(const garment::Pattern& pattern) {
   nlohmann::json stitches = nlohmann::json::array();
   for (const auto& stitch : pattern.stitches)
     stitches.push_back({{"line_a", stitch.line_a},
                         {"line_b", stitch.line_b},
                         {"reverse", stitch.reverse},
                         {"pleat", stitch.origin}});
-  summary["stitches"] = stitches;
-  // Creased fold lines: their mesh vertices (garment.obj numbering) and
-  // rest angle (element/bending.hpp's sign), for postproc/pleat_shape.py.
+  return stitches;
+}
+
+// Creased fold lines: their mesh vertices (garment.obj numbering) and
+// rest angle (element/bending.hpp's sign), for postproc/pleat_shape.py.
+nlohmann::json creases_json(const garment::Pattern& pattern, const garment::GarmentMesh& garment) {
   std::map<std::pair<int, int>, double> rest_angles;
   for (const CreaseEdge& edge : garment.mesh.creases)
     rest_angles[std::minmax(edge.a, edge.b)] = edge.rest_angle;
@@ -257,7 +268,32 @@ nlohmann::json construction_summary(const Invocation& invocation, const std::str
                           rest_angles.at(std::minmax(vertices[0], vertices[1])) * 180.0 / M_PI}});
     }
   }
-  summary["creases"] = creases;
+  return creases;
+}
+
+} // namespace
+
+nlohmann::json construction_summary(const Invocation& invocation, const std::string& command,
+                                    const std::string& pattern_path,
+                                    const ConstructedGarment& constructed) {
+  nlohmann::json summary = run_metadata(invocation, command);
+  summary["pattern"] = pattern_path;
+  if (!constructed.seams_file.empty()) summary["seams_file"] = constructed.seams_file;
+  summary["body"] = constructed.body->is_default ? "default" : constructed.body->source;
+  summary["units"] = "m";
+  const garment::Pattern& pattern = constructed.pattern;
+  const PanelMeshOptions& mesh_options = constructed.mesh_options;
+  const garment::Construction& construction = constructed.construction;
+  const garment::GarmentMesh& garment = constructed.garment;
+  summary["tagcon_options"] = tagcon_json(constructed.tagcon);
+  summary["cylinders"] = cylinders_json(construction);
+  summary["packs"] = placed_packs_json(pattern, construction);
+  summary["panels"] = panels_json(pattern, garment);
+  summary["seams"] = seams_json(construction, construction.seams);
+  summary["deleted_seams"] = seams_json(construction, construction.deleted);
+  summary["lines"] = lines_json(pattern, construction, garment);
+  summary["stitches"] = stitches_json(pattern);
+  summary["creases"] = creases_json(pattern, garment);
   summary["mesh"] = {{"vertices", garment.mesh.vertex_count()},
                      {"triangles", garment.mesh.triangle_count()},
                      {"edge_length_m", mesh_options.edge_length},

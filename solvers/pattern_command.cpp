@@ -63,6 +63,102 @@ std::string file_name_of(const std::string& id) {
   return "panel_" + name + ".obj";
 }
 
+// A panel's entry in summary.json, before meshing.
+nlohmann::json panel_json(const garment::Pattern& pattern, std::size_t i, double tolerance) {
+  const garment::Panel& panel = pattern.panels[i];
+  return {{"id", panel.id},
+          {"tag",
+           {{"cylinder", garment::name_of(panel.tag.cylinder)},
+            {"side", garment::name_of(panel.tag.side)},
+            {"layer", panel.tag.layer}}},
+          {"fabric", panel.fabric},
+          {"pack", pattern.packs[pattern.pack_of(int(i))].id},
+          {"outline_given_clockwise", panel.reversed},
+          {"outline_area_m2", panel.area(tolerance)}};
+}
+
+// Appends a panel's mesh, laid out by `placement`, to `combined`; the
+// offset of its vertices there.
+int append_laid_out(const TriangleMesh& mesh, const garment::Placement& placement,
+                    TriangleMesh* combined) {
+  const int offset = int(combined->vertex_count());
+  for (const auto& p : mesh.positions) {
+    const Eigen::Vector2d placed = placement.apply(p.head<2>());
+    combined->positions.emplace_back(placed.x(), placed.y(), 0.0);
+  }
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const auto& triangle = mesh.triangles[t];
+    combined->triangles.push_back(
+        {triangle[0] + offset, triangle[1] + offset, triangle[2] + offset});
+    combined->material_uv.push_back(mesh.material_uv[t]);
+  }
+  return offset;
+}
+
+// A meshed line's entry in lines.json (its vertices in the panel's mesh and,
+// offset, in pattern.obj); warns when the mesher split it.
+nlohmann::json line_json(const garment::Panel& panel, const MeshedLine& line, int offset) {
+  nlohmann::json pattern_vertices = nlohmann::json::array();
+  for (int v : line.vertices)
+    pattern_vertices.push_back(v + offset);
+  std::string kind = "outline";
+  double length = 0;
+  bool y_seam = false;
+  for (const auto& outline : panel.outline) {
+    if (outline.id == line.id) {
+      length = outline.curve.length();
+      y_seam = outline.y_seam;
+    }
+  }
+  for (const auto& interior : panel.interior) {
+    if (interior.id == line.id) {
+      kind = garment::name_of(interior.kind);
+      length = interior.curve.length();
+    }
+  }
+  if (line.split_by_mesher) {
+    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                                "warning: the mesher split line '%s' of panel '%s' beyond "
+                                "its %d pieces\n",
+                                line.id.c_str(), panel.id.c_str(), line.pieces));
+  }
+  return {{"id", line.id},
+          {"panel", panel.id},
+          {"kind", kind},
+          {"y_seam", y_seam},
+          {"length_m", length},
+          {"pieces", line.pieces},
+          {"forced", line.forced},
+          {"split_by_mesher", line.split_by_mesher},
+          {"vertices", line.vertices},
+          {"pattern_vertices", pattern_vertices}};
+}
+
+// What meshing a panel gave, into its summary entry.
+void add_mesh_json(const PanelMesh& result, const std::string& file, double seconds,
+                   nlohmann::json& entry) {
+  entry["obj"] = file;
+  entry["vertices"] = result.mesh.vertex_count();
+  entry["triangles"] = result.mesh.triangle_count();
+  entry["min_angle_deg"] = result.min_angle_deg;
+  entry["min_angle_regular_deg"] = result.min_angle_regular_deg;
+  entry["mesh_area_m2"] = result.area;
+  entry["boundary_polygon_area_m2"] = result.boundary_area;
+  entry["meshing_rounds"] = result.rounds;
+  entry["mesh_seconds"] = seconds;
+}
+
+nlohmann::json packs_json(const garment::Pattern& pattern) {
+  nlohmann::json packs = nlohmann::json::array();
+  for (const auto& pack : pattern.packs) {
+    nlohmann::json members = nlohmann::json::array();
+    for (const auto& member : pack.members)
+      members.push_back(pattern.panels[member.panel].id);
+    packs.push_back({{"id", pack.id}, {"implicit", pack.implicit}, {"panels", members}});
+  }
+  return packs;
+}
+
 } // namespace
 
 int run_pattern(const Invocation& invocation) {
@@ -103,15 +199,7 @@ int run_pattern(const Invocation& invocation) {
   }
   for (std::size_t i = 0; i < pattern.panels.size(); ++i) {
     const garment::Panel& panel = pattern.panels[i];
-    nlohmann::json entry = {{"id", panel.id},
-                            {"tag",
-                             {{"cylinder", garment::name_of(panel.tag.cylinder)},
-                              {"side", garment::name_of(panel.tag.side)},
-                              {"layer", panel.tag.layer}}},
-                            {"fabric", panel.fabric},
-                            {"pack", pattern.packs[pattern.pack_of(int(i))].id},
-                            {"outline_given_clockwise", panel.reversed},
-                            {"outline_area_m2", panel.area(tolerance)}};
+    nlohmann::json entry = panel_json(pattern, i, tolerance);
     if (!mesh) {
       panels.push_back(entry);
       continue;
@@ -123,65 +211,13 @@ int run_pattern(const Invocation& invocation) {
     const std::string file = file_name_of(panel.id);
     if (is_root()) write_obj(directory + "/" + file, result.mesh);
 
-    const int offset = int(combined.vertex_count());
-    for (const auto& p : result.mesh.positions) {
-      const Eigen::Vector2d placed = layout[i].apply(p.head<2>());
-      combined.positions.emplace_back(placed.x(), placed.y(), 0.0);
-    }
-    for (std::size_t t = 0; t < result.mesh.triangle_count(); ++t) {
-      const auto& triangle = result.mesh.triangles[t];
-      combined.triangles.push_back(
-          {triangle[0] + offset, triangle[1] + offset, triangle[2] + offset});
-      combined.material_uv.push_back(result.mesh.material_uv[t]);
-    }
-    for (const MeshedLine& line : result.lines) {
-      nlohmann::json pattern_vertices = nlohmann::json::array();
-      for (int v : line.vertices)
-        pattern_vertices.push_back(v + offset);
-      std::string kind = "outline";
-      double length = 0;
-      bool y_seam = false;
-      for (const auto& outline : panel.outline) {
-        if (outline.id == line.id) {
-          length = outline.curve.length();
-          y_seam = outline.y_seam;
-        }
-      }
-      for (const auto& interior : panel.interior) {
-        if (interior.id == line.id) {
-          kind = garment::name_of(interior.kind);
-          length = interior.curve.length();
-        }
-      }
-      lines.push_back({{"id", line.id},
-                       {"panel", panel.id},
-                       {"kind", kind},
-                       {"y_seam", y_seam},
-                       {"length_m", length},
-                       {"pieces", line.pieces},
-                       {"forced", line.forced},
-                       {"split_by_mesher", line.split_by_mesher},
-                       {"vertices", line.vertices},
-                       {"pattern_vertices", pattern_vertices}});
-      if (line.split_by_mesher) {
-        SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD,
-                                    "warning: the mesher split line '%s' of panel '%s' beyond "
-                                    "its %d pieces\n",
-                                    line.id.c_str(), panel.id.c_str(), line.pieces));
-      }
-    }
+    const int offset = append_laid_out(result.mesh, layout[i], &combined);
+    for (const MeshedLine& line : result.lines)
+      lines.push_back(line_json(panel, line, offset));
     total_triangles += result.mesh.triangle_count();
     worst_angle = std::min(worst_angle, result.min_angle_deg);
     worst_regular_angle = std::min(worst_regular_angle, result.min_angle_regular_deg);
-    entry["obj"] = file;
-    entry["vertices"] = result.mesh.vertex_count();
-    entry["triangles"] = result.mesh.triangle_count();
-    entry["min_angle_deg"] = result.min_angle_deg;
-    entry["min_angle_regular_deg"] = result.min_angle_regular_deg;
-    entry["mesh_area_m2"] = result.area;
-    entry["boundary_polygon_area_m2"] = result.boundary_area;
-    entry["meshing_rounds"] = result.rounds;
-    entry["mesh_seconds"] = seconds;
+    add_mesh_json(result, file, seconds, entry);
     panels.push_back(entry);
     SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "%-16s %-22s %9zu %9zu %9.2f %11.5f %9.3f\n",
                                 panel.id.c_str(), garment::to_string(panel.tag).c_str(),
@@ -190,14 +226,7 @@ int run_pattern(const Invocation& invocation) {
   }
 
   summary["panels"] = panels;
-  nlohmann::json packs = nlohmann::json::array();
-  for (const auto& pack : pattern.packs) {
-    nlohmann::json members = nlohmann::json::array();
-    for (const auto& member : pack.members)
-      members.push_back(pattern.panels[member.panel].id);
-    packs.push_back({{"id", pack.id}, {"implicit", pack.implicit}, {"panels", members}});
-  }
-  summary["packs"] = packs;
+  summary["packs"] = packs_json(pattern);
   if (mesh) {
     summary["edge_length_m"] = mesh_options.edge_length;
     summary["requested_min_angle_deg"] = mesh_options.min_angle_deg;

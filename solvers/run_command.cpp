@@ -814,16 +814,9 @@ void solve_static_case(ClothProblem& problem, Vec x, const StaticOptions& solve,
   reject_unmet_residual(problem.force_scale(), &result->report);
 }
 
-} // namespace
-
-CaseResult solve_case(const Options& options, int extra_refinements,
-                      const CaseStepObserver& observe, const CaseCheckpointing& checkpointing,
-                      const CaseCloth* cloth) {
-  const auto started = std::chrono::steady_clock::now();
-  CaseResult result;
-  result.mesh =
-      build_mesh(options, extra_refinements, &result.mesh_refine, cloth ? &cloth->mesh : nullptr);
-  const TriangleMesh& mesh = result.mesh;
+// One material per fabric: the cloth's, or --fabric's.
+std::vector<ClothMaterial> case_materials(const Options& options, const TriangleMesh& mesh,
+                                          const CaseCloth* cloth) {
   std::vector<ClothMaterial> materials;
   for (const std::string& fabric :
        cloth ? cloth->fabrics : std::vector<std::string>{options.text("fabric")})
@@ -837,30 +830,24 @@ CaseResult solve_case(const Options& options, int extra_refinements,
     throw InputError("the cloth has " + std::to_string(materials.size()) +
                      " fabrics; --seam-merge and --analysis creep need one: give --fabric");
   }
-  // Seams take their automatic stiffness from the stiffest fabric.
-  const ClothMaterial& material = *std::max_element(
+  return materials;
+}
+
+// Seams take their automatic stiffness from the stiffest fabric.
+const ClothMaterial& stiffest_material(const std::vector<ClothMaterial>& materials) {
+  return *std::max_element(
       materials.begin(), materials.end(), [](const ClothMaterial& a, const ClothMaterial& b) {
         const auto stiffness = [](const ClothMaterial& m) {
           return std::max(m.membrane.warp.initial_modulus(), m.membrane.weft.initial_modulus());
         };
         return stiffness(a) < stiffness(b);
       });
-  std::vector<int> pinned = pinned_vertices(options, mesh);
-  // Seams (solvers/seam_case.hpp): sewn by springs, or sewn first and merged.
-  const std::vector<Seam> seams = case_seams(options, mesh, result.mesh_refine);
-  if (!seams.empty()) result.seams = SeamReport{};
-  if (!seams.empty() && options.flag("seam-merge")) {
-    sew_and_merge(options, material, vector3(options, "gravity"),
-                  count_option(options, "load-steps", 1), seams, &result.mesh, &pinned,
-                  &*result.seams);
-  }
-  result.pinned_vertices = pinned.size();
-  result.h = longest_material_edge(mesh);
+}
 
-  const std::vector<double> release_times = pin_release_times(options, mesh, pinned);
-  ClothProblem problem(PETSC_COMM_WORLD, mesh, materials, pinned, release_times);
-  problem.loads.gravity = vector3(options, "gravity");
-  problem.loads.pressure = options.real("pressure");
+// Gravity, pressure, --point-force and --edge-force.
+void set_case_loads(const Options& options, const TriangleMesh& mesh, ClothLoads* loads) {
+  loads->gravity = vector3(options, "gravity");
+  loads->pressure = options.real("pressure");
   if (options.is_set("point-force")) {
     const auto f = option_numbers(options, "point-force", 4);
     const auto v = long(f[0]);
@@ -868,19 +855,15 @@ CaseResult solve_case(const Options& options, int extra_refinements,
       throw InputError("option --point-force: vertex " + format_number(f[0]) +
                        " is not in the mesh");
     }
-    problem.loads.point_forces.push_back({int(v), Eigen::Vector3d(f[1], f[2], f[3])});
+    loads->point_forces.push_back({int(v), Eigen::Vector3d(f[1], f[2], f[3])});
   }
-  add_edge_force(options, mesh, &problem.loads);
-  problem.pin_motion = vector3(options, "pin-move");
-  problem.pin_groups = pin_groups(options, mesh, pinned);
-  set_up_contact(options, problem);
-  problem.contact.project_hessian = options.flag("membrane-psd");
-  if (result.seams && !result.seams->merged) {
-    // Static sewing stages start from this pull (before the springs are made).
-    if (options.text("analysis") == "static" && count_option(options, "sewing-stages", 1) > 1)
-      problem.sewing_tension = options.positive_real("sewing-start-tension");
-    attach_seams(options, seams, material, problem, &*result.seams);
-  }
+  add_edge_force(options, mesh, loads);
+}
+
+// --analysis, checked with the options that only some analyses take.
+std::string checked_analysis(const Options& options, const ClothProblem& problem,
+                             const TriangleMesh& mesh, const std::vector<ClothMaterial>& materials,
+                             const std::vector<int>& pinned, const ClothMaterial& material) {
   const std::string analysis = options.text("analysis");
   if (analysis != "static" && analysis != "dynamic" && analysis != "creep") {
     throw InputError("option --analysis: unknown kind '" + analysis + "' (static, dynamic, creep)");
@@ -900,19 +883,103 @@ CaseResult solve_case(const Options& options, int extra_refinements,
     throw InputError("option --density: --analysis dynamic needs a positive areal density, got " +
                      options.text("density"));
   }
-  const StaticOptions solve = static_options(options, problem);
-  if (options.is_set("probe")) {
-    CaseProbe probe;
-    probe.point = vector3(options, "probe");
-    for (std::size_t v = 1; v < mesh.vertex_count(); ++v) {
-      if ((mesh.positions[v] - probe.point).norm() <
-          (mesh.positions[probe.vertex] - probe.point).norm())
-        probe.vertex = v;
-    }
-    probe.initial_position = mesh.positions[probe.vertex];
-    probe.displacement.setZero();
-    result.probe = probe;
+  return analysis;
+}
+
+// The mesh vertex nearest the --probe point.
+CaseProbe case_probe(const Options& options, const TriangleMesh& mesh) {
+  CaseProbe probe;
+  probe.point = vector3(options, "probe");
+  for (std::size_t v = 1; v < mesh.vertex_count(); ++v) {
+    if ((mesh.positions[v] - probe.point).norm() <
+        (mesh.positions[probe.vertex] - probe.point).norm())
+      probe.vertex = v;
   }
+  probe.initial_position = mesh.positions[probe.vertex];
+  probe.displacement.setZero();
+  return probe;
+}
+
+// Creep: run_creep_case, the observer seeing the coupling's state.
+void solve_creep_case(const Options& options, ClothProblem& problem, Vec x,
+                      const CaseStepObserver& observe, const CaseCheckpointing& checkpointing,
+                      CaseResult* result) {
+  CreepCoupling coupling(problem, creep_materials(options));
+  const CreepStateObserver follow = [&](Vec state, const CreepStepReport& step) {
+    if (observe) observe(problem, state, {step.time, step.output, &coupling});
+  };
+  CreepRunResult run =
+      run_creep_case(options, problem, x, checkpointing,
+                     result->probe ? long(result->probe->vertex) : -1L, coupling, follow);
+  result->converged = run.report.completed;
+  result->solve_seconds = run.report.solve_seconds;
+  result->creep = std::move(run);
+}
+
+// The largest displacement and the probe's, from the positions rank 0
+// holds: it measures, everybody learns.
+void measure_displacements(const TriangleMesh& mesh, CaseResult* result) {
+  double measured[4] = {0.0, 0.0, 0.0, 0.0};
+  if (is_root()) {
+    for (std::size_t v = 0; v < result->positions.size(); ++v) {
+      measured[0] = std::max(measured[0], (result->positions[v] - mesh.positions[v]).norm());
+    }
+    if (result->probe) {
+      const Eigen::Vector3d d =
+          result->positions[result->probe->vertex] - mesh.positions[result->probe->vertex];
+      measured[1] = d.x();
+      measured[2] = d.y();
+      measured[3] = d.z();
+    }
+  }
+  broadcast(measured, 4);
+  result->max_displacement = measured[0];
+  if (result->probe) result->probe->displacement = {measured[1], measured[2], measured[3]};
+}
+
+} // namespace
+
+CaseResult solve_case(const Options& options, int extra_refinements,
+                      const CaseStepObserver& observe, const CaseCheckpointing& checkpointing,
+                      const CaseCloth* cloth) {
+  const auto started = std::chrono::steady_clock::now();
+  CaseResult result;
+  result.mesh =
+      build_mesh(options, extra_refinements, &result.mesh_refine, cloth ? &cloth->mesh : nullptr);
+  const TriangleMesh& mesh = result.mesh;
+  const std::vector<ClothMaterial> materials = case_materials(options, mesh, cloth);
+  const ClothMaterial& material = stiffest_material(materials);
+  std::vector<int> pinned = pinned_vertices(options, mesh);
+  // Seams (solvers/seam_case.hpp): sewn by springs, or sewn first and merged.
+  const std::vector<Seam> seams = case_seams(options, mesh, result.mesh_refine);
+  if (!seams.empty()) result.seams = SeamReport{};
+  if (!seams.empty() && options.flag("seam-merge")) {
+    sew_and_merge(options, material, vector3(options, "gravity"),
+                  count_option(options, "load-steps", 1), seams, &result.mesh, &pinned,
+                  &*result.seams);
+  }
+  result.pinned_vertices = pinned.size();
+  result.h = longest_material_edge(mesh);
+
+  const std::vector<double> release_times = pin_release_times(options, mesh, pinned);
+  ClothProblem problem(PETSC_COMM_WORLD, mesh, materials, pinned, release_times);
+  set_case_loads(options, mesh, &problem.loads);
+  problem.pin_motion = vector3(options, "pin-move");
+  problem.pin_groups = pin_groups(options, mesh, pinned);
+  set_up_contact(options, problem);
+  problem.contact.project_hessian = options.flag("membrane-psd");
+  if (result.seams && !result.seams->merged) {
+    // Static sewing stages start from this pull (before the springs are made).
+    if (options.text("analysis") == "static" && count_option(options, "sewing-stages", 1) > 1)
+      problem.sewing_tension = options.positive_real("sewing-start-tension");
+    attach_seams(options, seams, material, problem, &*result.seams);
+  }
+  const std::string analysis =
+      checked_analysis(options, problem, mesh, materials, pinned, material);
+  const bool dynamic = analysis == "dynamic";
+  const bool creep = analysis == "creep";
+  const StaticOptions solve = static_options(options, problem);
+  if (options.is_set("probe")) result.probe = case_probe(options, mesh);
   result.dofs = problem.global_dof_count();
   const auto set_up = std::chrono::steady_clock::now();
 
@@ -921,16 +988,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   if (dynamic) {
     solve_dynamic_case(options, problem, x, observe, checkpointing, &result);
   } else if (creep) {
-    CreepCoupling coupling(problem, creep_materials(options));
-    const CreepStateObserver follow = [&](Vec state, const CreepStepReport& step) {
-      if (observe) observe(problem, state, {step.time, step.output, &coupling});
-    };
-    CreepRunResult run =
-        run_creep_case(options, problem, x, checkpointing,
-                       result.probe ? long(result.probe->vertex) : -1L, coupling, follow);
-    result.converged = run.report.completed;
-    result.solve_seconds = run.report.solve_seconds;
-    result.creep = std::move(run);
+    solve_creep_case(options, problem, x, observe, checkpointing, &result);
   } else {
     solve_static_case(problem, x, solve, checkpointing, &result);
   }
@@ -963,23 +1021,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   }
   SartorPetscCall(VecDestroy(&x));
 
-  // Rank 0 holds the positions: it measures, everybody learns.
-  double measured[4] = {0.0, 0.0, 0.0, 0.0};
-  if (is_root()) {
-    for (std::size_t v = 0; v < result.positions.size(); ++v) {
-      measured[0] = std::max(measured[0], (result.positions[v] - mesh.positions[v]).norm());
-    }
-    if (result.probe) {
-      const Eigen::Vector3d d =
-          result.positions[result.probe->vertex] - mesh.positions[result.probe->vertex];
-      measured[1] = d.x();
-      measured[2] = d.y();
-      measured[3] = d.z();
-    }
-  }
-  broadcast(measured, 4);
-  result.max_displacement = measured[0];
-  if (result.probe) result.probe->displacement = {measured[1], measured[2], measured[3]};
+  measure_displacements(mesh, &result);
   const auto finished = std::chrono::steady_clock::now();
   result.setup_seconds = std::chrono::duration<double>(set_up - started).count();
   result.total_seconds = std::chrono::duration<double>(finished - started).count();

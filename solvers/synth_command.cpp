@@ -78,6 +78,35 @@ private:
   bool has_spare_ = false;
 };
 
+// --load-history's knots; empty without it (the constant-tension test).
+LoadHistory synth_load_history(const Options& options) {
+  LoadHistory history;
+  if (options.is_set("load-history")) {
+    for (const char* other : {"tension", "force", "load-duration", "recovery-duration"}) {
+      if (options.is_set(other)) {
+        throw InputError("option --load-history gives the load; drop --" + std::string(other));
+      }
+    }
+    history = read_load_history_file(options.text("load-history"),
+                                     options.is_set("width")
+                                         ? std::optional<double>(options.positive_real("width"))
+                                         : std::nullopt);
+  }
+  return history;
+}
+
+// The creep test's parameters of the material at `tension`: for a single
+// load level any tension-strain curve acts through its secant.
+CreepTestParameters secant_parameters(const DirectionalMaterial& material, double tension) {
+  CreepTestParameters parameters;
+  parameters.elastic_modulus = tension / material.elastic.strain_at_tension(tension);
+  parameters.creep_modulus = material.creep.creep_modulus;
+  parameters.alpha = material.creep.alpha;
+  parameters.lambda_load = material.creep.lambda_load;
+  parameters.lambda_unload = material.creep.lambda_unload;
+  return parameters;
+}
+
 } // namespace
 
 int run_synth(const Invocation& invocation) {
@@ -91,18 +120,7 @@ int run_synth(const Invocation& invocation) {
   if (options.is_set("tension") && (options.is_set("force") || options.is_set("width"))) {
     throw InputError("give --tension or --force with --width, not both");
   }
-  LoadHistory history;
-  if (options.is_set("load-history")) {
-    for (const char* other : {"tension", "force", "load-duration", "recovery-duration"}) {
-      if (options.is_set(other)) {
-        throw InputError("option --load-history gives the load; drop --" + std::string(other));
-      }
-    }
-    history = read_load_history_file(options.text("load-history"),
-                                     options.is_set("width")
-                                         ? std::optional<double>(options.positive_real("width"))
-                                         : std::nullopt);
-  }
+  const LoadHistory history = synth_load_history(options);
   double tension = 0.0; // of the test, or the history's peak (the elastic secant's)
   if (history.empty()) {
     tension = options.is_set("tension")
@@ -123,13 +141,7 @@ int run_synth(const Invocation& invocation) {
   const long seed = options.integer("seed");
 
   const DirectionalMaterial& material = choice.material();
-  CreepTestParameters parameters;
-  // For a single load level any tension-strain curve acts through its secant.
-  parameters.elastic_modulus = tension / material.elastic.strain_at_tension(tension);
-  parameters.creep_modulus = material.creep.creep_modulus;
-  parameters.alpha = material.creep.alpha;
-  parameters.lambda_load = material.creep.lambda_load;
-  parameters.lambda_unload = material.creep.lambda_unload;
+  const CreepTestParameters parameters = secant_parameters(material, tension);
   const CreepTest test{tension, 0.0, load_duration};
 
   const double start = history.empty() ? 0.0 : history.front().time;

@@ -41,6 +41,77 @@ void compress_rows(std::vector<PetscInt>* offsets, std::vector<PetscInt>* column
   columns->resize(std::size_t(kept));
 }
 
+// Every rank sends the (row, column) pairs in outgoing[r] to rank r (and
+// empties them); *incoming gets the pairs the other ranks send it.
+PetscErrorCode exchange_pairs(MPI_Comm comm, PetscMPIInt ranks,
+                              std::vector<std::vector<PetscInt>>& outgoing,
+                              std::vector<PetscInt>* incoming) {
+  PetscFunctionBeginUser;
+  std::vector<PetscMPIInt> send_counts(static_cast<std::size_t>(ranks), 0);
+  std::vector<PetscMPIInt> receive_counts(static_cast<std::size_t>(ranks), 0);
+  std::vector<PetscMPIInt> send_offsets(std::size_t(ranks) + 1, 0),
+      receive_offsets(std::size_t(ranks) + 1, 0);
+  std::vector<PetscInt> buffer;
+  for (std::size_t r = 0; r < std::size_t(ranks); ++r) {
+    send_counts[r] = PetscMPIInt(outgoing[r].size());
+    send_offsets[r + 1] = send_offsets[r] + send_counts[r];
+    buffer.insert(buffer.end(), outgoing[r].begin(), outgoing[r].end());
+    outgoing[r] = {};
+  }
+  PetscCallMPI(
+      MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, comm));
+  for (std::size_t r = 0; r < std::size_t(ranks); ++r)
+    receive_offsets[r + 1] = receive_offsets[r] + receive_counts[r];
+  incoming->resize(std::size_t(receive_offsets.back()));
+  PetscCallMPI(MPI_Alltoallv(buffer.data(), send_counts.data(), send_offsets.data(), MPIU_INT,
+                             incoming->data(), receive_counts.data(), receive_offsets.data(),
+                             MPIU_INT, comm));
+  PetscFunctionReturn(0);
+}
+
+// Preallocates J from the block CSR structure of the owned block rows
+// [begin, end): exactly for AIJ, by counts per block row for the other types.
+PetscErrorCode set_preallocation(Mat J, PetscInt begin, PetscInt end,
+                                 const std::vector<PetscInt>& offsets,
+                                 const std::vector<PetscInt>& columns) {
+  PetscFunctionBeginUser;
+  const auto owned = std::size_t(end - begin);
+  PetscBool seq_aij = PETSC_FALSE, mpi_aij = PETSC_FALSE;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(J), MATSEQAIJ, &seq_aij));
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(J), MATMPIAIJ, &mpi_aij));
+  if (seq_aij || mpi_aij) {
+    // The scalar structure: every block expands to 3 x 3 entries.
+    std::vector<PetscInt> rows(block_size * owned + 1, 0), entries;
+    entries.reserve(std::size_t(block_size * block_size) * columns.size());
+    for (std::size_t r = 0; r < owned; ++r) {
+      for (PetscInt a = 0; a < block_size; ++a) {
+        for (PetscInt k = offsets[r]; k < offsets[r + 1]; ++k)
+          for (PetscInt b = 0; b < block_size; ++b)
+            entries.push_back(block_size * columns[std::size_t(k)] + b);
+        rows[block_size * r + std::size_t(a) + 1] = PetscInt(entries.size());
+      }
+    }
+    if (seq_aij) PetscCall(MatSeqAIJSetPreallocationCSR(J, rows.data(), entries.data(), nullptr));
+    if (mpi_aij) PetscCall(MatMPIAIJSetPreallocationCSR(J, rows.data(), entries.data(), nullptr));
+    PetscFunctionReturn(0);
+  }
+  // Other types (BAIJ, SBAIJ, ...): exact counts per block row.
+  std::vector<PetscInt> diagonal(owned, 0), off(owned, 0), upper_diagonal(owned, 0),
+      upper_off(owned, 0);
+  for (std::size_t r = 0; r < owned; ++r) {
+    const PetscInt row = begin + PetscInt(r);
+    for (PetscInt k = offsets[r]; k < offsets[r + 1]; ++k) {
+      const PetscInt column = columns[std::size_t(k)];
+      const bool local = column >= begin && column < end;
+      (local ? diagonal : off)[r] += 1;
+      if (column >= row) (local ? upper_diagonal : upper_off)[r] += 1;
+    }
+  }
+  PetscCall(MatXAIJSetPreallocation(J, block_size, diagonal.data(), off.data(),
+                                    upper_diagonal.data(), upper_off.data()));
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode block_layout(DM dm, BlockLayout* layout) {
@@ -145,25 +216,7 @@ PetscErrorCode BlockPattern::preallocate(Mat J) {
 
   std::vector<PetscInt> incoming;
   if (ranks > 1) {
-    std::vector<PetscMPIInt> send_counts(static_cast<std::size_t>(ranks), 0);
-    std::vector<PetscMPIInt> receive_counts(static_cast<std::size_t>(ranks), 0);
-    std::vector<PetscMPIInt> send_offsets(std::size_t(ranks) + 1, 0),
-        receive_offsets(std::size_t(ranks) + 1, 0);
-    std::vector<PetscInt> buffer;
-    for (std::size_t r = 0; r < std::size_t(ranks); ++r) {
-      send_counts[r] = PetscMPIInt(outgoing[r].size());
-      send_offsets[r + 1] = send_offsets[r] + send_counts[r];
-      buffer.insert(buffer.end(), outgoing[r].begin(), outgoing[r].end());
-      outgoing[r] = {};
-    }
-    PetscCallMPI(
-        MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, comm_));
-    for (std::size_t r = 0; r < std::size_t(ranks); ++r)
-      receive_offsets[r + 1] = receive_offsets[r] + receive_counts[r];
-    incoming.resize(std::size_t(receive_offsets.back()));
-    PetscCallMPI(MPI_Alltoallv(buffer.data(), send_counts.data(), send_offsets.data(), MPIU_INT,
-                               incoming.data(), receive_counts.data(), receive_offsets.data(),
-                               MPIU_INT, comm_));
+    PetscCall(exchange_pairs(comm_, ranks, outgoing, &incoming));
     for (std::size_t k = 0; k < incoming.size(); k += 2)
       ++offsets[std::size_t(incoming[k] - begin) + 1];
   }
@@ -196,39 +249,7 @@ PetscErrorCode BlockPattern::preallocate(Mat J) {
     put(incoming[k], incoming[k + 1]);
   compress_rows(&offsets, &columns);
 
-  PetscBool seq_aij = PETSC_FALSE, mpi_aij = PETSC_FALSE;
-  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(J), MATSEQAIJ, &seq_aij));
-  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(J), MATMPIAIJ, &mpi_aij));
-  if (seq_aij || mpi_aij) {
-    // The scalar structure: every block expands to 3 x 3 entries.
-    std::vector<PetscInt> rows(block_size * owned + 1, 0), entries;
-    entries.reserve(std::size_t(block_size * block_size) * columns.size());
-    for (std::size_t r = 0; r < owned; ++r) {
-      for (PetscInt a = 0; a < block_size; ++a) {
-        for (PetscInt k = offsets[r]; k < offsets[r + 1]; ++k)
-          for (PetscInt b = 0; b < block_size; ++b)
-            entries.push_back(block_size * columns[std::size_t(k)] + b);
-        rows[block_size * r + std::size_t(a) + 1] = PetscInt(entries.size());
-      }
-    }
-    if (seq_aij) PetscCall(MatSeqAIJSetPreallocationCSR(J, rows.data(), entries.data(), nullptr));
-    if (mpi_aij) PetscCall(MatMPIAIJSetPreallocationCSR(J, rows.data(), entries.data(), nullptr));
-  } else {
-    // Other types (BAIJ, SBAIJ, ...): exact counts per block row.
-    std::vector<PetscInt> diagonal(owned, 0), off(owned, 0), upper_diagonal(owned, 0),
-        upper_off(owned, 0);
-    for (std::size_t r = 0; r < owned; ++r) {
-      const PetscInt row = begin + PetscInt(r);
-      for (PetscInt k = offsets[r]; k < offsets[r + 1]; ++k) {
-        const PetscInt column = columns[std::size_t(k)];
-        const bool local = is_owned(column);
-        (local ? diagonal : off)[r] += 1;
-        if (column >= row) (local ? upper_diagonal : upper_off)[r] += 1;
-      }
-    }
-    PetscCall(MatXAIJSetPreallocation(J, block_size, diagonal.data(), off.data(),
-                                      upper_diagonal.data(), upper_off.data()));
-  }
+  PetscCall(set_preallocation(J, begin, layout_.owned_end, offsets, columns));
   PetscFunctionReturn(0);
 }
 

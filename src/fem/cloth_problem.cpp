@@ -87,50 +87,31 @@ PetscErrorCode add_block(Mat J, const std::array<PetscInt, N>& dofs,
   PetscFunctionReturn(0);
 }
 
-} // namespace
-
-ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh, const ClothMaterial& material,
-                           const std::vector<int>& pinned)
-    : ClothProblem(comm, mesh, std::vector<ClothMaterial>{material}, pinned) {}
-
-ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh,
-                           std::vector<ClothMaterial> materials, const std::vector<int>& pinned,
-                           const std::vector<double>& release_times)
-    : comm_(comm), mesh_(mesh), materials_(std::move(materials)), pinned_(pinned),
-      release_times_(release_times) {
-  if (release_times_.empty()) release_times_.assign(pinned_.size(), INFINITY);
-  if (release_times_.size() != pinned_.size()) {
-    throw InputError("cloth: " + std::to_string(release_times_.size()) + " release times for " +
-                     std::to_string(pinned_.size()) + " pins");
-  }
-  validate(mesh, "cloth mesh");
-  if (materials_.empty()) throw InputError("cloth: no material given");
-  for (const ClothMaterial& material : materials_) {
-    if (material.bending_model != materials_.front().bending_model) {
+// Every material uses the same bending model, and every triangle's
+// material id names one.
+void check_materials(const TriangleMesh& mesh, const std::vector<ClothMaterial>& materials) {
+  if (materials.empty()) throw InputError("cloth: no material given");
+  for (const ClothMaterial& material : materials) {
+    if (material.bending_model != materials.front().bending_model) {
       throw InputError("cloth: all materials must use the same bending model");
     }
   }
   for (std::size_t t = 0; t < mesh.material_ids.size(); ++t) {
     const int id = mesh.material_ids[t];
-    if (id < 0 || std::size_t(id) >= materials_.size()) {
+    if (id < 0 || std::size_t(id) >= materials.size()) {
       throw InputError("cloth mesh: triangle " + std::to_string(t) + " has material id " +
-                       std::to_string(id) + ", but there are " + std::to_string(materials_.size()) +
+                       std::to_string(id) + ", but there are " + std::to_string(materials.size()) +
                        " material(s)");
     }
   }
-  PetscMPIInt rank = 0;
-  MPI_Comm_rank(comm, &rank);
-  nonelastic.assign(mesh.triangle_count(), {});
-  for (int v : pinned) {
-    if (v < 0 || std::size_t(v) >= mesh.vertex_count()) {
-      throw InputError("pinned vertex " + std::to_string(v) + " is not in the mesh (0.." +
-                       std::to_string(mesh.vertex_count() - 1) + ")");
-    }
-    pin_positions_.push_back(mesh.positions[std::size_t(v)]);
-  }
+}
 
-  // The serial mesh lives on rank 0; DMPlexDistribute partitions it and adds
-  // one layer of overlap so that every owned hinge sees both its triangles.
+// The serial mesh lives on rank 0; DMPlexDistribute partitions it and adds
+// one layer of overlap so that every owned hinge sees both its triangles.
+// The distributed DM, and in `original` the mesh index of its every point
+// (original_points' numbering).
+DM distribute_mesh(MPI_Comm comm, PetscMPIInt rank, const TriangleMesh& mesh,
+                   std::vector<PetscInt>* original) {
   std::vector<PetscInt> cells;
   std::vector<PetscReal> coordinates;
   if (rank == 0) {
@@ -155,41 +136,80 @@ ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh,
   DM distributed = nullptr, overlapping = nullptr;
   PetscSF migration = nullptr, overlap = nullptr;
   SartorPetscCall(DMPlexDistribute(serial, 0, &migration, &distributed));
-  std::vector<PetscInt> original;
-  SartorPetscCall(
-      original_points(serial, migration, distributed ? distributed : serial, &original));
+  SartorPetscCall(original_points(serial, migration, distributed ? distributed : serial, original));
+  DM dm = serial;
   if (distributed) {
     SartorPetscCall(DMDestroy(&serial));
     SartorPetscCall(DMPlexDistributeOverlap(distributed, 1, &overlap, &overlapping));
-    std::vector<PetscInt> partitioned = std::move(original);
+    std::vector<PetscInt> partitioned = std::move(*original);
     PetscInt start = 0, end = 0;
     SartorPetscCall(DMPlexGetChart(overlapping, &start, &end));
-    original.assign(std::size_t(end - start), PETSC_MAX_INT);
+    original->assign(std::size_t(end - start), PETSC_MAX_INT);
     SartorPetscCall(
-        PetscSFBcastBegin(overlap, MPIU_INT, partitioned.data(), original.data(), MPI_REPLACE));
+        PetscSFBcastBegin(overlap, MPIU_INT, partitioned.data(), original->data(), MPI_REPLACE));
     SartorPetscCall(
-        PetscSFBcastEnd(overlap, MPIU_INT, partitioned.data(), original.data(), MPI_REPLACE));
+        PetscSFBcastEnd(overlap, MPIU_INT, partitioned.data(), original->data(), MPI_REPLACE));
     SartorPetscCall(DMDestroy(&distributed));
-    dm_ = overlapping;
-  } else {
-    dm_ = serial;
+    dm = overlapping;
   }
   SartorPetscCall(PetscSFDestroy(&migration));
   SartorPetscCall(PetscSFDestroy(&overlap));
+  return dm;
+}
 
+} // namespace
+
+ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh, const ClothMaterial& material,
+                           const std::vector<int>& pinned)
+    : ClothProblem(comm, mesh, std::vector<ClothMaterial>{material}, pinned) {}
+
+ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh,
+                           std::vector<ClothMaterial> materials, const std::vector<int>& pinned,
+                           const std::vector<double>& release_times)
+    : comm_(comm), mesh_(mesh), materials_(std::move(materials)), pinned_(pinned),
+      release_times_(release_times) {
+  if (release_times_.empty()) release_times_.assign(pinned_.size(), INFINITY);
+  if (release_times_.size() != pinned_.size()) {
+    throw InputError("cloth: " + std::to_string(release_times_.size()) + " release times for " +
+                     std::to_string(pinned_.size()) + " pins");
+  }
+  validate(mesh, "cloth mesh");
+  check_materials(mesh, materials_);
+  PetscMPIInt rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  nonelastic.assign(mesh.triangle_count(), {});
+  for (int v : pinned) {
+    if (v < 0 || std::size_t(v) >= mesh.vertex_count()) {
+      throw InputError("pinned vertex " + std::to_string(v) + " is not in the mesh (0.." +
+                       std::to_string(mesh.vertex_count() - 1) + ")");
+    }
+    pin_positions_.push_back(mesh.positions[std::size_t(v)]);
+  }
+
+  std::vector<PetscInt> original;
+  dm_ = distribute_mesh(comm, rank, mesh, &original);
   std::vector<bool> foreign;
   SartorPetscCall(foreign_points(dm_, &foreign));
-  PetscInt cell_start = 0, cell_end = 0, vertex_start = 0, vertex_end = 0;
-  SartorPetscCall(DMPlexGetHeightStratum(dm_, 0, &cell_start, &cell_end));
-  SartorPetscCall(DMPlexGetDepthStratum(dm_, 0, &vertex_start, &vertex_end));
-
   // Three dofs per vertex; pinned vertices are constrained, so the global
   // system holds the free dofs only.
   std::vector<bool> is_pinned(mesh.vertex_count(), false);
   for (std::size_t i = 0; i < pinned.size(); ++i)
     is_pinned[std::size_t(pinned[i])] = !releasable(i);
+  set_up_dofs(original, foreign, is_pinned);
+  set_up_bending(set_up_triangles(original, foreign), is_pinned);
+  set_up_contact();
+}
+
+// The local section (three dofs per vertex, pinned ones constrained), the
+// local vectors, each mesh vertex's local offset and owner, and the rows of
+// the releasable pins this rank owns.
+void ClothProblem::set_up_dofs(const std::vector<PetscInt>& original,
+                               const std::vector<bool>& foreign,
+                               const std::vector<bool>& is_pinned) {
+  PetscInt vertex_start = 0, vertex_end = 0;
+  SartorPetscCall(DMPlexGetDepthStratum(dm_, 0, &vertex_start, &vertex_end));
   PetscSection section = nullptr;
-  SartorPetscCall(PetscSectionCreate(comm, &section));
+  SartorPetscCall(PetscSectionCreate(comm_, &section));
   PetscInt chart_start = 0, chart_end = 0;
   SartorPetscCall(DMPlexGetChart(dm_, &chart_start, &chart_end));
   SartorPetscCall(PetscSectionSetChart(section, chart_start, chart_end));
@@ -216,8 +236,8 @@ ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh,
 
   PetscSection local_section = nullptr;
   SartorPetscCall(DMGetLocalSection(dm_, &local_section));
-  vertex_dof_.assign(mesh.vertex_count(), -1);
-  vertex_owned_.assign(mesh.vertex_count(), false);
+  vertex_dof_.assign(mesh_.vertex_count(), -1);
+  vertex_owned_.assign(mesh_.vertex_count(), false);
   for (PetscInt p = vertex_start; p < vertex_end; ++p) {
     const auto v = std::size_t(-original[std::size_t(p)] - 1);
     SartorPetscCall(PetscSectionGetOffset(local_section, p, &vertex_dof_[v]));
@@ -232,9 +252,15 @@ ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh,
     SartorPetscCall(ISLocalToGlobalMappingApply(local_to_global, 1, &vertex_dof_[v], &row));
     releasable_rows_.push_back({i, row});
   }
+}
 
-  // Owned triangles, and the hinges of the owned triangle with the lower index.
-  std::vector<bool> triangle_owned(mesh.triangle_count(), false);
+// Owned triangles (their rest shapes and dofs); which mesh triangles this
+// rank owns.
+std::vector<bool> ClothProblem::set_up_triangles(const std::vector<PetscInt>& original,
+                                                 const std::vector<bool>& foreign) {
+  PetscInt cell_start = 0, cell_end = 0;
+  SartorPetscCall(DMPlexGetHeightStratum(dm_, 0, &cell_start, &cell_end));
+  std::vector<bool> triangle_owned(mesh_.triangle_count(), false);
   for (PetscInt c = cell_start; c < cell_end; ++c) {
     if (foreign[std::size_t(c)]) continue;
     const auto t = std::size_t(original[std::size_t(c)]);
@@ -242,17 +268,16 @@ ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh,
     LocalTriangle local;
     local.index = int(t);
     local.material = &triangle_material(t);
-    local.rest = element::triangle_rest(mesh.material_uv[t]);
+    local.rest = element::triangle_rest(mesh_.material_uv[t]);
     for (std::size_t k = 0; k < 3; ++k) {
-      const PetscInt offset = vertex_dof_[std::size_t(mesh.triangles[t][k])];
+      const PetscInt offset = vertex_dof_[std::size_t(mesh_.triangles[t][k])];
       if (offset < 0) throw std::logic_error("a vertex of an owned triangle is not local");
       for (std::size_t d = 0; d < 3; ++d)
         local.dofs[3 * k + d] = offset + PetscInt(d);
     }
     triangles_.push_back(local);
   }
-  set_up_bending(triangle_owned, is_pinned);
-  set_up_contact();
+  return triangle_owned;
 }
 
 ClothProblem::~ClothProblem() {

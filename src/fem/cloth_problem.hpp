@@ -364,6 +364,10 @@ private:
     element::PatchRest rest;
     bool project; // PSD-project its Hessian
   };
+  void set_up_dofs(const std::vector<PetscInt>& original, const std::vector<bool>& foreign,
+                   const std::vector<bool>& is_pinned);
+  std::vector<bool> set_up_triangles(const std::vector<PetscInt>& original,
+                                     const std::vector<bool>& foreign);
   void set_up_bending(const std::vector<bool>& triangle_owned, const std::vector<bool>& is_pinned);
   void set_up_patches(const std::vector<bool>& triangle_owned, const std::vector<bool>& is_pinned);
   template <std::size_t N>

@@ -61,6 +61,228 @@ std::vector<double> step_landings(const ClothProblem& problem, const CreepOption
   return landings;
 }
 
+// A monolithic coupling is undone however the run ends.
+struct UncoupleAtExit {
+  CreepCoupling& creep;
+  ~UncoupleAtExit() { creep.uncouple(); }
+};
+
+// Two vectors destroyed however the run ends.
+struct DestroyAtExit {
+  Vec* first;
+  Vec* second;
+  ~DestroyAtExit() {
+    VecDestroy(first);
+    VecDestroy(second);
+  }
+};
+
+// Restores the state of the run a checkpoint records.
+PetscErrorCode resume_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
+                            const RunCheckpoint& resume) {
+  PetscFunctionBeginUser;
+  problem.time = resume.time;
+  problem.load_factor = resume.load_factor;
+  PetscCall(problem.set_solution(resume.positions, x));
+  creep.restore(resume.creep);
+  problem.restore_anchors(resume.anchors);
+  PetscFunctionReturn(0);
+}
+
+// A dynamic run's starting velocities: zero, or the checkpoint's.
+PetscErrorCode initial_velocity(const ClothProblem& problem, Vec x, const RunCheckpoint* resume,
+                                Vec* velocity) {
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(x, velocity));
+  PetscCall(VecSet(*velocity, 0.0));
+  if (resume && !resume->velocities.empty()) {
+    PetscCall(problem.set_solution(resume->velocities, *velocity));
+  }
+  PetscFunctionReturn(0);
+}
+
+// The equilibrium at the start, reported as the run's first step; *ok is
+// false (and the report says why) when it does not converge.
+PetscErrorCode initial_creep_state(ClothProblem& problem, CreepCoupling& creep,
+                                   IncrementalSystem& system, Vec x, const CreepOptions& options,
+                                   double start, CreepReport* report, const CreepObserver& observe,
+                                   bool* ok) {
+  PetscFunctionBeginUser;
+  problem.load_factor = options.load.after(start);
+  StaticReport initial;
+  PetscCall(solve_static(system, x, options.equilibrium, &initial));
+  report->newton_iterations += initial.newton_iterations;
+  *ok = initial.converged;
+  if (!initial.converged) {
+    report->reason = "the initial equilibrium did not converge (" + initial.reason + ")";
+    report->final_time = start;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(creep.record_tensions(x));
+  CreepStepReport first;
+  first.time = start;
+  first.load_factor = problem.load_factor;
+  first.newton_iterations = initial.newton_iterations;
+  first.output = true;
+  report->steps.push_back(first);
+  if (observe) PetscCall(observe(first, x));
+  PetscFunctionReturn(0);
+}
+
+// Where the step from t must end: the end, the next output or checkpoint,
+// or the next landing, whichever comes first.
+double step_target(double t, double end, double next_output, double next_checkpoint,
+                   const std::vector<double>& landings, double tiny) {
+  double target = std::min({end, next_output, next_checkpoint});
+  for (double landing : landings) {
+    if (landing > t + tiny) {
+      target = std::min(target, landing);
+      break;
+    }
+  }
+  return target;
+}
+
+// One time step of length h from the last accepted state `last` (and, in
+// dynamics, its velocity) to x; counts its Newton iterations.
+struct CreepStep {
+  ClothProblem& problem;
+  IncrementalSystem& system;
+  const CreepOptions& options;
+  Vec x, last, velocity;
+  double h;
+  PetscInt newton_iterations = 0;
+};
+
+// Equilibrium at the step's end from the load factor the problem holds to
+// `factor`; dynamic: the backward Euler step from the last accepted state.
+PetscErrorCode step_equilibrium(CreepStep& step, double factor, CreepReport* report,
+                                bool* converged) {
+  PetscFunctionBeginUser;
+  ClothProblem& problem = step.problem;
+  if (step.options.dynamic) {
+    problem.load_factor = factor;
+    step.system.inertia_weight = 1.0 / (step.h * step.h);
+    step.system.damping_weight = step.options.damping / step.h;
+    PetscCall(VecCopy(step.last, step.system.previous()));
+    PetscCall(VecWAXPY(step.system.predicted(), step.h, step.velocity, step.last));
+    IncrementalSystem::Solve result;
+    PetscCall(step.system.solve(step.x, &result));
+    step.newton_iterations += result.newton_iterations;
+    *converged = result.converged;
+    if (!*converged) report->reason = result.reason;
+    PetscFunctionReturn(0);
+  }
+  StaticOptions solve = step.options.equilibrium;
+  solve.start_load_factor = problem.load_factor;
+  solve.load_steps = 1;
+  problem.load_factor = factor;
+  StaticReport result;
+  PetscCall(solve_static(step.system, step.x, solve, &result));
+  step.newton_iterations += result.newton_iterations;
+  *converged = result.converged;
+  if (!*converged) report->reason = result.reason;
+  PetscFunctionReturn(0);
+}
+
+struct StepAttempt {
+  bool converged = false;
+  bool too_large = false; // the creep increment exceeds twice the tolerance
+  double increment = 0.0; // the creep increment of the step
+};
+
+// The step to t1: equilibrium, the creep update, and (where needed)
+// equilibrium again with the new unloaded lengths.
+PetscErrorCode attempt_creep_step(CreepStep& step, CreepCoupling& creep, double t1, bool monolithic,
+                                  CreepReport* report, StepAttempt* attempt) {
+  PetscFunctionBeginUser;
+  ClothProblem& problem = step.problem;
+  const CreepOptions& options = step.options;
+  const double h = step.h;
+  problem.time = t1;
+  bool converged = false;
+  if (monolithic) creep.couple(h);
+  // Pins let go at t1 still hold at its left limit, like a load jump's.
+  const auto& releases = problem.release_times();
+  const bool release_at_t1 = std::find(releases.begin(), releases.end(), t1) != releases.end();
+  problem.hold_at_release = true;
+  PetscCall(step_equilibrium(step, options.load.before(t1), report, &converged));
+  problem.hold_at_release = false;
+  double increment = 0.0;
+  if (converged && monolithic) PetscCall(creep.advance_coupled(step.x, &increment));
+  if (converged && !monolithic) PetscCall(creep.advance(step.x, h, &increment));
+  const bool too_large =
+      converged && increment > 2.0 * options.creep_tolerance && h > options.min_step;
+  // Staggered: equilibrium with the new unloaded lengths. Monolithic: x is
+  // already in equilibrium with them, unless the load jumps or pins let go
+  // at t1.
+  const bool solve_again =
+      !monolithic || release_at_t1 || options.load.after(t1) != options.load.before(t1);
+  if (converged && !too_large && solve_again) {
+    PetscCall(step_equilibrium(step, options.load.after(t1), report, &converged));
+  }
+  attempt->converged = converged;
+  attempt->too_large = too_large;
+  attempt->increment = increment;
+  PetscFunctionReturn(0);
+}
+
+// Back to the last accepted state at t after a rejected step.
+PetscErrorCode roll_back_creep_step(const CreepStep& step, CreepCoupling& creep, double t,
+                                    double factor_before) {
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(step.last, step.x));
+  creep.roll_back();
+  step.problem.time = t;
+  step.problem.load_factor = factor_before;
+  PetscFunctionReturn(0);
+}
+
+// The step to retry with after a rejected step h: shortened to 0.9 of the
+// creep tolerance when its increment was too large, else halved.
+double retry_creep_step(const CreepOptions& options, double h, const StepAttempt& attempt) {
+  return attempt.too_large ? h * std::max(0.2, 0.9 * options.creep_tolerance / attempt.increment)
+                           : 0.5 * h;
+}
+
+// Commits the accepted step's creep and, in dynamics, its velocity.
+PetscErrorCode accept_creep_step(const CreepStep& step, CreepCoupling& creep) {
+  PetscFunctionBeginUser;
+  creep.commit();
+  PetscCall(creep.record_tensions(step.x));
+  if (step.options.dynamic) {
+    PetscCall(step.problem.accept_step(step.x)); // statics do it inside solve_static
+    // v = (x - x_n) / h
+    PetscCall(VecWAXPY(step.velocity, -1.0, step.last, step.x));
+    PetscCall(VecScale(step.velocity, 1.0 / step.h));
+  }
+  PetscFunctionReturn(0);
+}
+
+// The next step after an accepted step h (dt before it; `shortened`: h was
+// cut short of dt to land on a time): aimed at 0.9 of the creep tolerance.
+double next_creep_step(const CreepOptions& options, double h, double dt, bool shortened,
+                       double increment) {
+  const double ideal = increment > 0.0 ? 0.9 * options.creep_tolerance * h / increment : 2.0 * h;
+  dt = std::clamp(ideal, 0.5 * h, 2.0 * (shortened ? std::max(h, dt) : h));
+  if (options.max_step > 0.0) dt = std::min(dt, options.max_step);
+  return std::max(dt, options.min_step);
+}
+
+PetscErrorCode print_creep_progress(const ClothProblem& problem, ProgressClock& progress,
+                                    const CreepStepReport& accepted, double start, double end,
+                                    bool finished) {
+  PetscFunctionBeginUser;
+  const double t = accepted.time;
+  PetscCall(PetscPrintf(problem.comm(),
+                        "  creep t = %-10.4g s (%3.0f %%): step %ld, dt %.3g s, load %.3g, "
+                        "creep increment %.2e; %s\n",
+                        t, 100.0 * (t - start) / (end - start), accepted.step, accepted.dt,
+                        problem.load_factor, accepted.increment,
+                        progress.timing(finished ? 1.0 : (t - start) / (end - start)).c_str()));
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
@@ -71,65 +293,29 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
   const auto started = std::chrono::steady_clock::now();
   problem.pins_follow_time = true;
   const RunCheckpoint* resume = restart.resume;
-  if (resume) {
-    problem.time = resume->time;
-    problem.load_factor = resume->load_factor;
-    PetscCall(problem.set_solution(resume->positions, x));
-    creep.restore(resume->creep);
-    problem.restore_anchors(resume->anchors);
-  }
+  if (resume) PetscCall(resume_creep(problem, creep, x, *resume));
   const double start = problem.time;
   check(options, start);
   const double end = options.time_end;
   const double tiny = 1e-9 * (end - start);
   const bool monolithic = options.scheme == CreepScheme::monolithic;
   // Monolithic: uncoupled however the run ends.
-  struct Uncouple {
-    CreepCoupling& creep;
-    ~Uncouple() { creep.uncouple(); }
-  } uncouple_at_exit{creep};
+  const UncoupleAtExit uncouple_at_exit{creep};
   if (monolithic) creep.couple(0.0);
   IncrementalSystem system(problem, x);
   PetscCall(VecDuplicate(x, &last));
-  if (options.dynamic) {
-    PetscCall(VecDuplicate(x, &velocity));
-    PetscCall(VecSet(velocity, 0.0));
-    if (resume && !resume->velocities.empty()) {
-      PetscCall(problem.set_solution(resume->velocities, velocity));
-    }
-  }
+  if (options.dynamic) PetscCall(initial_velocity(problem, x, resume, &velocity));
   // Every way out of this function destroys both.
-  struct Destroy {
-    Vec* first;
-    Vec* second;
-    ~Destroy() {
-      VecDestroy(first);
-      VecDestroy(second);
-    }
-  } destroy_at_exit{&last, &velocity};
+  const DestroyAtExit destroy_at_exit{&last, &velocity};
 
   const std::vector<double> landings = step_landings(problem, options);
 
   long step = resume ? resume->step : 0;
   double dt = resume ? resume->next_step : options.time_step;
   if (!resume) {
-    problem.load_factor = options.load.after(start);
-    StaticReport initial;
-    PetscCall(solve_static(system, x, options.equilibrium, &initial));
-    report->newton_iterations += initial.newton_iterations;
-    if (!initial.converged) {
-      report->reason = "the initial equilibrium did not converge (" + initial.reason + ")";
-      report->final_time = start;
-      PetscFunctionReturn(0);
-    }
-    PetscCall(creep.record_tensions(x));
-    CreepStepReport first;
-    first.time = start;
-    first.load_factor = problem.load_factor;
-    first.newton_iterations = initial.newton_iterations;
-    first.output = true;
-    report->steps.push_back(first);
-    if (observe) PetscCall(observe(first, x));
+    bool ok = false;
+    PetscCall(initial_creep_state(problem, creep, system, x, options, start, report, observe, &ok));
+    if (!ok) PetscFunctionReturn(0);
   }
 
   double t = start;
@@ -138,13 +324,7 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
   ProgressClock progress;
   int rejected = 0;
   while (t < end - tiny) {
-    double target = std::min({end, next_output, next_checkpoint});
-    for (double landing : landings) {
-      if (landing > t + tiny) {
-        target = std::min(target, landing);
-        break;
-      }
-    }
+    const double target = step_target(t, end, next_output, next_checkpoint, landings, tiny);
     double h = std::min(dt, target - t);
     if (target - t - h < 1e-3 * h) h = target - t; // no sliver before a landing
     const bool shortened = h < dt;
@@ -152,70 +332,15 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
     const double factor_before = problem.load_factor;
     PetscCall(VecCopy(x, last));
 
-    const auto reject = [&](double next_dt) {
-      creep.roll_back();
-      problem.time = t;
-      problem.load_factor = factor_before;
-      dt = next_dt;
+    CreepStep attempt_step{problem, system, options, x, last, velocity, h};
+    StepAttempt attempt;
+    PetscCall(attempt_creep_step(attempt_step, creep, t1, monolithic, report, &attempt));
+    report->newton_iterations += attempt_step.newton_iterations;
+    if (!attempt.converged || attempt.too_large) {
+      PetscCall(roll_back_creep_step(attempt_step, creep, t, factor_before));
+      dt = retry_creep_step(options, h, attempt);
       ++rejected;
       ++report->rejected_steps;
-    };
-    // Equilibrium at t1 from the load factor the problem holds to `factor`;
-    // dynamic: the backward Euler step from the last accepted state.
-    PetscInt newton_iterations = 0;
-    const auto equilibrium = [&](double factor, bool* converged) -> PetscErrorCode {
-      PetscFunctionBeginUser;
-      if (options.dynamic) {
-        problem.load_factor = factor;
-        system.inertia_weight = 1.0 / (h * h);
-        system.damping_weight = options.damping / h;
-        PetscCall(VecCopy(last, system.previous()));
-        PetscCall(VecWAXPY(system.predicted(), h, velocity, last));
-        IncrementalSystem::Solve result;
-        PetscCall(system.solve(x, &result));
-        newton_iterations += result.newton_iterations;
-        *converged = result.converged;
-        if (!*converged) report->reason = result.reason;
-        PetscFunctionReturn(0);
-      }
-      StaticOptions solve = options.equilibrium;
-      solve.start_load_factor = problem.load_factor;
-      solve.load_steps = 1;
-      problem.load_factor = factor;
-      StaticReport result;
-      PetscCall(solve_static(system, x, solve, &result));
-      newton_iterations += result.newton_iterations;
-      *converged = result.converged;
-      if (!*converged) report->reason = result.reason;
-      PetscFunctionReturn(0);
-    };
-
-    problem.time = t1;
-    bool converged = false;
-    if (monolithic) creep.couple(h);
-    // Pins let go at t1 still hold at its left limit, like a load jump's.
-    const auto& releases = problem.release_times();
-    const bool release_at_t1 = std::find(releases.begin(), releases.end(), t1) != releases.end();
-    problem.hold_at_release = true;
-    PetscCall(equilibrium(options.load.before(t1), &converged));
-    problem.hold_at_release = false;
-    double increment = 0.0;
-    if (converged && monolithic) PetscCall(creep.advance_coupled(x, &increment));
-    if (converged && !monolithic) PetscCall(creep.advance(x, h, &increment));
-    const bool too_large =
-        converged && increment > 2.0 * options.creep_tolerance && h > options.min_step;
-    // Staggered: equilibrium with the new unloaded lengths. Monolithic: x is
-    // already in equilibrium with them, unless the load jumps or pins let go
-    // at t1.
-    const bool solve_again =
-        !monolithic || release_at_t1 || options.load.after(t1) != options.load.before(t1);
-    if (converged && !too_large && solve_again) {
-      PetscCall(equilibrium(options.load.after(t1), &converged));
-    }
-    if (!converged || too_large) {
-      PetscCall(VecCopy(last, x));
-      report->newton_iterations += newton_iterations;
-      reject(too_large ? h * std::max(0.2, 0.9 * options.creep_tolerance / increment) : 0.5 * h);
       if (dt < options.min_step) {
         report->reason = "the time step fell below " + std::to_string(options.min_step) +
                          " s at t = " + std::to_string(t) + " s (" + report->reason + ")";
@@ -223,31 +348,19 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
       }
       continue;
     }
-    creep.commit();
-    PetscCall(creep.record_tensions(x));
-    if (options.dynamic) {
-      PetscCall(problem.accept_step(x)); // statics do it inside solve_static
-      // v = (x - x_n) / h
-      PetscCall(VecWAXPY(velocity, -1.0, last, x));
-      PetscCall(VecScale(velocity, 1.0 / h));
-    }
+    PetscCall(accept_creep_step(attempt_step, creep));
     t = t1;
     ++step;
-    report->newton_iterations += newton_iterations;
-
-    const double ideal = increment > 0.0 ? 0.9 * options.creep_tolerance * h / increment : 2.0 * h;
-    dt = std::clamp(ideal, 0.5 * h, 2.0 * (shortened ? std::max(h, dt) : h));
-    if (options.max_step > 0.0) dt = std::min(dt, options.max_step);
-    dt = std::max(dt, options.min_step);
+    dt = next_creep_step(options, h, dt, shortened, attempt.increment);
 
     CreepStepReport accepted;
     accepted.step = step;
     accepted.time = t;
     accepted.dt = h;
     accepted.load_factor = problem.load_factor;
-    accepted.newton_iterations = newton_iterations;
+    accepted.newton_iterations = attempt_step.newton_iterations;
     accepted.rejected = rejected;
-    accepted.increment = increment;
+    accepted.increment = attempt.increment;
     rejected = 0;
     if (t >= next_output - tiny || t >= end - tiny || options.output_interval <= 0.0) {
       accepted.output = true;
@@ -260,14 +373,8 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
       if (restart.write) PetscCall(restart.write(accepted, x, velocity, dt));
     }
     const bool finished = t >= end - tiny;
-    if (options.print_progress && progress.due(finished)) {
-      PetscCall(PetscPrintf(problem.comm(),
-                            "  creep t = %-10.4g s (%3.0f %%): step %ld, dt %.3g s, load %.3g, "
-                            "creep increment %.2e; %s\n",
-                            t, 100.0 * (t - start) / (end - start), step, h, problem.load_factor,
-                            increment,
-                            progress.timing(finished ? 1.0 : (t - start) / (end - start)).c_str()));
-    }
+    if (options.print_progress && progress.due(finished))
+      PetscCall(print_creep_progress(problem, progress, accepted, start, end, finished));
   }
   report->completed = t >= end - tiny;
   if (report->completed) report->reason.clear();

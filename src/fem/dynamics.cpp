@@ -46,6 +46,148 @@ double next_checkpoint_time(double time, double interval, double tiny) {
   return (std::floor((time + tiny) / interval) + 1.0) * interval;
 }
 
+// The problem and its vectors as the time steps see them: positions x,
+// velocities v, and work vectors f (a residual) and work.
+struct DynamicState {
+  ClothProblem& problem;
+  IncrementalSystem& system;
+  Vec x, v, f, work;
+};
+
+// A step's energies and static residual at the state reached.
+PetscErrorCode measure(const DynamicState& s, DynamicStepReport* step) {
+  ClothEnergy energy;
+  PetscFunctionBeginUser;
+  PetscCall(kinetic_energy(s.v, s.system.mass(), s.work, &step->kinetic_energy));
+  PetscCall(s.problem.energy(s.x, &energy));
+  step->potential_energy = energy.total();
+  PetscCall(s.problem.residual(s.x, s.f));
+  PetscCall(VecNorm(s.f, NORM_2, &step->static_residual_norm));
+  PetscFunctionReturn(0);
+}
+
+// The time, the next step's length and the next output time between steps.
+struct StepClock {
+  double t;
+  double dt;
+  double next_output;
+};
+
+// One backward Euler step from clock->t, its length halved on failure up to
+// max_cutbacks times; *accepted tells whether one converged (else
+// report->reason says why).
+PetscErrorCode take_step(DynamicState& s, const DynamicOptions& options, double tiny,
+                         StepClock* clock, DynamicStepReport* step, DynamicReport* report,
+                         bool* accepted) {
+  PetscFunctionBeginUser;
+  IncrementalSystem& system = s.system;
+  const double t = clock->t;
+  *accepted = false;
+  for (int attempt = 0; !*accepted; ++attempt) {
+    double target = std::min(t + clock->dt, options.time_end);
+    bool at_output = options.output_interval <= 0.0 || target >= clock->next_output - tiny;
+    if (options.output_interval > 0.0 && target > clock->next_output) target = clock->next_output;
+    // A remainder shorter than a round-off is merged into this step.
+    if (options.time_end - target <= tiny) {
+      target = options.time_end;
+      at_output = true;
+    }
+    const double h = target - t;
+    PetscCall(VecCopy(s.x, system.previous()));
+    PetscCall(VecWAXPY(system.predicted(), h, s.v, s.x));
+    system.inertia_weight = 1.0 / (h * h);
+    system.damping_weight = options.damping / h;
+    s.problem.time = target;
+    PetscCall(VecCopy(system.predicted(), s.x));
+    IncrementalSystem::Solve solve;
+    PetscCall(system.solve(s.x, &solve));
+    step->newton_iterations += solve.newton_iterations;
+    step->linear_iterations += solve.linear_iterations;
+    step->reason = solve.reason;
+    if (solve.converged) {
+      *accepted = true;
+      step->time = target;
+      step->dt = h;
+      step->output = at_output;
+      if (options.output_interval > 0.0 && at_output) clock->next_output += options.output_interval;
+      // v = (x - x_n) / h
+      PetscCall(VecWAXPY(s.v, -1.0, system.previous(), s.x));
+      PetscCall(VecScale(s.v, 1.0 / h));
+      clock->t = target;
+      clock->dt = std::min(2.0 * clock->dt, options.time_step);
+      break;
+    }
+    PetscCall(VecCopy(system.previous(), s.x));
+    s.problem.time = t;
+    if (attempt >= options.max_cutbacks) {
+      report->completed = false;
+      char message[256];
+      std::snprintf(message, sizeof message,
+                    "the time step from t = %.6g s (dt = %.3g s) failed after %d cut-backs: "
+                    "SNES %s",
+                    t, h, attempt, solve.reason.c_str());
+      report->reason = message;
+      break;
+    }
+    ++step->rejected;
+    clock->dt = 0.5 * h;
+    PetscCall(PetscInfo(system.snes(), "time step to %g failed (%s); retrying with dt = %g\n",
+                        target, solve.reason.c_str(), clock->dt));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode print_dynamic_progress(const ClothProblem& problem, ProgressClock& progress,
+                                      const DynamicStepReport& step, const DynamicReport& report,
+                                      double t, double start, double span, bool finished) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscPrintf(problem.comm(),
+                        "  t = %.4g s (%3.0f%%): %" PetscInt_FMT " steps, %" PetscInt_FMT
+                        " Newton iterations, %" PetscInt_FMT
+                        " rejected; kinetic %.3e J, potential %.6e J; %s\n",
+                        t, 100.0 * (t - start) / span, step.step, report.newton_iterations,
+                        report.rejected_steps, step.kinetic_energy, step.potential_energy,
+                        progress.timing(finished ? 1.0 : (t - start) / span).c_str()));
+  PetscFunctionReturn(0);
+}
+
+// The static solve after the relaxation (--settle): from the last accepted
+// state, which it keeps when the solve fails.
+PetscErrorCode settle(DynamicState& s, DynamicReport* report) {
+  PetscFunctionBeginUser;
+  IncrementalSystem& system = s.system;
+  system.inertia_weight = 0.0;
+  system.damping_weight = 0.0;
+  PetscCall(VecCopy(s.x, system.previous())); // the last accepted state, kept on failure
+  // The time steps of a relaxation may be solved loosely (-snes_rtol); the
+  // equilibrium is solved to at least 1e-10 of the settle's first residual.
+  PetscReal atol = 0.0, rtol = 0.0, stol = 0.0;
+  PetscInt max_iterations = 0, max_evaluations = 0;
+  PetscCall(
+      SNESGetTolerances(system.snes(), &atol, &rtol, &stol, &max_iterations, &max_evaluations));
+  PetscCall(SNESSetTolerances(system.snes(), atol, std::min(rtol, PetscReal(1e-10)), stol,
+                              max_iterations, max_evaluations));
+  IncrementalSystem::Solve solve;
+  PetscCall(system.solve(s.x, &solve));
+  PetscCall(SNESSetTolerances(system.snes(), atol, rtol, stol, max_iterations, max_evaluations));
+  report->newton_iterations += solve.newton_iterations;
+  report->linear_iterations += solve.linear_iterations;
+  report->settle_newton_iterations = solve.newton_iterations;
+  report->settle_reason = solve.reason;
+  report->settled = solve.converged;
+  PetscCall(s.problem.residual(s.x, s.f));
+  PetscCall(VecNorm(s.f, NORM_2, &report->settle_residual_norm));
+  if (solve.converged) {
+    PetscCall(VecSet(s.v, 0.0));
+    PetscCall(s.problem.accept_step(s.x));
+  } else {
+    PetscCall(VecCopy(system.previous(), s.x));
+    report->completed = false;
+    report->reason = "the static solve after the relaxation failed: SNES " + solve.reason;
+  }
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicOptions& options,
@@ -64,20 +206,10 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
   IncrementalSystem system(problem, x);
   PetscCall(VecDuplicate(x, &f));
   PetscCall(VecDuplicate(x, &work));
+  DynamicState state{problem, system, x, v, f, work};
   // Vertices that touch a body in the starting placement stick there (a
   // resumed run has the checkpoint's anchors).
   if (!resume) PetscCall(problem.update_contact(x));
-
-  const auto measure = [&](DynamicStepReport* step) -> PetscErrorCode {
-    ClothEnergy energy;
-    PetscFunctionBeginUser;
-    PetscCall(kinetic_energy(v, system.mass(), work, &step->kinetic_energy));
-    PetscCall(problem.energy(x, &energy));
-    step->potential_energy = energy.total();
-    PetscCall(problem.residual(x, f));
-    PetscCall(VecNorm(f, NORM_2, &step->static_residual_norm));
-    PetscFunctionReturn(0);
-  };
 
   DynamicControl control;
   if (resume) {
@@ -86,7 +218,7 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
     DynamicStepReport initial;
     initial.time = start;
     initial.output = true;
-    PetscCall(measure(&initial));
+    PetscCall(measure(state, &initial));
     report->steps.push_back(initial);
     if (observe) PetscCall(observe(initial, x, v));
     control = {start,
@@ -98,76 +230,25 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
                initial.static_residual_norm};
   }
   const double initial_residual = control.initial_residual;
-  double t = control.time;
-  double dt = control.next_step;
-  double next_output = control.next_output;
+  StepClock clock{control.time, control.next_step, control.next_output};
   double previous_kinetic = control.previous_kinetic;
   ProgressClock progress;
   PetscInt step_index = control.step;
-  double next_checkpoint = next_checkpoint_time(t, checkpoints.interval, tiny);
+  double next_checkpoint = next_checkpoint_time(clock.t, checkpoints.interval, tiny);
   report->completed = true;
-  while (!report->at_rest && options.time_end - t > tiny) {
+  while (!report->at_rest && options.time_end - clock.t > tiny) {
     DynamicStepReport step;
     step.step = ++step_index;
     bool accepted = false;
-    for (int attempt = 0; !accepted; ++attempt) {
-      double target = std::min(t + dt, options.time_end);
-      bool at_output = options.output_interval <= 0.0 || target >= next_output - tiny;
-      if (options.output_interval > 0.0 && target > next_output) target = next_output;
-      // A remainder shorter than a round-off is merged into this step.
-      if (options.time_end - target <= tiny) {
-        target = options.time_end;
-        at_output = true;
-      }
-      const double h = target - t;
-      PetscCall(VecCopy(x, system.previous()));
-      PetscCall(VecWAXPY(system.predicted(), h, v, x));
-      system.inertia_weight = 1.0 / (h * h);
-      system.damping_weight = options.damping / h;
-      problem.time = target;
-      PetscCall(VecCopy(system.predicted(), x));
-      IncrementalSystem::Solve solve;
-      PetscCall(system.solve(x, &solve));
-      step.newton_iterations += solve.newton_iterations;
-      step.linear_iterations += solve.linear_iterations;
-      step.reason = solve.reason;
-      if (solve.converged) {
-        accepted = true;
-        step.time = target;
-        step.dt = h;
-        step.output = at_output;
-        if (options.output_interval > 0.0 && at_output) next_output += options.output_interval;
-        // v = (x - x_n) / h
-        PetscCall(VecWAXPY(v, -1.0, system.previous(), x));
-        PetscCall(VecScale(v, 1.0 / h));
-        t = target;
-        dt = std::min(2.0 * dt, options.time_step);
-        break;
-      }
-      PetscCall(VecCopy(system.previous(), x));
-      problem.time = t;
-      if (attempt >= options.max_cutbacks) {
-        report->completed = false;
-        char message[256];
-        std::snprintf(message, sizeof message,
-                      "the time step from t = %.6g s (dt = %.3g s) failed after %d cut-backs: "
-                      "SNES %s",
-                      t, h, attempt, solve.reason.c_str());
-        report->reason = message;
-        break;
-      }
-      ++step.rejected;
-      dt = 0.5 * h;
-      PetscCall(PetscInfo(system.snes(), "time step to %g failed (%s); retrying with dt = %g\n",
-                          target, solve.reason.c_str(), dt));
-    }
+    PetscCall(take_step(state, options, tiny, &clock, &step, report, &accepted));
     report->newton_iterations += step.newton_iterations;
     report->linear_iterations += step.linear_iterations;
     report->rejected_steps += step.rejected;
     if (!accepted) break;
 
+    const double t = clock.t;
     PetscCall(problem.accept_step(x));
-    PetscCall(measure(&step));
+    PetscCall(measure(state, &step));
     if (options.kinetic_damping && step.kinetic_energy < previous_kinetic) {
       // Past a peak of the kinetic energy: start again from rest.
       PetscCall(VecSet(v, 0.0));
@@ -186,54 +267,18 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
     report->steps.push_back(step);
     if (observe) PetscCall(observe(step, x, v));
     const bool finished = at_rest || options.time_end - t <= tiny;
-    if (options.print_progress && progress.due(finished)) {
-      PetscCall(PetscPrintf(problem.comm(),
-                            "  t = %.4g s (%3.0f%%): %" PetscInt_FMT " steps, %" PetscInt_FMT
-                            " Newton iterations, %" PetscInt_FMT
-                            " rejected; kinetic %.3e J, potential %.6e J; %s\n",
-                            t, 100.0 * (t - start) / span, step_index, report->newton_iterations,
-                            report->rejected_steps, step.kinetic_energy, step.potential_energy,
-                            progress.timing(finished ? 1.0 : (t - start) / span).c_str()));
-    }
+    if (options.print_progress && progress.due(finished))
+      PetscCall(print_dynamic_progress(problem, progress, step, *report, t, start, span, finished));
     if (checkpoints.write && t >= next_checkpoint - tiny) {
       next_checkpoint = next_checkpoint_time(t, checkpoints.interval, tiny);
       PetscCall(checkpoints.write(
-          {start, t, dt, step_index, next_output, previous_kinetic, initial_residual}, x, v));
+          {start, t, clock.dt, step_index, clock.next_output, previous_kinetic, initial_residual},
+          x, v));
     }
     if (at_rest) break;
   }
-  report->final_time = t;
-  if (options.settle && report->completed) {
-    system.inertia_weight = 0.0;
-    system.damping_weight = 0.0;
-    PetscCall(VecCopy(x, system.previous())); // the last accepted state, kept on failure
-    // The time steps of a relaxation may be solved loosely (-snes_rtol); the
-    // equilibrium is solved to at least 1e-10 of the settle's first residual.
-    PetscReal atol = 0.0, rtol = 0.0, stol = 0.0;
-    PetscInt max_iterations = 0, max_evaluations = 0;
-    PetscCall(
-        SNESGetTolerances(system.snes(), &atol, &rtol, &stol, &max_iterations, &max_evaluations));
-    PetscCall(SNESSetTolerances(system.snes(), atol, std::min(rtol, PetscReal(1e-10)), stol,
-                                max_iterations, max_evaluations));
-    IncrementalSystem::Solve solve;
-    PetscCall(system.solve(x, &solve));
-    PetscCall(SNESSetTolerances(system.snes(), atol, rtol, stol, max_iterations, max_evaluations));
-    report->newton_iterations += solve.newton_iterations;
-    report->linear_iterations += solve.linear_iterations;
-    report->settle_newton_iterations = solve.newton_iterations;
-    report->settle_reason = solve.reason;
-    report->settled = solve.converged;
-    PetscCall(problem.residual(x, f));
-    PetscCall(VecNorm(f, NORM_2, &report->settle_residual_norm));
-    if (solve.converged) {
-      PetscCall(VecSet(v, 0.0));
-      PetscCall(problem.accept_step(x));
-    } else {
-      PetscCall(VecCopy(system.previous(), x));
-      report->completed = false;
-      report->reason = "the static solve after the relaxation failed: SNES " + solve.reason;
-    }
-  }
+  report->final_time = clock.t;
+  if (options.settle && report->completed) PetscCall(settle(state, report));
   report->solve_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   PetscCall(VecDestroy(&f));

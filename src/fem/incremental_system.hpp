@@ -113,6 +113,11 @@ private:
                                   PetscInt* linear_iterations);
   PetscErrorCode line_search(Vec x, Vec gradient, Vec direction, double first_length, Trial* trial);
   PetscErrorCode regularisation_scale(double* scale);
+  struct Regularisation;
+  PetscErrorCode search_direction(Vec x, PetscInt iteration, Regularisation* regularisation,
+                                  PetscInt* linear_iterations, bool* solved, bool* exact);
+  PetscErrorCode print_minimiser_state(PetscInt iteration, const Trial& current,
+                                       PetscReal tolerance, bool monitor, double mu, double bound);
   Vec direction_ = nullptr;
   Vec trial_x_ = nullptr;
   Vec trial_f_ = nullptr;

@@ -142,6 +142,73 @@ PetscErrorCode IncrementalSystem::line_search(Vec x, Vec gradient, Vec direction
   PetscFunctionReturn(0);
 }
 
+// mu as a power of ten of its floor (level -1: zero), so that its state is
+// exact, and the iterations left before the unprojected Hessian is tried
+// again.
+struct IncrementalSystem::Regularisation {
+  double floor = 0.0;
+  int level = 0;
+  int exact_pause = 0;
+  double mu() const { return level < 0 ? 0.0 : floor * std::pow(mu_growth, level); }
+};
+
+// The search direction at x, in direction_. Near a solution the unprojected
+// Hessian gives Newton's quadratic convergence where the projected one
+// converges linearly: tried (*exact) while it gives descent directions that
+// the line search takes at least half of, then left for five iterations.
+// Else regularised by mu M, mu growing tenfold after each failure; *solved
+// is false when twelve tries give no descent direction.
+PetscErrorCode IncrementalSystem::search_direction(Vec x, PetscInt iteration,
+                                                   Regularisation* regularisation,
+                                                   PetscInt* linear_iterations, bool* solved,
+                                                   bool* exact) {
+  PetscFunctionBeginUser;
+  *solved = false;
+  *exact = false;
+  if (problem_.projects_hessians() && regularisation->level < 0 &&
+      regularisation->exact_pause == 0 && iteration > 0) {
+    problem_.exact_hessian = true;
+    PetscCall(newton_direction(x, residual_, 0.0, direction_, exact, linear_iterations));
+    problem_.exact_hessian = false;
+    *solved = *exact;
+    if (!*exact) regularisation->exact_pause = 5;
+  }
+  regularisation->exact_pause = std::max(0, regularisation->exact_pause - 1);
+  for (int attempt = 0; attempt < 12 && !*solved; ++attempt) {
+    PetscCall(newton_direction(x, residual_, regularisation->mu(), direction_, solved,
+                               linear_iterations));
+    if (*solved) break;
+    ++minimiser_statistics.failed_factorisations;
+    regularisation->level = std::max(0, regularisation->level + 1);
+  }
+  PetscFunctionReturn(0);
+}
+
+// The progress line (every progress_interval seconds) and -snes_monitor's.
+PetscErrorCode IncrementalSystem::print_minimiser_state(PetscInt iteration, const Trial& current,
+                                                        PetscReal tolerance, bool monitor,
+                                                        double mu, double bound) {
+  PetscFunctionBeginUser;
+  if (progress_interval > 0.0) {
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - progress_last).count() >= progress_interval) {
+      progress_last = now;
+      PetscCall(PetscPrintf(
+          problem_.comm(),
+          "minimiser: %s, iteration %" PetscInt_FMT ", |F| %.3e N (to %.3e), %.1f s\n",
+          progress_label.c_str(), iteration, double(current.residual_norm), double(tolerance),
+          std::chrono::duration<double>(now - progress_origin).count()));
+    }
+  }
+  if (monitor) {
+    PetscCall(PetscPrintf(problem_.comm(),
+                          "  %3" PetscInt_FMT " Minimiser |F| %14.12e  Phi %.10e  mu %.3e  "
+                          "step bound %.3e\n",
+                          iteration, double(current.residual_norm), current.potential, mu, bound));
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
   PetscReal atol = 0.0, rtol = 0.0, stol = 0.0;
   PetscInt max_iterations = 0, max_evaluations = 0;
@@ -170,37 +237,17 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
   // Every solve starts regularised at mu's floor, and leaves it for mu = 0
   // only after a full Newton step: started at 0, a Hessian singular along a free
   // panel's rigid motions would leave the step along them to round-off.
-  // mu is kept as a power of ten of the floor (level -1: zero), so that its
-  // state is exact.
-  double mu_floor = 0.0, bound = 1.0;
+  Regularisation regularisation;
+  double bound = 1.0;
   PetscCall(jacobian(x, jacobian_));
-  PetscCall(regularisation_scale(&mu_floor));
-  int mu_level = 0;
-  const auto mu_at = [&](int level) {
-    return level < 0 ? 0.0 : mu_floor * std::pow(mu_growth, level);
-  };
-  int failed_searches = 0, exact_pause = 0;
+  PetscCall(regularisation_scale(&regularisation.floor));
+  int& mu_level = regularisation.level;
+  int failed_searches = 0;
   PetscInt iteration = 0;
   result->reason = SNESConvergedReasons[SNES_DIVERGED_MAX_IT];
   for (;; ++iteration) {
-    if (progress_interval > 0.0) {
-      const auto now = std::chrono::steady_clock::now();
-      if (std::chrono::duration<double>(now - progress_last).count() >= progress_interval) {
-        progress_last = now;
-        PetscCall(PetscPrintf(
-            problem_.comm(),
-            "minimiser: %s, iteration %" PetscInt_FMT ", |F| %.3e N (to %.3e), %.1f s\n",
-            progress_label.c_str(), iteration, double(current.residual_norm), double(tolerance),
-            std::chrono::duration<double>(now - progress_origin).count()));
-      }
-    }
-    if (monitor) {
-      PetscCall(PetscPrintf(problem_.comm(),
-                            "  %3" PetscInt_FMT " Minimiser |F| %14.12e  Phi %.10e  mu %.3e  "
-                            "step bound %.3e\n",
-                            iteration, double(current.residual_norm), current.potential,
-                            mu_at(mu_level), bound));
-    }
+    PetscCall(
+        print_minimiser_state(iteration, current, tolerance, monitor, regularisation.mu(), bound));
     if (current.residual_norm <= tolerance) {
       result->converged = true;
       result->reason =
@@ -209,27 +256,9 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
       break;
     }
     if (iteration >= max_iterations) break;
-    // Near a solution the unprojected Hessian gives Newton's quadratic
-    // convergence where the projected one converges linearly: tried while
-    // it gives descent directions that the line search takes at least half
-    // of, then left for five iterations.
     bool solved = false, exact = false;
-    if (problem_.projects_hessians() && mu_level < 0 && exact_pause == 0 && iteration > 0) {
-      problem_.exact_hessian = true;
-      PetscCall(
-          newton_direction(x, residual_, 0.0, direction_, &exact, &result->linear_iterations));
-      problem_.exact_hessian = false;
-      solved = exact;
-      if (!exact) exact_pause = 5;
-    }
-    exact_pause = std::max(0, exact_pause - 1);
-    for (int attempt = 0; attempt < 12 && !solved; ++attempt) {
-      PetscCall(newton_direction(x, residual_, mu_at(mu_level), direction_, &solved,
-                                 &result->linear_iterations));
-      if (solved) break;
-      ++minimiser_statistics.failed_factorisations;
-      mu_level = std::max(0, mu_level + 1);
-    }
+    PetscCall(search_direction(x, iteration, &regularisation, &result->linear_iterations, &solved,
+                               &exact));
     if (!solved) {
       result->reason = SNESConvergedReasons[SNES_DIVERGED_LINEAR_SOLVE];
       break;
@@ -238,7 +267,7 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
     if (bound < 1.0) ++minimiser_statistics.step_bound_cuts;
     Trial next = current;
     PetscCall(line_search(x, residual_, direction_, bound, &next));
-    if (exact && next.length < 0.5 * bound) exact_pause = 5;
+    if (exact && next.length < 0.5 * bound) regularisation.exact_pause = 5;
     if (next.length == 0.0 && exact) continue; // the projected Hessian next
     if (next.length == 0.0) {
       if (++failed_searches > 8) {

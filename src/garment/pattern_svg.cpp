@@ -80,22 +80,9 @@ std::string label(const Vector2d& at, const std::string& text, const char* css_c
          number(at.y()) + "\">" + escape_xml(text) + "</text>\n";
 }
 
-} // namespace
-
-std::string pattern_svg(const Pattern& pattern, const SvgOptions& options) {
-  const std::vector<Placement> layout = sheet_layout(pattern, options.gap);
-  const double tolerance = pattern.flattening_tolerance();
-  Eigen::AlignedBox2d sheet;
-  for (std::size_t i = 0; i < pattern.panels.size(); ++i)
-    for (const auto& p : pattern.panels[i].outline_polygon(tolerance))
-      sheet.extend(layout[i].apply(p));
-  const double margin = options.gap;
-  Canvas canvas;
-  canvas.top = sheet.max().y() + margin;
-  const double width = 1000 * (sheet.sizes().x() + 2 * margin);
-  const double height = 1000 * (sheet.sizes().y() + 2 * margin);
-  const double left = 1000 * (sheet.min().x() - margin);
-
+// The SVG element (its size in mm, the view box in canvas units), the title,
+// the grain arrow's marker and the style sheet.
+std::string svg_head(const Pattern& pattern, double left, double width, double height) {
   std::ostringstream svg;
   svg << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << number(width) << "mm\" height=\""
@@ -116,6 +103,27 @@ std::string pattern_svg(const Pattern& pattern, const SvgOptions& options) {
          ".seam { fill: none; stroke-width: 3; stroke-opacity: 0.8; }\n"
          ".sweep { stroke-width: 1.5; stroke-dasharray: 5 3; }\n"
          "</style>\n";
+  return svg.str();
+}
+
+} // namespace
+
+std::string pattern_svg(const Pattern& pattern, const SvgOptions& options) {
+  const std::vector<Placement> layout = sheet_layout(pattern, options.gap);
+  const double tolerance = pattern.flattening_tolerance();
+  Eigen::AlignedBox2d sheet;
+  for (std::size_t i = 0; i < pattern.panels.size(); ++i)
+    for (const auto& p : pattern.panels[i].outline_polygon(tolerance))
+      sheet.extend(layout[i].apply(p));
+  const double margin = options.gap;
+  Canvas canvas;
+  canvas.top = sheet.max().y() + margin;
+  const double width = 1000 * (sheet.sizes().x() + 2 * margin);
+  const double height = 1000 * (sheet.sizes().y() + 2 * margin);
+  const double left = 1000 * (sheet.min().x() - margin);
+
+  std::ostringstream svg;
+  svg << svg_head(pattern, left, width, height);
 
   for (std::size_t i = 0; i < pattern.panels.size(); ++i) {
     const Panel& panel = pattern.panels[i];

@@ -609,70 +609,81 @@ std::vector<Pair> greedy_sorted_matching(const std::vector<int>& first,
   return chosen;
 }
 
-} // namespace
+// Positioning (§3.1.2): the cylinder each tag names, by its index in
+// Construction::cylinders.
+std::map<Cylinder, int> index_of_cylinders(const std::vector<FittedCylinder>& cylinders) {
+  std::map<Cylinder, int> index;
+  for (std::size_t k = 0; k < cylinders.size(); ++k)
+    index[cylinders[k].cylinder] = int(k);
+  return index;
+}
 
-Construction construct(const Pattern& pattern, const Mannequin& body,
-                       const BodyDistance& body_distance, const TagconOptions& options) {
-  Construction result;
-  result.pattern = &pattern;
-  result.options = options;
-  result.body = body_distance;
-  const auto placement_start = Clock::now();
-  result.cylinders = fit_cylinders(pattern, body, options);
-
-  // --- positioning (§3.1.2): each pack's box centred on its half cylinder,
-  // its top at the cylinder's anchor (on the lid when the torso has one).
-  std::map<Cylinder, int> cylinder_index;
-  for (std::size_t k = 0; k < result.cylinders.size(); ++k)
-    cylinder_index[result.cylinders[k].cylinder] = int(k);
-  for (std::size_t k = 0; k < pattern.packs.size(); ++k) {
-    PackPlacement placed;
-    placed.pack = int(k);
-    placed.tag = pattern.pack_tag(int(k));
-    pack_box(pattern, pattern.packs[k], &placed.box_min, &placed.box_max);
-    placed.cylinder = cylinder_index.at(placed.tag.cylinder);
-    const FittedCylinder& c = result.cylinders[std::size_t(placed.cylinder)];
-    placed.radius = c.radius + placed.tag.layer * options.layer_gap;
-    if (placed.radius <= 0.5 * c.radius) {
-      throw InputError(pattern.source + ": " + pattern.packs[k].json_path + ": pack '" +
-                       pattern.packs[k].id + "' is on layer " + std::to_string(placed.tag.layer) +
-                       ", too far inside its cylinder (radius " + format(c.radius) + " m)");
-    }
-    placed.offset = Vector2d(-0.5 * (placed.box_min.x() + placed.box_max.x()),
-                             (c.lid ? options.lid_depth : 0.0) - placed.box_max.y());
-    result.packs.push_back(placed);
+// Pack k's box centred on its half cylinder, its top at the cylinder's
+// anchor (on the lid when the torso has one).
+PackPlacement position_pack(const Pattern& pattern, std::size_t k,
+                            const std::vector<FittedCylinder>& cylinders,
+                            const std::map<Cylinder, int>& cylinder_index,
+                            const TagconOptions& options) {
+  PackPlacement placed;
+  placed.pack = int(k);
+  placed.tag = pattern.pack_tag(int(k));
+  pack_box(pattern, pattern.packs[k], &placed.box_min, &placed.box_max);
+  placed.cylinder = cylinder_index.at(placed.tag.cylinder);
+  const FittedCylinder& c = cylinders[std::size_t(placed.cylinder)];
+  placed.radius = c.radius + placed.tag.layer * options.layer_gap;
+  if (placed.radius <= 0.5 * c.radius) {
+    throw InputError(pattern.source + ": " + pattern.packs[k].json_path + ": pack '" +
+                     pattern.packs[k].id + "' is on layer " + std::to_string(placed.tag.layer) +
+                     ", too far inside its cylinder (radius " + format(c.radius) + " m)");
   }
-  // Outer layers sewn by T-seams sit over the T-seam lines beneath them, so
-  // that those lines are in their 3D position (§3.3.3).
-  for (auto& placed : result.packs) {
+  placed.offset = Vector2d(-0.5 * (placed.box_min.x() + placed.box_max.x()),
+                           (c.lid ? options.lid_depth : 0.0) - placed.box_max.y());
+  return placed;
+}
+
+// The box of the lines that `wanted` selects in the packs placed on lower
+// layers of `placed`'s half cylinder, in unrolled coordinates.
+template <class Lines, class Wanted>
+Eigen::AlignedBox2d lines_beneath_box(const Pattern& pattern,
+                                      const std::vector<PackPlacement>& packs,
+                                      const PackPlacement& placed, Lines lines_of, Wanted wanted) {
+  Eigen::AlignedBox2d box;
+  for (const auto& beneath : packs) {
+    if (beneath.tag.layer >= placed.tag.layer || beneath.tag.cylinder != placed.tag.cylinder ||
+        beneath.tag.side != placed.tag.side)
+      continue;
+    for (const auto& member : pattern.packs[std::size_t(beneath.pack)].members)
+      for (const auto& line : lines_of(pattern.panels[std::size_t(member.panel)]))
+        if (wanted(line))
+          for (const auto& p : line.curve.flatten(pattern.flattening_tolerance()))
+            box.extend(member.placement.apply(p) + beneath.offset);
+  }
+  return box;
+}
+
+// Outer layers sewn by T-seams sit over the T-seam lines beneath them, so
+// that those lines are in their 3D position (§3.3.3); those sewn by
+// Y-seams put their Y-seam lines over the Y-seam lines beneath.
+void align_outer_layers(const Pattern& pattern, std::vector<PackPlacement>& packs) {
+  const auto interior_of = [](const Panel& panel) -> const auto& {
+    return panel.interior;
+  };
+  const auto outline_of = [](const Panel& panel) -> const auto& {
+    return panel.outline;
+  };
+  const auto is_t_seam = [](const InteriorLine& line) {
+    return line.kind == InteriorLine::Kind::t_seam;
+  };
+  const auto is_y_seam = [](const OutlineLine& line) { return line.y_seam; };
+  for (auto& placed : packs) {
     if (placed.tag.layer == 0) continue;
-    Eigen::AlignedBox2d targets;
-    for (const auto& beneath : result.packs) {
-      if (beneath.tag.layer >= placed.tag.layer || beneath.tag.cylinder != placed.tag.cylinder ||
-          beneath.tag.side != placed.tag.side)
-        continue;
-      for (const auto& member : pattern.packs[std::size_t(beneath.pack)].members)
-        for (const auto& line : pattern.panels[std::size_t(member.panel)].interior)
-          if (line.kind == InteriorLine::Kind::t_seam)
-            for (const auto& p : line.curve.flatten(pattern.flattening_tolerance()))
-              targets.extend(member.placement.apply(p) + beneath.offset);
-    }
+    Eigen::AlignedBox2d targets = lines_beneath_box(pattern, packs, placed, interior_of, is_t_seam);
     if (!targets.isEmpty()) {
       placed.offset = targets.center() - 0.5 * (placed.box_min + placed.box_max);
       continue;
     }
-    // Y-seam lines over the Y-seam lines beneath.
+    targets = lines_beneath_box(pattern, packs, placed, outline_of, is_y_seam);
     Eigen::AlignedBox2d own;
-    for (const auto& beneath : result.packs) {
-      if (beneath.tag.layer >= placed.tag.layer || beneath.tag.cylinder != placed.tag.cylinder ||
-          beneath.tag.side != placed.tag.side)
-        continue;
-      for (const auto& member : pattern.packs[std::size_t(beneath.pack)].members)
-        for (const auto& line : pattern.panels[std::size_t(member.panel)].outline)
-          if (line.y_seam)
-            for (const auto& p : line.curve.flatten(pattern.flattening_tolerance()))
-              targets.extend(member.placement.apply(p) + beneath.offset);
-    }
     for (const auto& member : pattern.packs[std::size_t(placed.pack)].members)
       for (const auto& line : pattern.panels[std::size_t(member.panel)].outline)
         if (line.y_seam)
@@ -680,109 +691,183 @@ Construction construct(const Pattern& pattern, const Mannequin& body,
             own.extend(member.placement.apply(p));
     if (!targets.isEmpty() && !own.isEmpty()) placed.offset = targets.center() - own.center();
   }
+}
 
+// Every outline line and T-seam interior line in 3D, in panel order
+// (outline, then interior) for stable output.
+std::vector<LineGeometry> placed_lines(const Pattern& pattern, const Construction& construction) {
+  std::vector<LineGeometry> lines;
   for (std::size_t k = 0; k < pattern.packs.size(); ++k) {
     for (const auto& member : pattern.packs[k].members) {
       const Panel& panel = pattern.panels[std::size_t(member.panel)];
       for (std::size_t l = 0; l < panel.outline.size(); ++l)
-        result.lines.push_back(line_geometry(result, member.panel, int(k), member.placement,
-                                             panel.outline[l].curve, panel.outline[l].id, false,
-                                             int(l)));
+        lines.push_back(line_geometry(construction, member.panel, int(k), member.placement,
+                                      panel.outline[l].curve, panel.outline[l].id, false, int(l)));
       for (std::size_t l = 0; l < panel.interior.size(); ++l)
         if (panel.interior[l].kind == InteriorLine::Kind::t_seam)
-          result.lines.push_back(line_geometry(result, member.panel, int(k), member.placement,
-                                               panel.interior[l].curve, panel.interior[l].id, true,
-                                               int(l)));
+          lines.push_back(line_geometry(construction, member.panel, int(k), member.placement,
+                                        panel.interior[l].curve, panel.interior[l].id, true,
+                                        int(l)));
     }
   }
-  // Lines in panel order (outline, then interior) for stable output.
-  std::stable_sort(result.lines.begin(), result.lines.end(),
+  std::stable_sort(lines.begin(), lines.end(),
                    [](const LineGeometry& x, const LineGeometry& y) { return x.panel < y.panel; });
-  result.placement_seconds = seconds_since(placement_start);
+  return lines;
+}
 
-  // --- seam creation (§3.3.4) ---
-  const auto seam_start = Clock::now();
-  const int n = int(result.lines.size());
-  const auto tag_of = [&](int line) {
-    return pattern.panels[std::size_t(result.lines[std::size_t(line)].panel)].tag;
-  };
-  const auto pack_of_line = [&](int line) {
-    return pattern.pack_of(result.lines[std::size_t(line)].panel);
-  };
-  const auto cylinder_of = [&](int line) -> const FittedCylinder& {
-    return result.cylinders[std::size_t(cylinder_index.at(tag_of(line).cylinder))];
-  };
-  const auto outline_line = [&](int line) -> const OutlineLine* {
-    const LineGeometry& g = result.lines[std::size_t(line)];
+// Seam creation (§3.3.4) over the placed lines of `result`, step by step.
+// Each step marks the lines it settles as done, with the reason why a line
+// stays unseamed.
+class SeamFinder {
+public:
+  SeamFinder(const Pattern& pattern, const Mannequin& body, const BodyDistance& body_distance,
+             const TagconOptions& options, const std::map<Cylinder, int>& cylinder_index,
+             Construction& result)
+      : pattern_(pattern), body_(body), body_distance_(body_distance), options_(options),
+        cylinder_index_(cylinder_index), result_(result), n_(int(result.lines.size())),
+        done_(std::size_t(n_), false), why_(std::size_t(n_)), role_(std::size_t(n_), Role::along),
+        partner_cylinder_(std::size_t(n_), -1), inter_half_(std::size_t(n_), false) {}
+
+  void find_seams() {
+    sew_darts();
+    sew_layers();
+    sew_intra_pack();
+    classify_remaining();
+    sew_inter_cylinder();
+    sew_inter_half_cylinder();
+    delete_penetrating_seams();
+    list_unseamed();
+  }
+
+  // Every pack of a pattern with several has a seam; throws an InputError
+  // naming the pack and why each of its lines stayed unseamed.
+  void check_every_pack_seamed() const;
+
+private:
+  enum class Role { along, top_end, bottom_end };
+
+  PanelTag tag_of(int line) const {
+    return pattern_.panels[std::size_t(result_.lines[std::size_t(line)].panel)].tag;
+  }
+  int pack_of_line(int line) const {
+    return pattern_.pack_of(result_.lines[std::size_t(line)].panel);
+  }
+  const FittedCylinder& cylinder_of(int line) const {
+    return result_.cylinders[std::size_t(cylinder_index_.at(tag_of(line).cylinder))];
+  }
+  const OutlineLine* outline_line(int line) const {
+    const LineGeometry& g = result_.lines[std::size_t(line)];
     return g.interior ? nullptr
-                      : &pattern.panels[std::size_t(g.panel)].outline[std::size_t(g.index)];
-  };
-  std::vector<bool> done(std::size_t(n), false);
-  std::vector<std::string> why(static_cast<std::size_t>(n));
-  const auto add_seam = [&](SeamKind kind, int a, int b, const MatchScore& score) {
-    FoundSeam seam;
-    seam.kind = kind;
-    seam.line_a = a;
-    seam.line_b = b;
-    seam.score = score;
-    seam.certainty = std::clamp(score.value(), 0.01, 1.0);
-    seam.reverse = should_reverse(result.lines[std::size_t(a)], result.lines[std::size_t(b)]);
-    result.seams.push_back(seam);
-  };
-  // Step 1b: every dart's legs are sewn to each other, leg start to leg end
-  // (apex to apex), before TAGCON matches the other lines, so that no leg is
-  // left unseamed nor sewn to another panel.
-  for (const Panel& panel : pattern.panels) {
+                      : &pattern_.panels[std::size_t(g.panel)].outline[std::size_t(g.index)];
+  }
+  bool used(Cylinder c) const { return cylinder_index_.count(c) > 0; }
+  // Marks line i done and unseamed for `reason`.
+  void give_up(int i, std::string reason) {
+    done_[std::size_t(i)] = true;
+    why_[std::size_t(i)] = std::move(reason);
+  }
+  void add_seam(SeamKind kind, int a, int b, const MatchScore& score);
+  bool seamable(int i, int j) const;
+  double score(int i, int j) const {
+    return match_score(result_.lines[std::size_t(i)], result_.lines[std::size_t(j)], seamable(i, j),
+                       options_)
+        .value();
+  }
+  void sew_darts();
+  void sew_layers();
+  void sew_intra_pack();
+  Role role_of(int line) const;
+  int cylinder_at_end(int line, Role role) const;
+  void classify_along(int i);
+  void classify_remaining();
+  std::array<std::vector<int>, 2> ring_lines(int first, int second) const;
+  void sew_ring(int first, int second, std::array<std::vector<int>, 2>& rings);
+  void sew_inter_cylinder();
+  void sew_inter_half_cylinder();
+  std::pair<double, Vector3d> deepest_sweep_point(const FoundSeam& seam) const;
+  void delete_penetrating_seams();
+  void list_unseamed();
+
+  const Pattern& pattern_;
+  const Mannequin& body_;
+  const BodyDistance& body_distance_;
+  const TagconOptions& options_;
+  const std::map<Cylinder, int>& cylinder_index_;
+  Construction& result_;
+  const int n_; // lines
+  std::vector<bool> done_;
+  std::vector<std::string> why_;
+  std::vector<int> remaining_; // lines left to step 4
+  std::vector<Role> role_;
+  std::vector<int> partner_cylinder_; // inter-cylinder: the other cylinder
+  std::vector<bool> inter_half_;
+  std::vector<bool> seamed_;
+};
+
+void SeamFinder::add_seam(SeamKind kind, int a, int b, const MatchScore& score) {
+  FoundSeam seam;
+  seam.kind = kind;
+  seam.line_a = a;
+  seam.line_b = b;
+  seam.score = score;
+  seam.certainty = std::clamp(score.value(), 0.01, 1.0);
+  seam.reverse = should_reverse(result_.lines[std::size_t(a)], result_.lines[std::size_t(b)]);
+  result_.seams.push_back(seam);
+}
+
+// M_sa (eq. 3.6) for inter-pack lines: inherently unseamable unless on
+// two adjacent cylinders or the two halves of one; conventionally
+// unseamable: a limb's medial (inner) line with a lateral (outer) one.
+bool SeamFinder::seamable(int i, int j) const {
+  const PanelTag a = tag_of(i), b = tag_of(j);
+  if (a.cylinder == b.cylinder) {
+    if (a.side == b.side) return false;
+    if (is_limb(a.cylinder)) {
+      const FittedCylinder& c = cylinder_of(i);
+      if (limb_side(c, result_.lines[std::size_t(i)]) *
+              limb_side(c, result_.lines[std::size_t(j)]) <
+          0)
+        return false;
+    }
+    return true;
+  }
+  if (!cylinders_adjacent(a.cylinder, b.cylinder)) return false;
+  // Conventionally unseamable: the two legs join at the crotch only, not
+  // along their inseams.
+  if (is_limb(a.cylinder) && is_limb(b.cylinder)) {
+    const double crotch = body_.bone("thigh_l").start.z() - 0.15;
+    return result_.lines[std::size_t(i)].centre.z() > crotch &&
+           result_.lines[std::size_t(j)].centre.z() > crotch;
+  }
+  return true;
+}
+
+// Step 1b: every dart's legs are sewn to each other, leg start to leg end
+// (apex to apex), before TAGCON matches the other lines, so that no leg is
+// left unseamed nor sewn to another panel.
+void SeamFinder::sew_darts() {
+  for (const Panel& panel : pattern_.panels) {
     for (const Dart& dart : panel.darts) {
-      const int a = result.line_index(dart.first_leg), b = result.line_index(dart.second_leg);
+      const int a = result_.line_index(dart.first_leg), b = result_.line_index(dart.second_leg);
       MatchScore certain;
       certain.distance = certain.orientation = certain.length = certain.curvature =
           certain.seamable = 1;
       add_seam(SeamKind::dart, a, b, certain);
-      result.seams.back().reverse = true;
-      done[std::size_t(a)] = done[std::size_t(b)] = true;
+      result_.seams.back().reverse = true;
+      done_[std::size_t(a)] = done_[std::size_t(b)] = true;
     }
   }
+}
 
-  // M_sa (eq. 3.6) for inter-pack lines: inherently unseamable unless on
-  // two adjacent cylinders or the two halves of one; conventionally
-  // unseamable: a limb's medial (inner) line with a lateral (outer) one.
-  const auto seamable = [&](int i, int j) {
-    const PanelTag a = tag_of(i), b = tag_of(j);
-    if (a.cylinder == b.cylinder) {
-      if (a.side == b.side) return false;
-      if (is_limb(a.cylinder)) {
-        const FittedCylinder& c = cylinder_of(i);
-        if (limb_side(c, result.lines[std::size_t(i)]) *
-                limb_side(c, result.lines[std::size_t(j)]) <
-            0)
-          return false;
-      }
-      return true;
-    }
-    if (!cylinders_adjacent(a.cylinder, b.cylinder)) return false;
-    // Conventionally unseamable: the two legs join at the crotch only, not
-    // along their inseams.
-    if (is_limb(a.cylinder) && is_limb(b.cylinder)) {
-      const double crotch = body.bone("thigh_l").start.z() - 0.15;
-      return result.lines[std::size_t(i)].centre.z() > crotch &&
-             result.lines[std::size_t(j)].centre.z() > crotch;
-    }
-    return true;
-  };
-  const auto score = [&](int i, int j) {
-    return match_score(result.lines[std::size_t(i)], result.lines[std::size_t(j)], seamable(i, j),
-                       options)
-        .value();
-  };
-
-  // Step 2: inter-layer seams. T: an outer layer's outline line to a T-seam
-  // interior line beneath; Y: an outer layer's Y-seam line to a Y-seam line
-  // of layer 0 (which keeps its normal seam too).
+// Step 2: inter-layer seams. T: an outer layer's outline line to a T-seam
+// interior line beneath; Y: an outer layer's Y-seam line to a Y-seam line
+// of layer 0 (which keeps its normal seam too). The lines of outer layers
+// and the T-seam lines left over join nothing else.
+void SeamFinder::sew_layers() {
   for (SeamKind kind : {SeamKind::t_seam, SeamKind::y_seam}) {
     std::vector<int> outer, beneath;
-    for (int i = 0; i < n; ++i) {
-      const LineGeometry& g = result.lines[std::size_t(i)];
+    for (int i = 0; i < n_; ++i) {
+      const LineGeometry& g = result_.lines[std::size_t(i)];
       if (g.interior) {
         if (kind == SeamKind::t_seam) beneath.push_back(i);
       } else if (tag_of(i).layer != 0) {
@@ -794,340 +879,397 @@ Construction construct(const Pattern& pattern, const Mannequin& body,
     const auto layered_score = [&](int i, int j) {
       const PanelTag a = tag_of(i), b = tag_of(j);
       const bool ok = a.cylinder == b.cylinder && a.side == b.side && b.layer < a.layer;
-      return match_score(result.lines[std::size_t(i)], result.lines[std::size_t(j)], ok, options)
+      return match_score(result_.lines[std::size_t(i)], result_.lines[std::size_t(j)], ok, options_)
           .value();
     };
     std::vector<int> free_outer;
     for (int i : outer)
-      if (!done[std::size_t(i)]) free_outer.push_back(i);
+      if (!done_[std::size_t(i)]) free_outer.push_back(i);
     for (const Pair& p :
-         greedy_sorted_matching(free_outer, beneath, layered_score, options.min_match)) {
+         greedy_sorted_matching(free_outer, beneath, layered_score, options_.min_match)) {
       add_seam(kind, p.a, p.b,
-               match_score(result.lines[std::size_t(p.a)], result.lines[std::size_t(p.b)], true,
-                           options));
-      done[std::size_t(p.a)] = true;
-      if (kind == SeamKind::t_seam) done[std::size_t(p.b)] = true;
+               match_score(result_.lines[std::size_t(p.a)], result_.lines[std::size_t(p.b)], true,
+                           options_));
+      done_[std::size_t(p.a)] = true;
+      if (kind == SeamKind::t_seam) done_[std::size_t(p.b)] = true;
     }
   }
-  for (int i = 0; i < n; ++i) {
-    if (done[std::size_t(i)]) continue;
-    if (result.lines[std::size_t(i)].interior) {
-      done[std::size_t(i)] = true;
-      why[std::size_t(i)] = "T-seam line: no outer-layer line matches it";
-    } else if (tag_of(i).layer != 0) {
-      done[std::size_t(i)] = true;
-      why[std::size_t(i)] = "a line of layer " + std::to_string(tag_of(i).layer) +
-                            " joins only by T- and Y-seams, and none matches it";
-    }
+  for (int i = 0; i < n_; ++i) {
+    if (done_[std::size_t(i)]) continue;
+    if (result_.lines[std::size_t(i)].interior)
+      give_up(i, "T-seam line: no outer-layer line matches it");
+    else if (tag_of(i).layer != 0)
+      give_up(i, "a line of layer " + std::to_string(tag_of(i).layer) +
+                     " joins only by T- and Y-seams, and none matches it");
   }
+}
 
-  // Step 3: intra-pack seams (§3.3.1), in each pack's plane.
-  {
-    std::vector<int> group(std::size_t(n), -1), panel(std::size_t(n), -1);
-    for (int i = 0; i < n; ++i) {
-      panel[std::size_t(i)] = result.lines[std::size_t(i)].panel;
-      if (!done[std::size_t(i)]) group[std::size_t(i)] = pack_of_line(i);
-    }
-    for (const auto& pair : closest_line_pairs(
-             result.lines, group, panel, options.fov_half_angle_deg, options.intra_distance)) {
-      const LineGeometry& a = result.lines[std::size_t(pair[0])];
-      const LineGeometry& b = result.lines[std::size_t(pair[1])];
-      MatchScore s = match_score(a, b, true, options);
-      const double gap = (closest_on_polyline(b.samples_2d, a.centre_2d) - a.centre_2d).norm();
-      s.distance = 1 - gap / options.intra_distance;
-      s.orientation = 1;
-      add_seam(SeamKind::intra_pack, pair[0], pair[1], s);
-      done[std::size_t(pair[0])] = done[std::size_t(pair[1])] = true;
-    }
+// Step 3: intra-pack seams (§3.3.1), in each pack's plane.
+void SeamFinder::sew_intra_pack() {
+  std::vector<int> group(std::size_t(n_), -1), panel(std::size_t(n_), -1);
+  for (int i = 0; i < n_; ++i) {
+    panel[std::size_t(i)] = result_.lines[std::size_t(i)].panel;
+    if (!done_[std::size_t(i)]) group[std::size_t(i)] = pack_of_line(i);
   }
+  for (const auto& pair : closest_line_pairs(
+           result_.lines, group, panel, options_.fov_half_angle_deg, options_.intra_distance)) {
+    const LineGeometry& a = result_.lines[std::size_t(pair[0])];
+    const LineGeometry& b = result_.lines[std::size_t(pair[1])];
+    MatchScore s = match_score(a, b, true, options_);
+    const double gap = (closest_on_polyline(b.samples_2d, a.centre_2d) - a.centre_2d).norm();
+    s.distance = 1 - gap / options_.intra_distance;
+    s.orientation = 1;
+    add_seam(SeamKind::intra_pack, pair[0], pair[1], s);
+    done_[std::size_t(pair[0])] = done_[std::size_t(pair[1])] = true;
+  }
+}
 
-  // Step 4: classify the rest by the garment construction theory of the
-  // cylinder abstraction (thesis Fig. 3.2). Cylinders join end to end (a
-  // sleeve's cap to the torso, a collar's lower edge to the neckline, a
-  // hood's neck edge to the torso's top opening), the arms on the torso's
-  // sides and the legs on each other's inner sides at the crotch; the two
-  // halves of a cylinder join along its length (and across the lid of a
-  // shoulder-anchored torso: the shoulders). In a half's unrolled plane:
-  //  * a line whose normal lies within 45 degrees of the axis faces an end
-  //    of its cylinder: an inter-cylinder line with the cylinder the
-  //    pattern has there (a non-seam line where there is none, step 5);
-  //  * on the torso, an upward line that reaches the half's centre line or
-  //    faces it borders the top opening (neck, or head without a neck),
-  //    which is centred on the axis; a line facing down faces its bottom end;
-  //  * every other line runs along its cylinder: an inter-half-cylinder
-  //    line, except that a torso line may join an arm's cap and a leg line
-  //    the other leg (above the crotch, M_sa), when its best M there
-  //    exceeds its best M with the other half's lines along the cylinder.
-  std::vector<int> remaining;
-  for (int i = 0; i < n; ++i)
-    if (!done[std::size_t(i)]) remaining.push_back(i);
+// Where a line faces in its half's unrolled plane (see classify_remaining).
+SeamFinder::Role SeamFinder::role_of(int line) const {
   const double cos_end = std::cos(pi / 4);
-  const auto used = [&](Cylinder c) { return cylinder_index.count(c) > 0; };
-  enum class Role { along, top_end, bottom_end };
-  const auto role_of = [&](int line) {
-    const LineGeometry& g = result.lines[std::size_t(line)];
-    if (tag_of(line).cylinder == Cylinder::torso) {
-      const PackPlacement& placed = result.packs[std::size_t(pack_of_line(line))];
-      const double centre_line = 0.5 * (placed.box_min.x() + placed.box_max.x());
-      double low = 1e300, high = -1e300;
-      for (const Vector2d& p : g.samples_2d) {
-        low = std::min(low, p.x() - centre_line);
-        high = std::max(high, p.x() - centre_line);
-      }
-      const double reach = 1e-3 * std::max(g.length, 1e-3);
-      const bool reaches_centre = low <= reach && high >= -reach;
-      const bool faces_centre = g.normal_2d.x() * (g.centre_2d.x() - centre_line) < 0;
-      if (g.normal_2d.y() > 0 && (reaches_centre || faces_centre)) return Role::top_end;
-      return g.normal_2d.y() <= -cos_end ? Role::bottom_end : Role::along;
+  const LineGeometry& g = result_.lines[std::size_t(line)];
+  if (tag_of(line).cylinder == Cylinder::torso) {
+    const PackPlacement& placed = result_.packs[std::size_t(pack_of_line(line))];
+    const double centre_line = 0.5 * (placed.box_min.x() + placed.box_max.x());
+    double low = 1e300, high = -1e300;
+    for (const Vector2d& p : g.samples_2d) {
+      low = std::min(low, p.x() - centre_line);
+      high = std::max(high, p.x() - centre_line);
     }
-    if (g.normal_2d.y() >= cos_end) return Role::top_end;
-    if (g.normal_2d.y() <= -cos_end) return Role::bottom_end;
-    return Role::along;
-  };
-  // The cylinder joined at a line's end of its cylinder; -1 where the
-  // pattern has none. `up` points to the shoulder on limbs, to the crown on
-  // the neck and head.
-  const auto cylinder_at_end = [&](int line, Role role) -> int {
-    const Cylinder c = tag_of(line).cylinder;
-    const bool top = role == Role::top_end;
-    const auto if_used = [&](Cylinder other) { return used(other) ? int(other) : -1; };
-    switch (c) {
-    case Cylinder::torso: {
-      if (top) return used(Cylinder::neck) ? int(Cylinder::neck) : if_used(Cylinder::head);
-      const bool left = result.lines[std::size_t(line)].centre.x() > 0;
-      return if_used(left ? Cylinder::leg_l : Cylinder::leg_r);
-    }
-    case Cylinder::arm_l:
-    case Cylinder::arm_r:
-    case Cylinder::leg_l:
-    case Cylinder::leg_r:
-      return top ? if_used(Cylinder::torso) : -1;
-    case Cylinder::neck:
-      return if_used(top ? Cylinder::head : Cylinder::torso);
-    case Cylinder::head:
-      if (top) return -1;
-      return used(Cylinder::neck) ? int(Cylinder::neck) : if_used(Cylinder::torso);
-    }
-    return -1;
-  };
-  std::vector<Role> role(std::size_t(n), Role::along);
-  for (int i : remaining)
-    role[std::size_t(i)] = role_of(i);
-  std::vector<int> partner_cylinder(std::size_t(n), -1); // inter-cylinder: the other cylinder
-  std::vector<bool> inter_half(std::size_t(n), false);
-  for (int i : remaining) {
-    const Cylinder c = tag_of(i).cylinder;
-    if (role[std::size_t(i)] != Role::along) {
-      const int other = cylinder_at_end(i, role[std::size_t(i)]);
-      if (other >= 0) {
-        partner_cylinder[std::size_t(i)] = other;
-      } else {
-        done[std::size_t(i)] = true;
-        why[std::size_t(i)] =
-            std::string("faces the ") + (role[std::size_t(i)] == Role::top_end ? "top" : "bottom") +
-            " end of its cylinder '" + name_of(c) + "', where the pattern has no adjacent cylinder";
-      }
+    const double reach = 1e-3 * std::max(g.length, 1e-3);
+    const bool reaches_centre = low <= reach && high >= -reach;
+    const bool faces_centre = g.normal_2d.x() * (g.centre_2d.x() - centre_line) < 0;
+    if (g.normal_2d.y() > 0 && (reaches_centre || faces_centre)) return Role::top_end;
+    return g.normal_2d.y() <= -cos_end ? Role::bottom_end : Role::along;
+  }
+  if (g.normal_2d.y() >= cos_end) return Role::top_end;
+  if (g.normal_2d.y() <= -cos_end) return Role::bottom_end;
+  return Role::along;
+}
+
+// The cylinder joined at a line's end of its cylinder; -1 where the
+// pattern has none. `up` points to the shoulder on limbs, to the crown on
+// the neck and head.
+int SeamFinder::cylinder_at_end(int line, Role role) const {
+  const Cylinder c = tag_of(line).cylinder;
+  const bool top = role == Role::top_end;
+  const auto if_used = [&](Cylinder other) { return used(other) ? int(other) : -1; };
+  switch (c) {
+  case Cylinder::torso: {
+    if (top) return used(Cylinder::neck) ? int(Cylinder::neck) : if_used(Cylinder::head);
+    const bool left = result_.lines[std::size_t(line)].centre.x() > 0;
+    return if_used(left ? Cylinder::leg_l : Cylinder::leg_r);
+  }
+  case Cylinder::arm_l:
+  case Cylinder::arm_r:
+  case Cylinder::leg_l:
+  case Cylinder::leg_r:
+    return top ? if_used(Cylinder::torso) : -1;
+  case Cylinder::neck:
+    return if_used(top ? Cylinder::head : Cylinder::torso);
+  case Cylinder::head:
+    if (top) return -1;
+    return used(Cylinder::neck) ? int(Cylinder::neck) : if_used(Cylinder::torso);
+  }
+  return -1;
+}
+
+// A line along its cylinder joins the other half, or a cylinder joined on
+// this side (an arm's cap on the torso, the other leg), whichever matches
+// it best.
+void SeamFinder::classify_along(int i) {
+  const Cylinder c = tag_of(i).cylinder;
+  double best_half = 0, best_side = 0;
+  int side_cylinder = -1;
+  for (int j : remaining_) {
+    const Cylinder d = tag_of(j).cylinder;
+    const bool along = role_[std::size_t(j)] == Role::along;
+    if (d == c) {
+      if (along) best_half = std::max(best_half, score(i, j));
       continue;
     }
-    // Along its cylinder: the other half, or a cylinder joined on this side.
-    double best_half = 0, best_side = 0;
-    int side_cylinder = -1;
-    for (int j : remaining) {
-      const Cylinder d = tag_of(j).cylinder;
-      const bool along = role[std::size_t(j)] == Role::along;
-      if (d == c) {
-        if (along) best_half = std::max(best_half, score(i, j));
-        continue;
-      }
-      const bool arm_cap = c == Cylinder::torso && (d == Cylinder::arm_l || d == Cylinder::arm_r) &&
-                           role[std::size_t(j)] == Role::top_end;
-      const auto is_leg = [](Cylinder x) { return x == Cylinder::leg_l || x == Cylinder::leg_r; };
-      const bool other_leg = is_leg(c) && is_leg(d) && along;
-      if (!arm_cap && !other_leg) continue;
-      const double s = score(i, j);
-      if (s > best_side) best_side = s, side_cylinder = int(d);
-    }
-    if (std::max(best_half, best_side) < options.min_match) {
-      done[std::size_t(i)] = true;
-      why[std::size_t(i)] = "runs along its cylinder, but no line of the other half or of a "
-                            "cylinder joined on its side matches it (best M = " +
-                            format(std::max(best_half, best_side), 2) + ")";
-    } else if (best_side > best_half) {
-      partner_cylinder[std::size_t(i)] = side_cylinder;
-    } else {
-      inter_half[std::size_t(i)] = true;
-    }
+    const bool arm_cap = c == Cylinder::torso && (d == Cylinder::arm_l || d == Cylinder::arm_r) &&
+                         role_[std::size_t(j)] == Role::top_end;
+    const auto is_leg = [](Cylinder x) { return x == Cylinder::leg_l || x == Cylinder::leg_r; };
+    const bool other_leg = is_leg(c) && is_leg(d) && along;
+    if (!arm_cap && !other_leg) continue;
+    const double s = score(i, j);
+    if (s > best_side) best_side = s, side_cylinder = int(d);
   }
+  if (std::max(best_half, best_side) < options_.min_match) {
+    give_up(i, "runs along its cylinder, but no line of the other half or of a "
+               "cylinder joined on its side matches it (best M = " +
+                   format(std::max(best_half, best_side), 2) + ")");
+  } else if (best_side > best_half) {
+    partner_cylinder_[std::size_t(i)] = side_cylinder;
+  } else {
+    inter_half_[std::size_t(i)] = true;
+  }
+}
 
-  // Steps 5-6: inter-cylinder seams, ring by ring.
+// Step 4: classify the rest by the garment construction theory of the
+// cylinder abstraction (thesis Fig. 3.2). Cylinders join end to end (a
+// sleeve's cap to the torso, a collar's lower edge to the neckline, a
+// hood's neck edge to the torso's top opening), the arms on the torso's
+// sides and the legs on each other's inner sides at the crotch; the two
+// halves of a cylinder join along its length (and across the lid of a
+// shoulder-anchored torso: the shoulders). In a half's unrolled plane:
+//  * a line whose normal lies within 45 degrees of the axis faces an end
+//    of its cylinder: an inter-cylinder line with the cylinder the
+//    pattern has there (a non-seam line where there is none, step 5);
+//  * on the torso, an upward line that reaches the half's centre line or
+//    faces it borders the top opening (neck, or head without a neck),
+//    which is centred on the axis; a line facing down faces its bottom end;
+//  * every other line runs along its cylinder: an inter-half-cylinder
+//    line, except that a torso line may join an arm's cap and a leg line
+//    the other leg (above the crotch, M_sa), when its best M there
+//    exceeds its best M with the other half's lines along the cylinder.
+void SeamFinder::classify_remaining() {
+  for (int i = 0; i < n_; ++i)
+    if (!done_[std::size_t(i)]) remaining_.push_back(i);
+  for (int i : remaining_)
+    role_[std::size_t(i)] = role_of(i);
+  for (int i : remaining_) {
+    const Role role = role_[std::size_t(i)];
+    if (role == Role::along) {
+      classify_along(i);
+      continue;
+    }
+    const int other = cylinder_at_end(i, role);
+    if (other >= 0)
+      partner_cylinder_[std::size_t(i)] = other;
+    else
+      give_up(i, std::string("faces the ") + (role == Role::top_end ? "top" : "bottom") +
+                     " end of its cylinder '" + name_of(tag_of(i).cylinder) +
+                     "', where the pattern has no adjacent cylinder");
+  }
+}
+
+// The inter-cylinder lines of the junction of cylinders `first` and
+// `second`: those of `first` towards `second`, and those of `second`
+// towards `first`.
+std::array<std::vector<int>, 2> SeamFinder::ring_lines(int first, int second) const {
+  std::array<std::vector<int>, 2> rings;
+  for (int side = 0; side < 2; ++side) {
+    const int here = side == 0 ? first : second, there = side == 0 ? second : first;
+    for (int i : remaining_)
+      if (!done_[std::size_t(i)] && int(tag_of(i).cylinder) == here &&
+          partner_cylinder_[std::size_t(i)] == there)
+        rings[std::size_t(side)].push_back(i);
+  }
+  return rings;
+}
+
+// Sews the two rings of a junction: each sorted by angle around the ring
+// axis, the smaller ring's lines to the larger's at the best cyclic shift.
+void SeamFinder::sew_ring(int first, int second, std::array<std::vector<int>, 2>& rings) {
+  const Cylinder cyl_a = Cylinder(first), cyl_b = Cylinder(second);
+  // The ring axis: the distal cylinder's (both legs: the vertical between them).
+  Vector3d origin, up, front;
+  if ((cyl_a == Cylinder::leg_l || cyl_a == Cylinder::leg_r) &&
+      (cyl_b == Cylinder::leg_l || cyl_b == Cylinder::leg_r)) {
+    const auto& l = result_.cylinders[std::size_t(cylinder_index_.at(cyl_a))];
+    const auto& r = result_.cylinders[std::size_t(cylinder_index_.at(cyl_b))];
+    origin = 0.5 * (l.top + r.top);
+    up = Vector3d::UnitZ();
+    front = -Vector3d::UnitY();
+  } else {
+    const Cylinder distal = cyl_a == Cylinder::torso ? cyl_b : cyl_a;
+    const auto& c = result_.cylinders[std::size_t(cylinder_index_.at(distal))];
+    origin = c.top;
+    up = c.up;
+    front = c.front;
+  }
+  const Vector3d across = up.cross(front);
+  const auto angle = [&](int line) {
+    const Vector3d r = result_.lines[std::size_t(line)].centre - origin;
+    return std::atan2(r.dot(across), r.dot(front));
+  };
+  for (auto& ring : rings)
+    std::stable_sort(ring.begin(), ring.end(), [&](int x, int y) { return angle(x) < angle(y); });
+  const bool swapped = rings[0].size() > rings[1].size();
+  const std::vector<int>& small = swapped ? rings[1] : rings[0];
+  const std::vector<int>& large = swapped ? rings[0] : rings[1];
+  const auto ring_score = [&](int i, int j) {
+    return score(small[std::size_t(i)], large[std::size_t(j)]);
+  };
+  const int shift =
+      best_ring_shift(int(small.size()), int(large.size()), ring_score, options_.clicks);
+  std::vector<bool> large_used(large.size(), false);
+  for (std::size_t i = 0; i < small.size(); ++i) {
+    const std::size_t j = (i + std::size_t(shift)) % large.size();
+    const int a = small[i], b = large[j];
+    const double m = score(a, b);
+    done_[std::size_t(a)] = true;
+    if (m < options_.min_match) {
+      why_[std::size_t(a)] = "the best ring match pairs it with '" +
+                             result_.lines[std::size_t(b)].id + "', but M = " + format(m, 2);
+      continue;
+    }
+    done_[std::size_t(b)] = true;
+    large_used[j] = true;
+    add_seam(SeamKind::inter_cylinder, a, b,
+             match_score(result_.lines[std::size_t(a)], result_.lines[std::size_t(b)],
+                         seamable(a, b), options_));
+  }
+  for (std::size_t j = 0; j < large.size(); ++j)
+    if (!large_used[j] && !done_[std::size_t(large[j])])
+      give_up(large[j], "left over by the ring match (rings of " + std::to_string(small.size()) +
+                            " and " + std::to_string(large.size()) + " lines)");
+}
+
+// Steps 5-6: inter-cylinder seams, ring by ring.
+void SeamFinder::sew_inter_cylinder() {
   std::set<std::pair<int, int>> junctions;
-  for (int i : remaining)
-    if (partner_cylinder[std::size_t(i)] >= 0) {
-      const int a = int(tag_of(i).cylinder), b = partner_cylinder[std::size_t(i)];
+  for (int i : remaining_)
+    if (partner_cylinder_[std::size_t(i)] >= 0) {
+      const int a = int(tag_of(i).cylinder), b = partner_cylinder_[std::size_t(i)];
       junctions.insert({std::min(a, b), std::max(a, b)});
     }
   for (const auto& [first, second] : junctions) {
-    std::array<std::vector<int>, 2> rings;
-    for (int side = 0; side < 2; ++side) {
-      const int here = side == 0 ? first : second, there = side == 0 ? second : first;
-      for (int i : remaining)
-        if (!done[std::size_t(i)] && int(tag_of(i).cylinder) == here &&
-            partner_cylinder[std::size_t(i)] == there)
-          rings[std::size_t(side)].push_back(i);
-    }
-    const Cylinder cyl_a = Cylinder(first), cyl_b = Cylinder(second);
+    std::array<std::vector<int>, 2> rings = ring_lines(first, second);
     if (rings[0].empty() || rings[1].empty()) {
       for (const auto& ring : rings)
-        for (int i : ring) {
-          done[std::size_t(i)] = true;
-          why[std::size_t(i)] = std::string("inter-cylinder line with no corresponding line in "
-                                            "the adjacent cylinder '") +
-                                name_of(int(tag_of(i).cylinder) == first ? cyl_b : cyl_a) + "'";
-        }
+        for (int i : ring)
+          give_up(i, std::string("inter-cylinder line with no corresponding line in "
+                                 "the adjacent cylinder '") +
+                         name_of(int(tag_of(i).cylinder) == first ? Cylinder(second)
+                                                                  : Cylinder(first)) +
+                         "'");
       continue;
     }
-    // The ring axis: the distal cylinder's (both legs: the vertical between them).
-    Vector3d origin, up, front;
-    if ((cyl_a == Cylinder::leg_l || cyl_a == Cylinder::leg_r) &&
-        (cyl_b == Cylinder::leg_l || cyl_b == Cylinder::leg_r)) {
-      const auto& l = result.cylinders[std::size_t(cylinder_index.at(cyl_a))];
-      const auto& r = result.cylinders[std::size_t(cylinder_index.at(cyl_b))];
-      origin = 0.5 * (l.top + r.top);
-      up = Vector3d::UnitZ();
-      front = -Vector3d::UnitY();
-    } else {
-      const Cylinder distal = cyl_a == Cylinder::torso ? cyl_b : cyl_a;
-      const auto& c = result.cylinders[std::size_t(cylinder_index.at(distal))];
-      origin = c.top;
-      up = c.up;
-      front = c.front;
-    }
-    const Vector3d across = up.cross(front);
-    const auto angle = [&](int line) {
-      const Vector3d r = result.lines[std::size_t(line)].centre - origin;
-      return std::atan2(r.dot(across), r.dot(front));
-    };
-    for (auto& ring : rings)
-      std::stable_sort(ring.begin(), ring.end(), [&](int x, int y) { return angle(x) < angle(y); });
-    const bool swapped = rings[0].size() > rings[1].size();
-    const std::vector<int>& small = swapped ? rings[1] : rings[0];
-    const std::vector<int>& large = swapped ? rings[0] : rings[1];
-    const auto ring_score = [&](int i, int j) {
-      return score(small[std::size_t(i)], large[std::size_t(j)]);
-    };
-    const int shift =
-        best_ring_shift(int(small.size()), int(large.size()), ring_score, options.clicks);
-    std::vector<bool> large_used(large.size(), false);
-    for (std::size_t i = 0; i < small.size(); ++i) {
-      const std::size_t j = (i + std::size_t(shift)) % large.size();
-      const int a = small[i], b = large[j];
-      const double m = score(a, b);
-      done[std::size_t(a)] = true;
-      if (m < options.min_match) {
-        why[std::size_t(a)] = "the best ring match pairs it with '" +
-                              result.lines[std::size_t(b)].id + "', but M = " + format(m, 2);
-        continue;
-      }
-      done[std::size_t(b)] = true;
-      large_used[j] = true;
-      add_seam(SeamKind::inter_cylinder, a, b,
-               match_score(result.lines[std::size_t(a)], result.lines[std::size_t(b)],
-                           seamable(a, b), options));
-    }
-    for (std::size_t j = 0; j < large.size(); ++j)
-      if (!large_used[j] && !done[std::size_t(large[j])]) {
-        done[std::size_t(large[j])] = true;
-        why[std::size_t(large[j])] = "left over by the ring match (rings of " +
-                                     std::to_string(small.size()) + " and " +
-                                     std::to_string(large.size()) + " lines)";
-      }
+    sew_ring(first, second, rings);
   }
+}
 
-  // Step 7: inter-half-cylinder seams, cylinder by cylinder.
-  for (const auto& c : result.cylinders) {
+// Step 7: inter-half-cylinder seams, cylinder by cylinder.
+void SeamFinder::sew_inter_half_cylinder() {
+  const auto half_score = [&](int i, int j) { return score(i, j); };
+  for (const auto& c : result_.cylinders) {
     std::vector<int> front, back;
-    for (int i : remaining)
-      if (!done[std::size_t(i)] && inter_half[std::size_t(i)] && tag_of(i).cylinder == c.cylinder)
+    for (int i : remaining_)
+      if (!done_[std::size_t(i)] && inter_half_[std::size_t(i)] && tag_of(i).cylinder == c.cylinder)
         (tag_of(i).side == Side::front ? front : back).push_back(i);
-    for (const Pair& p : greedy_sorted_matching(front, back, score, options.min_match)) {
+    for (const Pair& p : greedy_sorted_matching(front, back, half_score, options_.min_match)) {
       add_seam(SeamKind::inter_half_cylinder, p.a, p.b,
-               match_score(result.lines[std::size_t(p.a)], result.lines[std::size_t(p.b)], true,
-                           options));
-      done[std::size_t(p.a)] = done[std::size_t(p.b)] = true;
+               match_score(result_.lines[std::size_t(p.a)], result_.lines[std::size_t(p.b)], true,
+                           options_));
+      done_[std::size_t(p.a)] = done_[std::size_t(p.b)] = true;
     }
     for (int i : front)
-      if (!done[std::size_t(i)]) why[std::size_t(i)] = "its best match in the other half was taken";
+      if (!done_[std::size_t(i)])
+        why_[std::size_t(i)] = "its best match in the other half was taken";
     for (int i : back)
-      if (!done[std::size_t(i)]) why[std::size_t(i)] = "its best match in the other half was taken";
+      if (!done_[std::size_t(i)])
+        why_[std::size_t(i)] = "its best match in the other half was taken";
   }
+}
 
-  // Step 9: delete seams whose sweep penetrates the body.
-  std::vector<FoundSeam> kept;
-  for (const FoundSeam& seam : result.seams) {
-    const LineGeometry& a = result.lines[std::size_t(seam.line_a)];
-    const LineGeometry& b = result.lines[std::size_t(seam.line_b)];
-    double deepest = 0;
-    Vector3d where = Vector3d::Zero();
-    // Only the flesh of the two cylinders' body parts counts: a torso side
-    // seam's sweep may pass behind the hanging arm, as the cloth will.
-    std::set<std::string> parts;
-    for (int line : {seam.line_a, seam.line_b}) {
-      const Cylinder c = tag_of(line).cylinder;
-      for (const auto& bone : bones_of(c))
-        parts.insert(bone);
-      if (c == Cylinder::leg_l || c == Cylinder::leg_r)
-        parts.insert({"pelvis", "torso", "hip_l", "hip_r"});
-    }
-    if (seam.kind != SeamKind::intra_pack && seam.kind != SeamKind::dart && body_distance) {
-      for (int q = 0; q < options.sweep_pairs; ++q) {
-        const double t = (q + 0.5) / options.sweep_pairs;
-        const Vector3d pa = at_fraction(a.samples, t);
-        const Vector3d pb = at_fraction(b.samples, seam.reverse ? 1 - t : t);
-        for (double s : {0.25, 0.5, 0.75}) {
-          const Vector3d x = (1 - s) * pa + s * pb;
-          const double d = body_distance(x, nullptr);
-          if (d < deepest && parts.count(body.skeleton[std::size_t(nearest_bone(body, x))].name))
-            deepest = d, where = x;
-        }
+// The deepest point (signed distance < 0) of the flesh of the seam's two
+// cylinders' body parts that the sweep between its lines meets, and where;
+// 0 when it meets none (intra-pack seams and darts are not swept).
+std::pair<double, Vector3d> SeamFinder::deepest_sweep_point(const FoundSeam& seam) const {
+  const LineGeometry& a = result_.lines[std::size_t(seam.line_a)];
+  const LineGeometry& b = result_.lines[std::size_t(seam.line_b)];
+  double deepest = 0;
+  Vector3d where = Vector3d::Zero();
+  // Only the flesh of the two cylinders' body parts counts: a torso side
+  // seam's sweep may pass behind the hanging arm, as the cloth will.
+  std::set<std::string> parts;
+  for (int line : {seam.line_a, seam.line_b}) {
+    const Cylinder c = tag_of(line).cylinder;
+    for (const auto& bone : bones_of(c))
+      parts.insert(bone);
+    if (c == Cylinder::leg_l || c == Cylinder::leg_r)
+      parts.insert({"pelvis", "torso", "hip_l", "hip_r"});
+  }
+  if (seam.kind != SeamKind::intra_pack && seam.kind != SeamKind::dart && body_distance_) {
+    for (int q = 0; q < options_.sweep_pairs; ++q) {
+      const double t = (q + 0.5) / options_.sweep_pairs;
+      const Vector3d pa = at_fraction(a.samples, t);
+      const Vector3d pb = at_fraction(b.samples, seam.reverse ? 1 - t : t);
+      for (double s : {0.25, 0.5, 0.75}) {
+        const Vector3d x = (1 - s) * pa + s * pb;
+        const double d = body_distance_(x, nullptr);
+        if (d < deepest && parts.count(body_.skeleton[std::size_t(nearest_bone(body_, x))].name))
+          deepest = d, where = x;
       }
     }
-    if (deepest < -options.penetration) {
-      result.deleted.push_back(seam);
+  }
+  return {deepest, where};
+}
+
+// Step 9: delete seams whose sweep penetrates the body.
+void SeamFinder::delete_penetrating_seams() {
+  std::vector<FoundSeam> kept;
+  for (const FoundSeam& seam : result_.seams) {
+    const auto [deepest, where] = deepest_sweep_point(seam);
+    if (deepest < -options_.penetration) {
+      const LineGeometry& a = result_.lines[std::size_t(seam.line_a)];
+      const LineGeometry& b = result_.lines[std::size_t(seam.line_b)];
+      result_.deleted.push_back(seam);
       const std::string reason = "the sweep of its seam with '" + b.id + "' penetrates the body " +
                                  format(-100 * deepest, 2) + " cm deep at (" + format(where.x()) +
                                  ", " + format(where.y()) + ", " + format(where.z()) + ")";
-      why[std::size_t(seam.line_a)] = reason;
-      why[std::size_t(seam.line_b)] =
+      why_[std::size_t(seam.line_a)] = reason;
+      why_[std::size_t(seam.line_b)] =
           "the sweep of its seam with '" + a.id + "' penetrates the body";
     } else {
       kept.push_back(seam);
     }
   }
-  result.seams = kept;
-  std::vector<bool> seamed(std::size_t(n), false);
-  for (const auto& seam : result.seams)
-    seamed[std::size_t(seam.line_a)] = seamed[std::size_t(seam.line_b)] = true;
-  for (int i = 0; i < n; ++i)
-    if (!seamed[std::size_t(i)])
-      result.unseamed.push_back(
-          {i, why[std::size_t(i)].empty() ? "not matched" : why[std::size_t(i)]});
-  result.seam_seconds = seconds_since(seam_start);
+  result_.seams = kept;
+}
 
-  if (pattern.packs.size() > 1) {
-    for (std::size_t k = 0; k < pattern.packs.size(); ++k) {
-      bool any = false;
-      std::string reasons;
-      for (int i = 0; i < n; ++i) {
-        if (pack_of_line(i) != int(k)) continue;
-        any = any || seamed[std::size_t(i)];
-        reasons += "\n  '" + result.lines[std::size_t(i)].id + "': " + why[std::size_t(i)];
-      }
-      if (!any)
-        throw InputError(pattern.source + ": " + pattern.packs[k].json_path + ": pack '" +
-                         pattern.packs[k].id + "' " + to_string(pattern.pack_tag(int(k))) +
-                         " has no seam: none of its lines could be seamed:" + reasons);
+void SeamFinder::list_unseamed() {
+  seamed_.assign(std::size_t(n_), false);
+  for (const auto& seam : result_.seams)
+    seamed_[std::size_t(seam.line_a)] = seamed_[std::size_t(seam.line_b)] = true;
+  for (int i = 0; i < n_; ++i)
+    if (!seamed_[std::size_t(i)])
+      result_.unseamed.push_back(
+          {i, why_[std::size_t(i)].empty() ? "not matched" : why_[std::size_t(i)]});
+}
+
+void SeamFinder::check_every_pack_seamed() const {
+  if (pattern_.packs.size() <= 1) return;
+  for (std::size_t k = 0; k < pattern_.packs.size(); ++k) {
+    bool any = false;
+    std::string reasons;
+    for (int i = 0; i < n_; ++i) {
+      if (pack_of_line(i) != int(k)) continue;
+      any = any || seamed_[std::size_t(i)];
+      reasons += "\n  '" + result_.lines[std::size_t(i)].id + "': " + why_[std::size_t(i)];
     }
+    if (!any)
+      throw InputError(pattern_.source + ": " + pattern_.packs[k].json_path + ": pack '" +
+                       pattern_.packs[k].id + "' " + to_string(pattern_.pack_tag(int(k))) +
+                       " has no seam: none of its lines could be seamed:" + reasons);
   }
+}
+
+} // namespace
+
+Construction construct(const Pattern& pattern, const Mannequin& body,
+                       const BodyDistance& body_distance, const TagconOptions& options) {
+  Construction result;
+  result.pattern = &pattern;
+  result.options = options;
+  result.body = body_distance;
+  const auto placement_start = Clock::now();
+  result.cylinders = fit_cylinders(pattern, body, options);
+  const std::map<Cylinder, int> cylinder_index = index_of_cylinders(result.cylinders);
+  for (std::size_t k = 0; k < pattern.packs.size(); ++k)
+    result.packs.push_back(position_pack(pattern, k, result.cylinders, cylinder_index, options));
+  align_outer_layers(pattern, result.packs);
+  result.lines = placed_lines(pattern, result);
+  result.placement_seconds = seconds_since(placement_start);
+
+  const auto seam_start = Clock::now();
+  SeamFinder finder(pattern, body, body_distance, options, cylinder_index, result);
+  finder.find_seams();
+  result.seam_seconds = seconds_since(seam_start);
+  finder.check_every_pack_seamed();
   return result;
 }
 
