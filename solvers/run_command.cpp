@@ -32,7 +32,10 @@
 
 namespace sartor {
 
-const std::vector<OptionSpec>& case_option_specs() {
+namespace {
+
+// The mesh: a generator or an OBJ file, its refinement and placement.
+const std::vector<OptionSpec>& mesh_option_specs() {
   static const std::vector<OptionSpec> specs{
       {"mesh", "KIND", "rectangle",
        "rectangle, disk, annulus, cylinder_band, sphere_cap, tube_panels or obj"},
@@ -65,6 +68,13 @@ const std::vector<OptionSpec>& case_option_specs() {
        "at the rim, growing from radius R0 (m) (docs/contact.md)"},
       {"mesh-rotate-x", "DEG", "0", "rotate the placement about the x axis, degrees"},
       {"mesh-translate", "X,Y,Z", "0,0,0", "then translate it, m"},
+  };
+  return specs;
+}
+
+// The cloth's material: fabric, membrane and bending models.
+const std::vector<OptionSpec>& material_option_specs() {
+  static const std::vector<OptionSpec> specs{
       {"fabric", "SPEC", "cotton_twill",
        "preset, FILE.yaml or measured FILE.json: membrane, bending, density (docs/fabrics.md)"},
       {"warp-modulus", "N/M", "", "linear warp modulus, N/m (replaces the fabric's curve)"},
@@ -85,6 +95,13 @@ const std::vector<OptionSpec>& case_option_specs() {
       {"bending-twist", "N*M", "", "patch model: twist rigidity, N m [half the warp's]"},
       {"bending-psd", "", "", "project bending Hessians to PSD"},
       {"density", "KG/M2", "0.2", "areal density, kg/m^2 [the fabric's if it has one]"},
+  };
+  return specs;
+}
+
+// Loads, pins and the probe.
+const std::vector<OptionSpec>& load_option_specs() {
+  static const std::vector<OptionSpec> specs{
       {"gravity", "X,Y,Z", "0,0,-9.80665", "gravitational acceleration, m/s^2"},
       {"pressure", "PA", "0", "follower pressure on the triangles' normal side, Pa"},
       {"point-force", "V,FX,FY,FZ", "", "a force (N) on vertex V"},
@@ -106,6 +123,13 @@ const std::vector<OptionSpec>& case_option_specs() {
       {"pin-rotation-axis", "X,Y,Z", "0,0,1", "axis of the --pin-motion angles"},
       {"pin-rotation-center", "X,Y,Z", "0,0,0", "a point of that axis, m"},
       {"probe", "X,Y,Z", "", "report the displacement of the vertex nearest this point"},
+  };
+  return specs;
+}
+
+// Rigid bodies and contact.
+const std::vector<OptionSpec>& contact_option_specs() {
+  static const std::vector<OptionSpec> specs{
       {"body", "SPEC", "",
        "a rigid body, e.g. \"sphere center=0,0,0 radius=0.3 mu=0.3\" (docs/contact.md)"},
       {"body2", "SPEC", "", "a second body"},
@@ -120,6 +144,13 @@ const std::vector<OptionSpec>& case_option_specs() {
        "static drapes: 0.015)"},
       {"drape-support-radius", "M", "",
        "report the Cusick drape coefficient for a support disk of this radius, m"},
+  };
+  return specs;
+}
+
+// Load steps, seams and sewing, and the static solver.
+const std::vector<OptionSpec>& static_option_specs() {
+  static const std::vector<OptionSpec> specs{
       {"load-steps", "N", "1", "load increments (each halved up to 8 times on failure)"},
       {"seams-file", "FILE", "", "seams to sew (JSON, docs/formats.md) [tube_panels: its own]"},
       {"seam-stiffness", "N/M2", "", "seam stiffness per unit seam length, N/m^2 [automatic]"},
@@ -145,6 +176,13 @@ const std::vector<OptionSpec>& case_option_specs() {
       {"contact-rounds", "N", "30",
        "static: at most N contact rounds after the last stage: re-solves until the friction "
        "anchors' update leaves the state in equilibrium (and no vertex is too deep)"},
+  };
+  return specs;
+}
+
+// The analysis and its time grid.
+const std::vector<OptionSpec>& time_option_specs() {
+  static const std::vector<OptionSpec> specs{
       {"analysis", "KIND", "static",
        "static (equilibrium), dynamic (implicit time stepping) or creep (quasi-static creep "
        "over real time)"},
@@ -162,8 +200,17 @@ const std::vector<OptionSpec>& case_option_specs() {
       {"output-interval", "S", "0",
        "dynamic, creep: time between the states written to series.h5, s (0: every step)"},
   };
+  return specs;
+}
+
+} // namespace
+
+const std::vector<OptionSpec>& case_option_specs() {
   static const std::vector<OptionSpec> all = [] {
-    std::vector<OptionSpec> options = specs;
+    std::vector<OptionSpec> options;
+    for (const auto& group : {mesh_option_specs, material_option_specs, load_option_specs,
+                              contact_option_specs, static_option_specs, time_option_specs})
+      options.insert(options.end(), group().begin(), group().end());
     options.insert(options.end(), creep_option_specs().begin(), creep_option_specs().end());
     options.insert(options.end(), certificate_option_specs().begin(),
                    certificate_option_specs().end());
