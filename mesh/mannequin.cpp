@@ -17,12 +17,16 @@ namespace sartor {
 
 namespace {
 
-// --- primitives: signed distances with their gradients and, when `curved`,
+// --- primitives: signed distances with, as `level` asks, their gradients and
 // their Hessians (exact for the capsule, first-order for the ellipsoid),
 // negative inside. Polygonising the body needs no Hessians, and computing
 // them made its generation three times as long. ------------------------------
 
 using FieldValue = MannequinFieldValue;
+
+// What a field evaluation computes besides the value. The value comes out of
+// the same arithmetic at every level, and so does the gradient where asked.
+enum class Derivatives { none, gradient, hessian };
 
 Eigen::Matrix3d across_projector(const Eigen::Vector3d& unit) {
   return Eigen::Matrix3d::Identity() - unit * unit.transpose();
@@ -49,7 +53,7 @@ struct TaperedCapsule {
       : a(start), b(end), ra(start_radius), rb(end_radius), length((b - a).norm()),
         unit((b - a) / length), s((ra - rb) / length), c(std::sqrt(1.0 - s * s)) {}
 
-  template <bool curved>
+  template <Derivatives level>
   FieldValue distance(const Eigen::Vector3d& p) const {
     const Eigen::Vector3d pa = p - a;
     const double y = pa.dot(unit);
@@ -59,16 +63,21 @@ struct TaperedCapsule {
     const auto sphere = [&p](const Eigen::Vector3d& centre, double r) {
       const Eigen::Vector3d d = p - centre;
       const double norm = d.norm();
+      if constexpr (level == Derivatives::none)
+        return FieldValue{norm - r, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()};
       if (norm == 0.0) return FieldValue{-r, Eigen::Vector3d::UnitZ(), Eigen::Matrix3d::Zero()};
       const Eigen::Vector3d n = d / norm;
-      if constexpr (!curved) return FieldValue{norm - r, n, Eigen::Matrix3d::Zero()};
+      if constexpr (level != Derivatives::hessian)
+        return FieldValue{norm - r, n, Eigen::Matrix3d::Zero()};
       return FieldValue{norm - r, n, across_projector(n) / norm};
     };
     if (along_side < 0.0) return sphere(a, ra);
     if (along_side > c * length) return sphere(b, rb);
+    if constexpr (level == Derivatives::none)
+      return {s * y + c * x - ra, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()};
     const Eigen::Vector3d across = x > 0.0 ? Eigen::Vector3d(radial / x) : unit.unitOrthogonal();
     const Eigen::Matrix3d curvature =
-        curved && x > 0.0
+        level == Derivatives::hessian && x > 0.0
             ? Eigen::Matrix3d(c * (across_projector(unit) - across * across.transpose()) / x)
             : Eigen::Matrix3d::Zero();
     return {s * y + c * x - ra, s * unit + c * across, curvature};
@@ -83,7 +92,7 @@ struct Ellipsoid {
   Eigen::Vector3d radii;
   Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
 
-  template <bool curved>
+  template <Derivatives level>
   FieldValue distance(const Eigen::Vector3d& p) const {
     const Eigen::Vector3d q = frame * (p - centre);
     const Eigen::Vector3d r2 = radii.cwiseProduct(radii);
@@ -92,13 +101,16 @@ struct Ellipsoid {
     const double k0 = std::sqrt(q.dot(q_r2));
     const double k1 = q_r2.norm();
     if (k1 == 0.0) return {-radii.minCoeff(), Eigen::Vector3d::UnitZ(), Eigen::Matrix3d::Zero()};
+    if constexpr (level == Derivatives::none)
+      return {k0 * (k0 - 1.0) / k1, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()};
     const Eigen::Vector3d dk0 = q_r2 / k0;
     const Eigen::Vector3d dk1 = q_r4 / k1;
     // value g(k0) / k1 with g = k0 (k0 - 1)
     const double g = k0 * (k0 - 1.0);
     const double dg = 2.0 * k0 - 1.0;
     const Eigen::Vector3d local = (dg * k1 * dk0 - g * dk1) / (k1 * k1);
-    if constexpr (!curved) return {g / k1, frame.transpose() * local, Eigen::Matrix3d::Zero()};
+    if constexpr (level != Derivatives::hessian)
+      return {g / k1, frame.transpose() * local, Eigen::Matrix3d::Zero()};
     const Eigen::Matrix3d ddk0 =
         (Eigen::Matrix3d(r2.cwiseInverse().asDiagonal()) - dk0 * dk0.transpose()) / k0;
     const Eigen::Matrix3d ddk1 =
@@ -117,13 +129,16 @@ struct Ellipsoid {
 // the crease between two surfaces with a fillet of size about k otherwise.
 // The blend's weights change across the fillet, which bends it by
 // -(grad a - grad b)(grad a - grad b)^T / (2k) on top of the weighted curvatures.
-template <bool curved>
+template <Derivatives level>
 FieldValue smooth_min(const FieldValue& a, const FieldValue& b, double k) {
   const double h = std::max(k - std::abs(a.value - b.value), 0.0) / k;
   const double weight_a = a.value < b.value ? 1.0 - 0.5 * h : 0.5 * h;
+  if constexpr (level == Derivatives::none)
+    return {std::min(a.value, b.value) - 0.25 * k * h * h, Eigen::Vector3d::Zero(),
+            Eigen::Matrix3d::Zero()};
   FieldValue blend{std::min(a.value, b.value) - 0.25 * k * h * h,
                    weight_a * a.gradient + (1.0 - weight_a) * b.gradient, Eigen::Matrix3d::Zero()};
-  if constexpr (curved) {
+  if constexpr (level == Derivatives::hessian) {
     const Eigen::Vector3d difference = a.gradient - b.gradient;
     blend.hessian = weight_a * a.hessian + (1.0 - weight_a) * b.hessian;
     if (h > 0.0) blend.hessian -= difference * difference.transpose() / (2.0 * k);
@@ -258,44 +273,43 @@ const Design& default_design() {
   return d;
 }
 
-template <bool curved>
+template <Derivatives level>
 FieldValue arm_field(const Limbs& l, const Eigen::Vector3d& p) {
   const FieldValue arm =
-      smooth_min<curved>(l.upper_arm.distance<curved>(p), l.forearm.distance<curved>(p), 0.02);
-  return smooth_min<curved>(arm, l.hand.distance<curved>(p), 0.02);
+      smooth_min<level>(l.upper_arm.distance<level>(p), l.forearm.distance<level>(p), 0.02);
+  return smooth_min<level>(arm, l.hand.distance<level>(p), 0.02);
 }
 
 // Flat soles: the foot is cut by the floor z = 0.
-template <bool curved>
+template <Derivatives level>
 FieldValue leg_field(const Limbs& l, const Eigen::Vector3d& p) {
   const FieldValue leg =
-      smooth_min<curved>(l.thigh.distance<curved>(p), l.shin.distance<curved>(p), 0.03);
-  const FieldValue calf = smooth_min<curved>(leg, l.calf.distance<curved>(p), 0.03);
-  return smooth_min<curved>(calf, max(l.foot.distance<curved>(p), l.sole.distance(p)), 0.03);
+      smooth_min<level>(l.thigh.distance<level>(p), l.shin.distance<level>(p), 0.03);
+  const FieldValue calf = smooth_min<level>(leg, l.calf.distance<level>(p), 0.03);
+  return smooth_min<level>(calf, max(l.foot.distance<level>(p), l.sole.distance(p)), 0.03);
 }
 
-template <bool curved>
+template <Derivatives level>
 FieldValue body_field(const Design& d, const Eigen::Vector3d& p) {
-  FieldValue trunk =
-      smooth_min<curved>(d.chest.distance<curved>(p), d.waist.distance<curved>(p), 0.1);
-  trunk = smooth_min<curved>(trunk, d.hips.distance<curved>(p), 0.1);
-  trunk = smooth_min<curved>(trunk, d.shoulders.distance<curved>(p), 0.06);
-  trunk = smooth_min<curved>(trunk, d.left.buttock.distance<curved>(p), 0.04);
-  trunk = smooth_min<curved>(trunk, d.right.buttock.distance<curved>(p), 0.04);
-  FieldValue head = smooth_min<curved>(d.head.distance<curved>(p), d.jaw.distance<curved>(p), 0.04);
-  head = smooth_min<curved>(head, d.nose.distance<curved>(p), 0.015);
-  FieldValue body = smooth_min<curved>(trunk, d.neck.distance<curved>(p), 0.04);
-  body = smooth_min<curved>(body, head, 0.03);
-  body = smooth_min<curved>(body, arm_field<curved>(d.left, p), 0.03);
-  body = smooth_min<curved>(body, arm_field<curved>(d.right, p), 0.03);
-  body = smooth_min<curved>(body, leg_field<curved>(d.left, p), 0.04);
-  return smooth_min<curved>(body, leg_field<curved>(d.right, p), 0.04);
+  FieldValue trunk = smooth_min<level>(d.chest.distance<level>(p), d.waist.distance<level>(p), 0.1);
+  trunk = smooth_min<level>(trunk, d.hips.distance<level>(p), 0.1);
+  trunk = smooth_min<level>(trunk, d.shoulders.distance<level>(p), 0.06);
+  trunk = smooth_min<level>(trunk, d.left.buttock.distance<level>(p), 0.04);
+  trunk = smooth_min<level>(trunk, d.right.buttock.distance<level>(p), 0.04);
+  FieldValue head = smooth_min<level>(d.head.distance<level>(p), d.jaw.distance<level>(p), 0.04);
+  head = smooth_min<level>(head, d.nose.distance<level>(p), 0.015);
+  FieldValue body = smooth_min<level>(trunk, d.neck.distance<level>(p), 0.04);
+  body = smooth_min<level>(body, head, 0.03);
+  body = smooth_min<level>(body, arm_field<level>(d.left, p), 0.03);
+  body = smooth_min<level>(body, arm_field<level>(d.right, p), 0.03);
+  body = smooth_min<level>(body, leg_field<level>(d.left, p), 0.04);
+  return smooth_min<level>(body, leg_field<level>(d.right, p), 0.04);
 }
 
 // Newton steps along the gradient onto the zero level set.
 Eigen::Vector3d project_to_surface(const Design& d, Eigen::Vector3d p) {
   for (int iteration = 0; iteration < 3; ++iteration) {
-    const FieldValue f = body_field<false>(d, p);
+    const FieldValue f = body_field<Derivatives::gradient>(d, p);
     const double g2 = f.gradient.squaredNorm();
     if (std::abs(f.value) < 1e-10 || g2 < 1e-12) break;
     p -= (f.value / g2) * f.gradient;
@@ -331,7 +345,7 @@ BodyMesh marching_tetrahedra(const Design& design, const Eigen::Vector3d& lower,
   for (long k = 0; k < n[2]; ++k)
     for (long j = 0; j < n[1]; ++j)
       for (long i = 0; i < n[0]; ++i) {
-        const double f = body_field<false>(design, position(i, j, k)).value;
+        const double f = body_field<Derivatives::none>(design, position(i, j, k)).value;
         value[static_cast<std::size_t>(node(i, j, k))] = f == 0.0 ? 1e-12 : f;
       }
 
@@ -431,7 +445,8 @@ void relax(const Design& design, BodyMesh& mesh, int sweeps) {
       for (int w : neighbours[v])
         centre += mesh.vertices[static_cast<std::size_t>(w)];
       centre /= static_cast<double>(neighbours[v].size());
-      const Eigen::Vector3d normal = body_field<false>(design, p).gradient.normalized();
+      const Eigen::Vector3d normal =
+          body_field<Derivatives::gradient>(design, p).gradient.normalized();
       Eigen::Vector3d move = 0.5 * (centre - p);
       move -= move.dot(normal) * normal;
       next[v] = project_to_surface(design, p + move);
@@ -540,14 +555,15 @@ void widen(Ellipsoid& e, double factor) {
 double ray_to_surface(const Design& d, const Eigen::Vector3d& centre,
                       const Eigen::Vector3d& direction) {
   double inside = 0.0, outside = 0.004;
-  while (body_field<false>(d, centre + outside * direction).value < 0.0) {
+  while (body_field<Derivatives::none>(d, centre + outside * direction).value < 0.0) {
     inside = outside;
     outside += 0.004;
     if (outside > 1.0) return inside;
   }
   for (int i = 0; i < 22; ++i) {
     const double middle = 0.5 * (inside + outside);
-    (body_field<false>(d, centre + middle * direction).value < 0.0 ? inside : outside) = middle;
+    (body_field<Derivatives::none>(d, centre + middle * direction).value < 0.0 ? inside : outside) =
+        middle;
   }
   return 0.5 * (inside + outside);
 }
@@ -612,8 +628,9 @@ double crotch_height(const Design& d) {
   const Eigen::Vector3d at(0.0, d.hips.centre.y(), 0.0);
   for (int i = 0; i < 40; ++i) {
     const double middle = 0.5 * (inside + outside);
-    (body_field<false>(d, at + middle * Eigen::Vector3d::UnitZ()).value < 0.0 ? inside : outside) =
-        middle;
+    (body_field<Derivatives::none>(d, at + middle * Eigen::Vector3d::UnitZ()).value < 0.0
+         ? inside
+         : outside) = middle;
   }
   return 0.5 * (inside + outside);
 }
@@ -1111,15 +1128,15 @@ MannequinModel MannequinModel::posed(const Pose& pose) const {
 }
 
 double MannequinModel::field(const Eigen::Vector3d& p) const {
-  return body_field<false>(posed_->design, p).value;
+  return body_field<Derivatives::none>(posed_->design, p).value;
 }
 
 MannequinFieldValue MannequinModel::field_gradient(const Eigen::Vector3d& p) const {
-  return body_field<false>(posed_->design, p);
+  return body_field<Derivatives::gradient>(posed_->design, p);
 }
 
 MannequinFieldValue MannequinModel::field_derivatives(const Eigen::Vector3d& p) const {
-  return body_field<true>(posed_->design, p);
+  return body_field<Derivatives::hessian>(posed_->design, p);
 }
 
 double MannequinModel::slope_bound() const {
@@ -1162,11 +1179,11 @@ Mannequin generate_mannequin() {
 }
 
 double mannequin_field(const Eigen::Vector3d& p) {
-  return body_field<false>(default_design(), p).value;
+  return body_field<Derivatives::none>(default_design(), p).value;
 }
 
 MannequinFieldValue mannequin_field_derivatives(const Eigen::Vector3d& p) {
-  return body_field<true>(default_design(), p);
+  return body_field<Derivatives::hessian>(default_design(), p);
 }
 
 const Bone& Mannequin::bone(const std::string& name) const {

@@ -121,7 +121,8 @@ public:
   MannequinModel posed(const Pose& pose) const;
 
   double field(const Eigen::Vector3d& p) const;
-  // The value and gradient alone (the Hessian zero): cheaper by about half.
+  // The value and gradient alone (the Hessian zero): cheaper by about half;
+  // field(p) computes the value alone.
   MannequinFieldValue field_gradient(const Eigen::Vector3d& p) const;
   MannequinFieldValue field_derivatives(const Eigen::Vector3d& p) const;
   // A bound on |gradient| outside the body (8 for the default's hands).
