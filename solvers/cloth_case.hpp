@@ -10,6 +10,7 @@
 #include "fem/cloth_problem.hpp"
 #include "fem/dynamics.hpp"
 #include "fem/statics.hpp"
+#include "garment/pattern.hpp"
 #include "mesh/triangle_mesh.hpp"
 #include "solvers/certificate_case.hpp"
 #include "solvers/cli.hpp"
@@ -110,6 +111,12 @@ struct CaseCloth {
                      const std::vector<SeamSpring>&, Vec)>
       after_statics;
 };
+// The panels' fabrics as the case's materials: cloth->fabrics lists each
+// fabric once, in the order the panels first name it, and the mesh's
+// material ids (panel indices on entry) become indices into that list. With
+// one fabric, -fabric names it for what reads it (creep parameters).
+void assign_panel_fabrics(const std::vector<garment::Panel>& panels, CaseCloth* cloth);
+
 CaseResult solve_case(const Options& options, int extra_refinements = 0,
                       const CaseStepObserver& observe = {},
                       const CaseCheckpointing& checkpointing = {},

@@ -429,17 +429,7 @@ CaseCloth drape_cloth(const Options& options, const ConstructedGarment& construc
     cloth.mesh.material_ids.clear();
     return cloth;
   }
-  std::vector<int> fabric_of_panel;
-  for (const auto& panel : constructed.pattern.panels) {
-    auto found = std::find(cloth.fabrics.begin(), cloth.fabrics.end(), panel.fabric);
-    if (found == cloth.fabrics.end()) found = cloth.fabrics.insert(found, panel.fabric);
-    fabric_of_panel.push_back(int(found - cloth.fabrics.begin()));
-  }
-  for (int& id : cloth.mesh.material_ids)
-    id = fabric_of_panel[std::size_t(id)];
-  // One fabric: --fabric names it, for what reads it (creep parameters).
-  if (cloth.fabrics.size() == 1)
-    SartorPetscCall(PetscOptionsSetValue(nullptr, "-fabric", cloth.fabrics.front().c_str()));
+  assign_panel_fabrics(constructed.pattern.panels, &cloth);
   return cloth;
 }
 

@@ -986,6 +986,19 @@ void measure_displacements(const TriangleMesh& mesh, CaseResult* result) {
 
 } // namespace
 
+void assign_panel_fabrics(const std::vector<garment::Panel>& panels, CaseCloth* cloth) {
+  std::vector<int> fabric_of_panel;
+  for (const garment::Panel& panel : panels) {
+    auto found = std::find(cloth->fabrics.begin(), cloth->fabrics.end(), panel.fabric);
+    if (found == cloth->fabrics.end()) found = cloth->fabrics.insert(found, panel.fabric);
+    fabric_of_panel.push_back(int(found - cloth->fabrics.begin()));
+  }
+  for (int& id : cloth->mesh.material_ids)
+    id = fabric_of_panel[std::size_t(id)];
+  if (cloth->fabrics.size() == 1)
+    SartorPetscCall(PetscOptionsSetValue(nullptr, "-fabric", cloth->fabrics.front().c_str()));
+}
+
 CaseResult solve_case(const Options& options, int extra_refinements,
                       const CaseStepObserver& observe, const CaseCheckpointing& checkpointing,
                       const CaseCloth* cloth) {

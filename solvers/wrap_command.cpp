@@ -93,17 +93,9 @@ void drape_wrapped(const Invocation& invocation, const garment::WrapResult& wrap
   CaseCloth cloth;
   cloth.mesh = wrapped.mesh;
   ClothOutputLabels labels{{}, {}, wrapped.mesh.material_ids};
-  std::vector<int> fabric_of_panel;
-  for (const garment::Panel& panel : pattern.panels) {
+  for (const garment::Panel& panel : pattern.panels)
     labels.panels.push_back(panel.id);
-    auto found = std::find(cloth.fabrics.begin(), cloth.fabrics.end(), panel.fabric);
-    if (found == cloth.fabrics.end()) found = cloth.fabrics.insert(found, panel.fabric);
-    fabric_of_panel.push_back(int(found - cloth.fabrics.begin()));
-  }
-  for (int& id : cloth.mesh.material_ids)
-    id = fabric_of_panel[std::size_t(id)];
-  if (cloth.fabrics.size() == 1)
-    SartorPetscCall(PetscOptionsSetValue(nullptr, "-fabric", cloth.fabrics.front().c_str()));
+  assign_panel_fabrics(pattern.panels, &cloth);
   labels.fabrics = cloth.fabrics;
   const CaseResult result = solve_case(invocation.options, 0, {}, {}, &cloth);
   const std::string drape_directory = directory + "/drape";
