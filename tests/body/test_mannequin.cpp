@@ -217,4 +217,26 @@ TEST(SmoothMannequin, SurfaceIsTheMeshsSurfaceAndQueriesAreConsistent) {
   }
 }
 
+// Contact asks for the distance alone (energies, step bounds) or with the
+// normal (forces): those are the full query's, computed without the
+// curvature, and a posed, sized body answers the same way.
+TEST(SmoothMannequin, PartialQueriesAreTheFullQuerysFields) {
+  using sartor::contact::QueryNeeds;
+  const auto standing = sartor::contact::make_smooth_mannequin_shape();
+  const auto posed = sartor::contact::make_posed_mannequin_shape(
+      sartor::MannequinModel(), sartor::contact::parse_pose_history("0:knee_l:60").at(0.0));
+  for (const auto* shape : {standing.get(), posed.get()}) {
+    for (const Eigen::Vector3d& p : points_near_the_surface(500, -0.01, 0.05)) {
+      const sartor::contact::SurfaceQuery full = shape->query(p);
+      const sartor::contact::SurfaceQuery normal = shape->partial_query(p, QueryNeeds::normal);
+      const double distance = shape->partial_query(p, QueryNeeds::distance).distance;
+      EXPECT_NEAR(distance, full.distance, 1e-12) << p.transpose();
+      EXPECT_NEAR(normal.distance, full.distance, 1e-12) << p.transpose();
+      EXPECT_LT((normal.normal - full.normal).norm(), 1e-12) << p.transpose();
+      EXPECT_LT((normal.closest - full.closest).norm(), 1e-12) << p.transpose();
+      EXPECT_TRUE(normal.hessian.isZero(0.0));
+    }
+  }
+}
+
 } // namespace
