@@ -288,12 +288,15 @@ Vector3d rotated(const Vector3d& v, const Vector3d& unit_axis, double radians) {
 TEST(PosedMannequin, KneeBentNinetyDegreesPutsTheAnkleBehindTheKnee) {
   const MannequinModel& body = sized("default");
   const MannequinModel bent = body.posed(sartor::parse_pose("knee_l:90"));
-  const sartor::Bone& shin = bone(body.skeleton(), "shin_l");
+  // bone() returns a reference into the skeleton: keep it alive.
+  const std::vector<sartor::Bone> rest_skeleton = body.skeleton();
+  const sartor::Bone& shin = bone(rest_skeleton, "shin_l");
   const Vector3d lower_leg = shin.end - shin.start;
   // Flexion about the knee's transverse axis, the foot swinging backwards (+y).
   const Vector3d axis = lower_leg.cross(Vector3d::UnitY()).normalized();
   const Vector3d expected = shin.start + rotated(lower_leg, axis, M_PI / 2);
-  const sartor::Bone& posed_shin = bone(bent.skeleton(), "shin_l");
+  const std::vector<sartor::Bone> bent_skeleton = bent.skeleton();
+  const sartor::Bone& posed_shin = bone(bent_skeleton, "shin_l");
   EXPECT_LT((posed_shin.start - shin.start).norm(), 1e-12);
   EXPECT_LT((posed_shin.end - expected).norm(), 1e-9) << posed_shin.end.transpose();
   EXPECT_GT(posed_shin.end.y() - shin.start.y(), 0.95 * lower_leg.norm()); // behind the knee
