@@ -155,7 +155,7 @@ DrapeLevel coarser_level(const garment::Construction& construction,
 double lift_point(const contact::Body& body, double offset, Eigen::Vector3d* x,
                   Eigen::Vector3d* displacement) {
   const Eigen::Vector3d start = *x;
-  const double depth = offset - body.query(*x, 0.0).distance;
+  const double depth = offset - body.distance(*x, 0.0);
   for (int k = 0; k < 4; ++k) {
     const contact::SurfaceQuery q = body.query(*x, 0.0);
     if (q.distance >= 0.5 * offset || q.normal.squaredNorm() == 0.0) break;

@@ -70,8 +70,7 @@ SurfaceQuery Body::query(const Eigen::Vector3d& x, double time, QueryNeeds needs
   const double s = motion.scale.at(time);
   const Eigen::Vector3d shift = pivot_ + motion.translation.at(time);
   const Eigen::Vector3d p = pivot_ + r.transpose() * (x - shift) / s;
-  const SurfaceQuery local =
-      needs == QueryNeeds::curvature ? shape_->query(p) : shape_->partial_query(p, needs);
+  const SurfaceQuery local = shape_->partial_query(p, needs);
   // d(x) = s d_b(p(x)), dp/dx = R^T / s: the normal rotates, the curvature
   // shrinks by the scale.
   SurfaceQuery world;

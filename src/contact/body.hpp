@@ -72,6 +72,10 @@ public:
   SurfaceQuery query(const Eigen::Vector3d& x, double time) const;
   // Only what `needs` asks for (Shape::partial_query), in world terms.
   SurfaceQuery query(const Eigen::Vector3d& x, double time, QueryNeeds needs) const;
+  // The signed distance alone (QueryNeeds::distance), m.
+  double distance(const Eigen::Vector3d& x, double time) const {
+    return query(x, time, QueryNeeds::distance).distance;
+  }
   // Body-frame point -> world point at time t, and back.
   Eigen::Vector3d to_world(const Eigen::Vector3d& p, double time) const;
   Eigen::Vector3d to_body(const Eigen::Vector3d& x, double time) const;

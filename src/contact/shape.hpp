@@ -35,8 +35,7 @@ public:
   // keep their defaults). The fields asked for are those of query(p), bit
   // for bit. Shapes whose curvature is costly (the mannequin's implicit
   // surface, where it took most of a drape's contact time) override it.
-  virtual SurfaceQuery partial_query(const Eigen::Vector3d& p, QueryNeeds needs) const {
-    (void)needs;
+  virtual SurfaceQuery partial_query(const Eigen::Vector3d& p, QueryNeeds /*needs*/) const {
     return query(p);
   }
   // One line for logs and summaries, e.g. "sphere r=0.3".

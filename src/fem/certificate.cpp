@@ -93,7 +93,7 @@ double lowest_distance_along(const contact::Body& body, double clock, const Eige
   double lowest = std::numeric_limits<double>::infinity();
   for (double s = 0.0;;) {
     const Eigen::Vector3d p = length > 0.0 ? Eigen::Vector3d(a + (s / length) * (b - a)) : a;
-    const double d = body.query(p, clock, contact::QueryNeeds::distance).distance;
+    const double d = body.distance(p, clock);
     lowest = std::min(lowest, d);
     if (s >= length) break;
     s = std::min(length, s + std::max(std::abs(d) / slope, floor_step));
@@ -110,8 +110,7 @@ void check_geometry(const ClothProblem& problem, const VertexForces& forces,
   for (std::size_t v = 0; v < free.size(); ++v) {
     if (!free[v]) continue;
     for (const contact::Body& body : problem.bodies) {
-      const double d =
-          body.query(forces.positions[v], clock, contact::QueryNeeds::distance).distance;
+      const double d = body.distance(forces.positions[v], clock);
       if (d < c->min_distance) {
         c->min_distance = d;
         c->deepest_vertex = long(v);
@@ -127,9 +126,8 @@ void check_geometry(const ClothProblem& problem, const VertexForces& forces,
     bool ends_outside = true;
     for (const contact::Body& body : problem.bodies) {
       lowest = std::min(lowest, lowest_distance_along(body, clock, pa, pb, 0.1 * offset));
-      ends_outside = ends_outside &&
-                     body.query(pa, clock, contact::QueryNeeds::distance).distance >= 0.0 &&
-                     body.query(pb, clock, contact::QueryNeeds::distance).distance >= 0.0;
+      ends_outside =
+          ends_outside && body.distance(pa, clock) >= 0.0 && body.distance(pb, clock) >= 0.0;
     }
     if (lowest >= 0.0) continue;
     ++c->edges_inside;

@@ -132,10 +132,7 @@ double ClothProblem::vertex_step_bound(std::size_t body, const Eigen::Vector3d& 
   const double length = motion.norm();
   const double slope = b.shape().slope_bound();
   if (length == 0.0) return 1.0;
-  const auto distance_at = [&](const Eigen::Vector3d& at) {
-    return b.query(at, contact_clock(), contact::QueryNeeds::distance).distance;
-  };
-  double distance = distance_at(p);
+  double distance = b.distance(p, contact_clock());
   if (distance <= 0.0) return 1.0; // inside: the penalty pushes it out
   // Never closer than a tenth of the offset in one step (nor than half its
   // distance when it is closer already): the penalty, which acts within the
@@ -155,7 +152,7 @@ double ClothProblem::vertex_step_bound(std::size_t body, const Eigen::Vector3d& 
     if (t + room >= 1.0) return 1.0;
     t += room;
     if (room <= 1e-14) break;
-    distance = distance_at(p + t * motion);
+    distance = b.distance(p + t * motion, contact_clock());
   }
   return t;
 }
