@@ -103,7 +103,7 @@ public:
     }
     // Shear: W = k3 G01^2 / 2 at zero strain is G g^2 / 2 with g = 2 G01.
     fabric.shear_modulus = table_stiffness(stretch, 0.0, 0.0, 0.0)[3] / 4.0;
-    fabric.bending = table_bending_curves(bend);
+    fabric.bending = table_bending_curves(bend, fabric.warnings);
   }
 
 private:
@@ -147,24 +147,41 @@ private:
   // Warp curvature bends along the warp: fold lines across it (90 degrees);
   // weft curvature: fold lines along the warp (0). Twist from the bias row by
   // cylindrical bending at 45 degrees, D_45 = (D_warp + D_weft)/4 + D_twist.
-  FabricBending table_bending_curves(const BendingTable& table) const {
+  // Where the bias row is below a quarter of the sum (the plate would need a
+  // negative coupling, which one constant cannot follow along the curves),
+  // the twist rigidity is held at 0 and `warnings` says where and by how much.
+  FabricBending table_bending_curves(const BendingTable& table,
+                                     std::vector<std::string>& warnings) const {
     constexpr double quarter = 0.78539816339744831;
     const std::string where = path_ + ": bending";
     FabricBending curves{table_moment_curve(table, 2.0 * quarter, where + " (warp, 90 degree row)"),
                          table_moment_curve(table, 0.0, where + " (weft, 0 degree row)"),
                          MomentCurve::linear(1.0, where)};
     std::vector<CurvePoint> twist;
+    std::vector<double> held; // curvatures where the twist rigidity is held at 0
+    double stiffer = 0.0;     // the largest relative excess of the bias rigidity
     for (const CurvePoint& p : curves.warp.points()) {
       if (p.strain == 0.0) continue;
       const double kappa = p.strain;
+      const double bias = table_bending_rigidity(table, kappa, quarter);
       const double rigidity =
-          table_bending_rigidity(table, kappa, quarter) -
-          0.25 * (curves.warp.moment(kappa) + curves.weft.moment(kappa)) / kappa;
-      twist.push_back({kappa, rigidity * kappa});
+          bias - 0.25 * (curves.warp.moment(kappa) + curves.weft.moment(kappa)) / kappa;
+      if (rigidity < 0.0) {
+        held.push_back(kappa);
+        stiffer = std::max(stiffer, -rigidity / bias);
+      }
+      twist.push_back({kappa, std::max(rigidity, 0.0) * kappa});
     }
-    curves.twist = MomentCurve::piecewise(
-        twist,
-        where + " (twist: the 45 degree row must exceed a quarter of the warp's and weft's sum)");
+    if (!held.empty()) {
+      std::ostringstream text;
+      text.precision(3);
+      text << where << ": the 45 degree row is below a quarter of the warp's and weft's sum at "
+           << held.size() << " of " << twist.size() << " curvatures (" << held.front() << " to "
+           << held.back() << " 1/m): the twist rigidity is held at 0 there, so bias folds bend"
+           << " up to " << 100.0 * stiffer << " % stiffer than the table";
+      warnings.push_back(text.str());
+    }
+    curves.twist = MomentCurve::measured(twist, where + " (twist)");
     return curves;
   }
 

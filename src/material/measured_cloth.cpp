@@ -151,9 +151,20 @@ MomentCurve MomentCurve::linear(double rigidity, const std::string& context) {
   return MomentCurve(TensionCurve::linear(rigidity, context));
 }
 
+namespace {
+CurveRules moment_rules(bool softening) {
+  return {"moment-curvature curve", "curvature", "moment", "N", softening};
+}
+} // namespace
+
 MomentCurve MomentCurve::piecewise(const std::vector<CurvePoint>& points,
                                    const std::string& context) {
-  return MomentCurve(TensionCurve::piecewise(points, context + " (moment-curvature)"));
+  return MomentCurve(TensionCurve::piecewise(points, context, moment_rules(false)));
+}
+
+MomentCurve MomentCurve::measured(const std::vector<CurvePoint>& points,
+                                  const std::string& context) {
+  return MomentCurve(TensionCurve::piecewise(points, context, moment_rules(true)));
 }
 
 double MomentCurve::moment(double curvature) const {
@@ -178,7 +189,7 @@ MomentCurve table_moment_curve(const BendingTable& table, double angle,
     points.push_back({kappa, table_bending_rigidity(table, kappa, angle) * kappa});
   }
   points.push_back({2.0 * last, table_bending_rigidity(table, last, angle) * 2.0 * last});
-  return MomentCurve::piecewise(points, context);
+  return MomentCurve::measured(points, context);
 }
 
 TensionCurve table_tension_curve(const StretchingTable& table, bool along_weft, bool green,

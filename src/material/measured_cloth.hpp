@@ -97,6 +97,10 @@ public:
   static MomentCurve linear(double rigidity, const std::string& context); // N m
   // Points (curvature, moment) after the origin, strictly increasing.
   static MomentCurve piecewise(const std::vector<CurvePoint>& points, const std::string& context);
+  // The points of a measured table: the moment may fall where the table's
+  // rigidity softens faster than 1/curvature (11oz denim's warp between 15
+  // and 20 1/m); it stays >= 0 and does not fall on the last segment.
+  static MomentCurve measured(const std::vector<CurvePoint>& points, const std::string& context);
   double moment(double curvature) const;
   double stiffness(double curvature) const;      // dM/dk, N m
   double energy_density(double curvature) const; // J/m^2

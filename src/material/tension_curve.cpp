@@ -10,15 +10,43 @@ namespace sartor {
 
 namespace {
 
-[[noreturn]] void reject(const std::string& context, const std::string& what) {
-  throw InputError(context + ": tension-strain curve: " + what);
+[[noreturn]] void reject(const std::string& context, const CurveRules& rules,
+                         const std::string& what) {
+  throw InputError(context + ": " + rules.name + ": " + what);
 }
 
-std::string point_text(std::size_t index, const CurvePoint& p) {
+std::string point_text(std::size_t index, const CurvePoint& p, const CurveRules& rules) {
   std::ostringstream text;
   text.precision(10);
-  text << "point " << index << " (strain " << p.strain << ", tension " << p.tension << " N/m)";
+  text << "point " << index << " (" << rules.abscissa << " " << p.strain << ", " << rules.ordinate
+       << " " << p.tension << " " << rules.unit << ")";
   return text.str();
+}
+
+void check_points(const std::vector<CurvePoint>& all, const std::string& context,
+                  const CurveRules& rules) {
+  if (all.size() < 2) reject(context, rules, "needs at least one point besides the origin");
+  for (std::size_t i = 1; i < all.size(); ++i) {
+    const CurvePoint& p = all[i];
+    const std::string point = point_text(i, p, rules);
+    if (!std::isfinite(p.strain) || !std::isfinite(p.tension)) {
+      reject(context, rules, point + " is not finite");
+    }
+    if (p.strain <= all[i - 1].strain) {
+      reject(context, rules, point + ": " + rules.abscissa + "s must increase strictly from 0");
+    }
+    if (!rules.softening && p.tension <= all[i - 1].tension) {
+      reject(context, rules, point + ": " + rules.ordinate + "s must increase strictly from 0");
+    }
+    if (rules.softening && p.tension < 0.0) {
+      reject(context, rules, point + ": " + rules.ordinate + "s must be >= 0");
+    }
+  }
+  if (rules.softening && all.back().tension < all[all.size() - 2].tension) {
+    reject(context, rules,
+           point_text(all.size() - 1, all.back(), rules) + ": the last segment, which goes on " +
+               "beyond it, must not fall (else the energy has no lower bound)");
+  }
 }
 
 } // namespace
@@ -28,31 +56,19 @@ TensionCurve TensionCurve::linear(double modulus, const std::string& context) {
     std::ostringstream text;
     text.precision(17);
     text << "elastic modulus = " << modulus << " N/m must be a finite number > 0";
-    reject(context, text.str());
+    reject(context, CurveRules{}, text.str());
   }
   return TensionCurve({{0.0, 0.0}, {1.0, modulus}});
 }
 
 TensionCurve TensionCurve::piecewise(const std::vector<CurvePoint>& points,
-                                     const std::string& context) {
+                                     const std::string& context, const CurveRules& rules) {
   std::vector<CurvePoint> all{{0.0, 0.0}};
   // The origin may be given explicitly; it is implied otherwise.
   const bool starts_at_origin =
       !points.empty() && points.front().strain == 0.0 && points.front().tension == 0.0;
   all.insert(all.end(), points.begin() + (starts_at_origin ? 1 : 0), points.end());
-  if (all.size() < 2) reject(context, "needs at least one point besides the origin");
-  for (std::size_t i = 1; i < all.size(); ++i) {
-    const CurvePoint& p = all[i];
-    if (!std::isfinite(p.strain) || !std::isfinite(p.tension)) {
-      reject(context, point_text(i, p) + " is not finite");
-    }
-    if (p.strain <= all[i - 1].strain) {
-      reject(context, point_text(i, p) + ": strains must increase strictly from 0");
-    }
-    if (p.tension <= all[i - 1].tension) {
-      reject(context, point_text(i, p) + ": tensions must increase strictly from 0");
-    }
-  }
+  check_points(all, context, rules);
   return TensionCurve(std::move(all));
 }
 

@@ -144,6 +144,32 @@ TEST(MeasuredCurves, MomentCurveGivesTheTablesMomentAtItsCurvatures) {
   EXPECT_NEAR(table_bending_rigidity(t, 10.0, pi / 8.0), 0.5 * (5.2e-6 + 4.5e-6), 1e-15);
 }
 
+// Measured tables may soften faster than 1/curvature (the 11oz denim of
+// Wang et al. 2011, warp: ke about 62 then 20 uN m at 15 and 20 1/m): the
+// moment ke * kappa falls there, and the curve keeps it.
+TEST(MeasuredCurves, SofteningTableGivesAFallingMoment) {
+  BendingTable t = made_up_bending();
+  t.rows[2] = {64e-6, 60e-6, 61e-6, 62e-6, 20e-6};
+  const MomentCurve warp = table_moment_curve(t, pi / 2.0, "denim.json: bending");
+  EXPECT_NEAR(warp.moment(15.0), 62e-6 * 15.0, 1e-12);
+  EXPECT_NEAR(warp.moment(20.0), 20e-6 * 20.0, 1e-12);
+  EXPECT_LT(warp.stiffness(17.0), 0.0);
+  EXPECT_GT(warp.stiffness(30.0), 0.0); // beyond the table: ke stays at 20 uN m
+  // Energy through the fall: the integral of the moment's pieces (4 per
+  // table interval: ke linear in kappa between columns, so the moment is
+  // sampled at 16.25, 17.5, 18.75 1/m).
+  double energy = warp.energy_density(15.0);
+  double kappa = 15.0, moment = 62e-6 * 15.0;
+  for (int j = 1; j <= 4; ++j) {
+    const double next = 15.0 + 1.25 * j;
+    const double next_moment = (62e-6 + (20e-6 - 62e-6) * (next - 15.0) / 5.0) * next;
+    energy += 0.5 * (moment + next_moment) * (next - kappa);
+    kappa = next;
+    moment = next_moment;
+  }
+  EXPECT_NEAR(warp.energy_density(20.0), energy, 1e-12 * energy);
+}
+
 std::string write(const std::string& name, const std::string& text) {
   const auto path = test_support::scratch_folder("sartor_measured_cloth") / name;
   std::ofstream(path) << text;
@@ -172,6 +198,26 @@ TEST(MeasuredFabricFile, ArcsimLayoutGivesDensityCurvesAndTable) {
   EXPECT_THROW(fabric.check_creep(), InputError);
   // A measured file as --fabric.
   EXPECT_EQ(resolve_fabrics(write("cotton2.json", measured_json)).size(), 2u);
+}
+
+// A bias row below a quarter of warp + weft (Wang et al.'s gray interlock at
+// 20 1/m) would need a negative twist rigidity: it is held at 0 there, and a
+// warning names the file, the curvatures and the excess of the bias rigidity.
+TEST(MeasuredFabricFile, LowBiasRowHoldsTheTwistAtZeroAndWarns) {
+  const Fabric fabric = load_measured_fabric(write("interlock.json", R"({"density": 0.19,
+  "stretching": [[2500, 300, 2000, 100], [20000, 500, 16000, 300], [15000, 450, 12000, 400],
+                 [8000, 400, 7000, 600], [14000, 450, 13000, 400], [18000, 500, 17000, 300]],
+  "bending": [[4.0e-6, 4.6e-6, 5.2e-6, 5.8e-6, 6.4e-6], [3.5e-6, 4.0e-6, 4.5e-6, 5.0e-6, 1.0e-6],
+              [5.0e-6, 5.8e-6, 6.6e-6, 7.4e-6, 8.2e-6]]})"));
+  // At 15 1/m: 5.0 - (5.8 + 7.4) / 4 = 1.7 uN m; at 20 1/m: 1.0 - 3.65 < 0.
+  EXPECT_NEAR(fabric.bending->twist.moment(15.0), 15.0 * 1.7e-6, 1e-15);
+  EXPECT_EQ(fabric.bending->twist.moment(20.0), 0.0);
+  EXPECT_EQ(fabric.bending->twist.moment(30.0), 0.0);
+  ASSERT_EQ(fabric.warnings.size(), 1u);
+  const std::string& warning = fabric.warnings.front();
+  for (const std::string words : {"interlock.json: bending: the 45 degree row", "17.5 to 40 1/m",
+                                  "held at 0", "up to 265 % stiffer"})
+    EXPECT_NE(warning.find(words), std::string::npos) << warning;
 }
 
 TEST(MeasuredFabricFile, BadTablesNameTheFileAndTheKey) {

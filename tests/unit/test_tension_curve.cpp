@@ -231,5 +231,41 @@ TEST(TensionCurveInvalid, NonFinitePointNamesThePoint) {
   expect_rejected({{nan, nan}}, {"point 1", "not finite"});
 }
 
+// A measured softening: the ordinate falls on one segment; the energy is
+// still the integral (trapezoids written here), the stiffness there negative.
+TEST(TensionCurveSoftening, FallingSegmentKeepsTheIntegralAsEnergy) {
+  CurveRules rules;
+  rules.softening = true;
+  const TensionCurve curve =
+      TensionCurve::piecewise({{1.0, 10.0}, {2.0, 4.0}, {4.0, 8.0}}, "table", rules);
+  EXPECT_DOUBLE_EQ(curve.stiffness(1.5), -6.0);
+  EXPECT_DOUBLE_EQ(curve.tension(1.5), 7.0);
+  EXPECT_NEAR(curve.energy_density(3.0), 0.5 * 10.0 + 0.5 * (10.0 + 4.0) + 0.5 * (4.0 + 6.0), 1e-12);
+  EXPECT_DOUBLE_EQ(curve.tension(5.0), 10.0); // the last segment goes on rising
+}
+
+TEST(TensionCurveSoftening, OrdinatesMustStayPositiveAndTheLastSegmentRise) {
+  CurveRules rules{"moment-curvature curve", "curvature", "moment", "N", true};
+  const auto rejected = [&](const std::vector<CurvePoint>& points, const std::string& words) {
+    try {
+      (void)TensionCurve::piecewise(points, "denim.json: bending", rules);
+      ADD_FAILURE() << "accepted an invalid curve";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("denim.json: bending: moment-curvature curve: " + words),
+                std::string::npos)
+          << what;
+    }
+  };
+  rejected({{1.0, 10.0}, {2.0, -1.0}, {3.0, 5.0}},
+           "point 2 (curvature 2, moment -1 N): moments must be >= 0");
+  rejected({{1.0, 10.0}, {2.0, 12.0}, {3.0, 11.0}},
+           "point 3 (curvature 3, moment 11 N): the last segment");
+  // A zero moment (a rigidity held at 0) and a flat last segment are kept.
+  const TensionCurve held =
+      TensionCurve::piecewise({{1.0, 10.0}, {2.0, 0.0}, {3.0, 0.0}}, "table", rules);
+  EXPECT_DOUBLE_EQ(held.energy_density(5.0), 10.0);
+}
+
 } // namespace
 } // namespace sartor
