@@ -15,11 +15,11 @@
 #   darts (37 degrees wide: the tag file's max_dart_angle_deg 40) and side
 #   bust darts, mirrored, and each back piece's waist dart; 6 dart seams.
 #   (TAGCON's shoulder and side seams of Bella are not right: not checked.)
-# The drapes (drape: 8 cm triangles on the mannequin, as
-# cases/garments/*_coarse.yaml; certified: *_certified.yaml, finer and
-# frictionless) must end on the body (drape.outcome), with no vertex inside
-# it and the seams closed; the certificate is printed, and the certified
-# cases' must be "certified".
+# The drapes (drape: 8 cm triangles, as cases/garments/*_coarse.yaml;
+# certified: *_certified.yaml, 4 cm), each on the mannequin sized to the
+# measurement set the pattern was drafted for (cisFemaleAdult36) with
+# friction, must end on the body (drape.outcome), with no vertex inside it,
+# the seams closed and the certificate "certified".
 #
 #   freesewing_import.sh SARTOR CASES_DIR OUT_DIR [drape|certified]
 set -euo pipefail
@@ -128,8 +128,9 @@ assert drape["converged"] and outcome["end"] == "on_body", outcome
 assert abs(outcome["centroid_drop_m"]) < outcome["drop_tolerance_m"], outcome
 assert not drape["vertex_inside_body"], drape["max_penetration_m"]
 assert drape["largest_seam_gap_m"] < 1e-3, drape["largest_seam_gap_m"]
-if sys.argv[2].endswith("_certified"):
-    assert s["certificate"]["certified"], s["certificate"]["verdict"]
+assert s["certificate"]["certified"], s["certificate"]["verdict"]
+body = s["contact"]["bodies"][0]["body"]
+assert "sized" in body and "mu_s=0.3" in body, body
 print("%s: %d triangles, on the body, centroid drop %.3f m, lowest point %.3f m, seam gap %.1e m, "
       "certificate: %s" % (sys.argv[2], s["mesh"]["triangles"], outcome["centroid_drop_m"],
                            outcome["lowest_point_m"], drape["largest_seam_gap_m"],
