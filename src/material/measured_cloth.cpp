@@ -17,23 +17,38 @@ constexpr double row_strain = 1.0 / 6.0;
 constexpr double curvature_step = 5.0;
 constexpr int curvature_columns = 5;
 
-// Position of x on the grid axis starting at `first`: the cell index, the
-// fraction in it and d fraction / dx (zero where clamped to the grid).
-struct AxisPosition {
-  int cell = 0;
-  double fraction = 0.0;
-  double slope = 0.0;
+// Catmull-Rom stencil of x on the grid axis starting at `first`: the four
+// nodes around it, their weights and the weights' first and second
+// derivatives in x. Beyond the grid the stiffness is constant (derivatives
+// zero); below node 0 a stencil takes node 0 again, or, on the |G01| axis
+// (`even`), node 1 for node -1, so the stiffness is even in G01 and smooth
+// across G01 = 0.
+struct AxisStencil {
+  std::array<int, 4> node{};
+  std::array<double, 4> weight{}, slope{}, curvature{};
 };
 
-AxisPosition axis_position(double x, double first) {
-  const double scaled = (x - first) / MeasuredStretching::spacing;
+AxisStencil axis_stencil(double x, double first, bool even) {
+  const double h = MeasuredStretching::spacing;
+  const double scaled = (x - first) / h;
   const double last = MeasuredStretching::samples - 1;
-  AxisPosition p;
-  p.slope = scaled > 0.0 && scaled < last ? 1.0 / MeasuredStretching::spacing : 0.0;
+  const bool inside = scaled < last && (even || scaled > 0.0);
   const double clamped = std::clamp(scaled, 0.0, last);
-  p.cell = std::min(int(std::floor(clamped)), MeasuredStretching::samples - 2);
-  p.fraction = clamped - p.cell;
-  return p;
+  const int cell = std::min(int(std::floor(clamped)), MeasuredStretching::samples - 2);
+  const double t = clamped - cell, t2 = t * t, t3 = t2 * t;
+  AxisStencil a;
+  a.weight = {0.5 * (-t3 + 2.0 * t2 - t), 0.5 * (3.0 * t3 - 5.0 * t2 + 2.0),
+              0.5 * (-3.0 * t3 + 4.0 * t2 + t), 0.5 * (t3 - t2)};
+  const double d1 = inside ? 1.0 / h : 0.0, d2 = d1 * d1;
+  a.slope = {d1 * 0.5 * (-3.0 * t2 + 4.0 * t - 1.0), d1 * 0.5 * (9.0 * t2 - 10.0 * t),
+             d1 * 0.5 * (-9.0 * t2 + 8.0 * t + 1.0), d1 * 0.5 * (3.0 * t2 - 2.0 * t)};
+  a.curvature = {d2 * (2.0 - 3.0 * t), d2 * (9.0 * t - 5.0), d2 * (4.0 - 9.0 * t),
+                 d2 * (3.0 * t - 1.0)};
+  for (int n = 0; n < 4; ++n) {
+    const int index = cell - 1 + n;
+    a.node[std::size_t(n)] = index < 0 ? (even ? -index : 0) : std::min(index, int(last));
+  }
+  return a;
 }
 
 } // namespace
@@ -70,30 +85,28 @@ MeasuredStretching::MeasuredStretching(const StretchingTable& table) : table_(ta
 
 MeasuredStretching::Stiffness MeasuredStretching::stiffness(double g00, double g11,
                                                             double g01) const {
-  const AxisPosition a = axis_position(g00, lowest);
-  const AxisPosition b = axis_position(g11, lowest);
-  AxisPosition c = axis_position(std::abs(g01), 0.0);
-  if (g01 < 0.0) c.slope = -c.slope; // |G01|
-  const std::array<AxisPosition, 3> axes{a, b, c};
+  const AxisStencil a = axis_stencil(g00, lowest, false);
+  const AxisStencil b = axis_stencil(g11, lowest, false);
+  AxisStencil c = axis_stencil(std::abs(g01), 0.0, true);
+  if (g01 < 0.0) // k is even in G01: odd first derivatives
+    for (double& slope : c.slope) slope = -slope;
   Stiffness s;
-  for (int corner = 0; corner < 8; ++corner) {
-    // Per axis: the weight (1 - x or x) and its derivative in x (-1 or 1).
-    std::array<double, 3> weight{}, sign{};
-    for (std::size_t d = 0; d < 3; ++d) {
-      const bool upper = (corner >> d) & 1;
-      weight[d] = upper ? axes[d].fraction : 1.0 - axes[d].fraction;
-      sign[d] = upper ? 1.0 : -1.0;
-    }
-    const Eigen::Vector4d& value =
-        node(a.cell + (corner & 1), b.cell + ((corner >> 1) & 1), c.cell + ((corner >> 2) & 1));
-    s.value += weight[0] * weight[1] * weight[2] * value;
-    s.gradient.col(0) += sign[0] * a.slope * weight[1] * weight[2] * value;
-    s.gradient.col(1) += sign[1] * b.slope * weight[0] * weight[2] * value;
-    s.gradient.col(2) += sign[2] * c.slope * weight[0] * weight[1] * value;
-    s.mixed[0] += sign[0] * sign[1] * a.slope * b.slope * weight[2] * value;
-    s.mixed[1] += sign[0] * sign[2] * a.slope * c.slope * weight[1] * value;
-    s.mixed[2] += sign[1] * sign[2] * b.slope * c.slope * weight[0] * value;
-  }
+  for (std::size_t i = 0; i < 4; ++i)
+    for (std::size_t j = 0; j < 4; ++j)
+      for (std::size_t l = 0; l < 4; ++l) {
+        const Eigen::Vector4d& value = node(a.node[i], b.node[j], c.node[l]);
+        const double wa = a.weight[i], wb = b.weight[j], wc = c.weight[l];
+        s.value += wa * wb * wc * value;
+        s.gradient.col(0) += a.slope[i] * wb * wc * value;
+        s.gradient.col(1) += wa * b.slope[j] * wc * value;
+        s.gradient.col(2) += wa * wb * c.slope[l] * value;
+        s.second[0] += a.curvature[i] * wb * wc * value;
+        s.second[1] += wa * b.curvature[j] * wc * value;
+        s.second[2] += wa * wb * c.curvature[l] * value;
+        s.second[3] += a.slope[i] * b.slope[j] * wc * value;
+        s.second[4] += a.slope[i] * wb * c.slope[l] * value;
+        s.second[5] += wa * b.slope[j] * c.slope[l] * value;
+      }
   return s;
 }
 
@@ -115,11 +128,14 @@ StrainEnergy MeasuredStretching::energy(double g00, double g11, double g01) cons
       2.0 * k.value[1], 2.0 * k.value[2], 0.0,         //
       0.0, 0.0, 2.0 * k.value[3];
   const Eigen::Matrix3d cross = k.gradient.transpose() * dq;
-  Eigen::Matrix3d mixed = Eigen::Matrix3d::Zero();
-  mixed(0, 1) = mixed(1, 0) = k.mixed[0].dot(q);
-  mixed(0, 2) = mixed(2, 0) = k.mixed[1].dot(q);
-  mixed(1, 2) = mixed(2, 1) = k.mixed[2].dot(q);
-  w.hessian = 0.5 * (mixed + cross + cross.transpose() + second_q);
+  Eigen::Matrix3d second_k; // (d2k/dg_m dg_n) . q
+  second_k(0, 0) = k.second[0].dot(q);
+  second_k(1, 1) = k.second[1].dot(q);
+  second_k(2, 2) = k.second[2].dot(q);
+  second_k(0, 1) = second_k(1, 0) = k.second[3].dot(q);
+  second_k(0, 2) = second_k(2, 0) = k.second[4].dot(q);
+  second_k(1, 2) = second_k(2, 1) = k.second[5].dot(q);
+  w.hessian = 0.5 * (second_k + cross + cross.transpose() + second_q);
   return w;
 }
 

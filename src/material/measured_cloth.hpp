@@ -16,10 +16,13 @@
 // f = t - i: row 0 is the stiffness at zero strain, rows 1..5 at a principal
 // strain of 1/6 along 0, 22.5, 45, 67.5 and 90 degrees. As ARCSim, k is
 // sampled on a 30^3 grid of (G00, G11, |G01|) (G00, G11 from -0.25 in steps
-// of 1/30, |G01| from 0) and interpolated trilinearly, constant beyond the
-// grid: this keeps k continuous where the principal direction is undefined
-// (equal principal stretches). W is then an energy of G with exact first and
-// second derivatives (within a grid cell k is trilinear).
+// of 1/30, |G01| from 0), constant beyond the grid: this keeps k continuous
+// where the principal direction is undefined (equal principal stretches).
+// Between the nodes k is interpolated by Catmull-Rom cubics (ARCSim:
+// trilinear), so that k, and with it the stress, is continuous across the
+// cells' faces and across G01 = 0: with trilinear k the stress jumps there,
+// and Newton's residual cannot fall below the jump (soft knits stalled).
+// W is then an energy of G with exact first and second derivatives.
 //
 // Bending. Rows: fold lines at 0, 45 and 90 degrees to the warp (ARCSim's
 // hinge edge direction); columns: curvature 0, 5, 10, 15, 20 1/m. The
@@ -63,14 +66,14 @@ public:
   static constexpr double lowest = -0.25; // first node of G00 and G11
   explicit MeasuredStretching(const StretchingTable& table);
 
-  // Trilinear stiffness and its derivatives over g (rows k0..k3).
+  // The interpolated stiffness and its derivatives over g (rows k0..k3).
   struct Stiffness {
     Eigen::Vector4d value = Eigen::Vector4d::Zero();
     Eigen::Matrix<double, 4, 3> gradient = Eigen::Matrix<double, 4, 3>::Zero();
-    // Mixed second derivatives (the only ones of a trilinear map): d2k/dg_m dg_n
-    // for (m, n) = (0, 1), (0, 2), (1, 2).
-    std::array<Eigen::Vector4d, 3> mixed{Eigen::Vector4d::Zero(), Eigen::Vector4d::Zero(),
-                                         Eigen::Vector4d::Zero()};
+    // d2k/dg_m dg_n for (m, n) = (0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2).
+    std::array<Eigen::Vector4d, 6> second{
+        Eigen::Vector4d::Zero(), Eigen::Vector4d::Zero(), Eigen::Vector4d::Zero(),
+        Eigen::Vector4d::Zero(), Eigen::Vector4d::Zero(), Eigen::Vector4d::Zero()};
   };
   Stiffness stiffness(double g00, double g11, double g01) const;
   StrainEnergy energy(double g00, double g11, double g01) const;

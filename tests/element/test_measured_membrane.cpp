@@ -1,7 +1,7 @@
 // The measured membrane model (Wang et al. 2011 table, ARCSim's grid):
 // derivatives by finite differences, and the energy of uniaxial stretches
 // along the warp, the weft and the bias against the table evaluated here
-// (the definition at the grid's nodes, trilinear between them).
+// (the definition at the grid's nodes, Catmull-Rom cubics between them).
 
 #include "element/membrane.hpp"
 
@@ -59,7 +59,16 @@ Eigen::Vector4d definition(const StretchingTable& t, const Matrix2d& g) {
   return k;
 }
 
-// ARCSim's lookup: nodes at G00, G11 = -0.25 + i/30, |G01| = k/30; trilinear.
+// The Catmull-Rom cubic through p0..p3 at t in [0, 1] between p1 and p2.
+Eigen::Vector4d catmull_rom(const std::array<Eigen::Vector4d, 4>& p, double t) {
+  return p[1] + 0.5 * t * (p[2] - p[0]) + t * t * (p[0] - 2.5 * p[1] + 2.0 * p[2] - 0.5 * p[3]) +
+         t * t * t * (1.5 * (p[1] - p[2]) + 0.5 * (p[3] - p[0]));
+}
+
+// The grid's lookup: the definition at nodes G00, G11 = -0.25 + i/30,
+// |G01| = k/30, interpolated by Catmull-Rom cubics one axis after the
+// other; node -1 is node 0 on the G00 and G11 axes and node 1 on the |G01|
+// axis (k even in G01).
 Eigen::Vector4d interpolated(const StretchingTable& t, const Matrix2d& g) {
   const double coordinate[3] = {(g(0, 0) + 0.25) * 30.0, (g(1, 1) + 0.25) * 30.0,
                                 std::abs(g(0, 1)) * 30.0};
@@ -69,19 +78,27 @@ Eigen::Vector4d interpolated(const StretchingTable& t, const Matrix2d& g) {
     cell[d] = int(std::floor(coordinate[d]));
     frac[d] = coordinate[d] - cell[d];
   }
-  Eigen::Vector4d k = Eigen::Vector4d::Zero();
-  for (int i = 0; i < 2; ++i)
-    for (int j = 0; j < 2; ++j)
-      for (int l = 0; l < 2; ++l) {
+  const auto index = [&](int d, int n) {
+    const int i = cell[d] - 1 + n;
+    return i < 0 ? (d == 2 ? -i : 0) : i;
+  };
+  std::array<Eigen::Vector4d, 4> along_g00;
+  for (int i = 0; i < 4; ++i) {
+    std::array<Eigen::Vector4d, 4> along_g11;
+    for (int j = 0; j < 4; ++j) {
+      std::array<Eigen::Vector4d, 4> along_g01;
+      for (int l = 0; l < 4; ++l) {
         Matrix2d node;
-        node(0, 0) = -0.25 + (cell[0] + i) / 30.0;
-        node(1, 1) = -0.25 + (cell[1] + j) / 30.0;
-        node(0, 1) = node(1, 0) = (cell[2] + l) / 30.0;
-        const double w =
-            (i ? frac[0] : 1 - frac[0]) * (j ? frac[1] : 1 - frac[1]) * (l ? frac[2] : 1 - frac[2]);
-        k += w * definition(t, node);
+        node(0, 0) = -0.25 + index(0, i) / 30.0;
+        node(1, 1) = -0.25 + index(1, j) / 30.0;
+        node(0, 1) = node(1, 0) = index(2, l) / 30.0;
+        along_g01[std::size_t(l)] = definition(t, node);
       }
-  return k;
+      along_g11[std::size_t(j)] = catmull_rom(along_g01, frac[2]);
+    }
+    along_g00[std::size_t(i)] = catmull_rom(along_g11, frac[1]);
+  }
+  return catmull_rom(along_g00, frac[0]);
 }
 
 MembraneMaterial measured_material() {
@@ -119,20 +136,21 @@ TEST(MeasuredMembrane, UniaxialStretchAlongWarpWeftAndBiasIsTheTablesEnergy) {
       EXPECT_NEAR(energy, reference, 1e-10 * reference) << degrees << " deg, " << stretch;
     }
   }
-  // On the grid's nodes the energy is the definition's: warp at G00 = 0.25.
-  Matrix2d f = Matrix2d::Identity();
-  f(0, 0) = std::sqrt(1.5);
+  // On the grid's nodes the energy is the definition's: G00 = 0.25 (node
+  // 15), G11 = 1/60 (node 8), G01 = 0.
   Matrix2d g = Matrix2d::Zero();
   g(0, 0) = 0.25;
-  // G11 = 0 lies midway between nodes at -1/60 and 1/60: k is their mean.
-  Matrix2d below = g, above = g;
-  below(1, 1) = -1.0 / 60;
-  above(1, 1) = 1.0 / 60;
-  const double k0 = 0.5 * (definition(made_up(), below)[0] + definition(made_up(), above)[0]);
+  g(1, 1) = 1.0 / 60;
+  Matrix2d f = Matrix2d::Zero();
+  f(0, 0) = std::sqrt(1.5);
+  f(1, 1) = std::sqrt(1.0 + 2.0 / 60);
+  const Eigen::Vector4d k = definition(made_up(), g);
+  const double at_node = 0.5 * (k[0] * g(0, 0) * g(0, 0) + 2 * k[1] * g(0, 0) * g(1, 1) +
+                                k[2] * g(1, 1) * g(1, 1));
   EXPECT_NEAR(
       membrane(MembraneModel::measured, material, rest, {}, deformed(f), Want::energy).energy /
           rest.area,
-      0.5 * k0 * 0.0625, 1e-10 * k0);
+      at_node, 1e-10 * at_node);
 }
 
 TEST(MeasuredMembrane, DerivativesMatchFiniteDifferences) {

@@ -105,6 +105,32 @@ TEST(MeasuredStretching, EnergyDerivativesMatchFiniteDifferences) {
   }
 }
 
+// The stress (the energy's gradient) is continuous across a face of the grid
+// and across G01 = 0, where |G01| folds the grid: the stiffness has no kink
+// there. (Trilinear on the same nodes, the gradient jumps at both, by about
+// q dk/dg, and Newton's residual stalls at that size.)
+TEST(MeasuredStretching, StressIsContinuousAcrossGridFacesAndZeroShear) {
+  const MeasuredStretching table(made_up_stretching());
+  const double face = MeasuredStretching::lowest + 9 * MeasuredStretching::spacing; // node 9
+  const double h = 1e-9;
+  for (const Eigen::Vector3d& g :
+       {Eigen::Vector3d(face, 0.04, 0.013), Eigen::Vector3d(0.05, face, 0.021),
+        Eigen::Vector3d(0.06, 0.02, 0.0), Eigen::Vector3d(0.07, -0.01, 2.0 / 30.0)}) {
+    for (int m = 0; m < 3; ++m) {
+      Eigen::Vector3d below = g, above = g;
+      below[m] -= h;
+      above[m] += h;
+      const StrainEnergy wb = table.energy(below[0], below[1], below[2]);
+      const StrainEnergy wa = table.energy(above[0], above[1], above[2]);
+      const double scale = wa.gradient.cwiseAbs().maxCoeff();
+      EXPECT_LT((wa.gradient - wb.gradient).cwiseAbs().maxCoeff(), 1e-6 * scale)
+          << g.transpose() << ", axis " << m;
+    }
+  }
+  // The energy is even in G01.
+  EXPECT_DOUBLE_EQ(table.energy(0.05, 0.02, -0.013).energy, table.energy(0.05, 0.02, 0.013).energy);
+}
+
 TEST(MeasuredCurves, TensionCurveIsTheTablesStressAlongWarpAndWeft) {
   const StretchingTable t = made_up_stretching();
   const TensionCurve warp_green = table_tension_curve(t, false, true, "test");
