@@ -89,7 +89,8 @@ MeasuredStretching::Stiffness MeasuredStretching::stiffness(double g00, double g
   const AxisStencil b = axis_stencil(g11, lowest, false);
   AxisStencil c = axis_stencil(std::abs(g01), 0.0, true);
   if (g01 < 0.0) // k is even in G01: odd first derivatives
-    for (double& slope : c.slope) slope = -slope;
+    for (double& slope : c.slope)
+      slope = -slope;
   Stiffness s;
   for (std::size_t i = 0; i < 4; ++i)
     for (std::size_t j = 0; j < 4; ++j)

@@ -71,9 +71,9 @@ public:
     Eigen::Vector4d value = Eigen::Vector4d::Zero();
     Eigen::Matrix<double, 4, 3> gradient = Eigen::Matrix<double, 4, 3>::Zero();
     // d2k/dg_m dg_n for (m, n) = (0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2).
-    std::array<Eigen::Vector4d, 6> second{
-        Eigen::Vector4d::Zero(), Eigen::Vector4d::Zero(), Eigen::Vector4d::Zero(),
-        Eigen::Vector4d::Zero(), Eigen::Vector4d::Zero(), Eigen::Vector4d::Zero()};
+    std::array<Eigen::Vector4d, 6> second{Eigen::Vector4d::Zero(), Eigen::Vector4d::Zero(),
+                                          Eigen::Vector4d::Zero(), Eigen::Vector4d::Zero(),
+                                          Eigen::Vector4d::Zero(), Eigen::Vector4d::Zero()};
   };
   Stiffness stiffness(double g00, double g11, double g01) const;
   StrainEnergy energy(double g00, double g11, double g01) const;

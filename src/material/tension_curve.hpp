@@ -40,9 +40,9 @@ public:
   static TensionCurve piecewise(const std::vector<CurvePoint>& points, const std::string& context,
                                 const CurveRules& rules = {});
 
-  double tension(double strain) const;        // N/m
-  double stiffness(double strain) const;      // d tension / d strain, N/m
-  double energy_density(double strain) const; // J/m^2: integral of tension over strain
+  double tension(double strain) const;            // N/m
+  double stiffness(double strain) const;          // d tension / d strain, N/m
+  double energy_density(double strain) const;     // J/m^2: integral of tension over strain
   double strain_at_tension(double tension) const; // a curve without softening
 
   const std::vector<CurvePoint>& points() const { return points_; }

@@ -145,8 +145,8 @@ TEST(MeasuredMembrane, UniaxialStretchAlongWarpWeftAndBiasIsTheTablesEnergy) {
   f(0, 0) = std::sqrt(1.5);
   f(1, 1) = std::sqrt(1.0 + 2.0 / 60);
   const Eigen::Vector4d k = definition(made_up(), g);
-  const double at_node = 0.5 * (k[0] * g(0, 0) * g(0, 0) + 2 * k[1] * g(0, 0) * g(1, 1) +
-                                k[2] * g(1, 1) * g(1, 1));
+  const double at_node =
+      0.5 * (k[0] * g(0, 0) * g(0, 0) + 2 * k[1] * g(0, 0) * g(1, 1) + k[2] * g(1, 1) * g(1, 1));
   EXPECT_NEAR(
       membrane(MembraneModel::measured, material, rest, {}, deformed(f), Want::energy).energy /
           rest.area,

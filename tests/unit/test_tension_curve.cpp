@@ -240,7 +240,8 @@ TEST(TensionCurveSoftening, FallingSegmentKeepsTheIntegralAsEnergy) {
       TensionCurve::piecewise({{1.0, 10.0}, {2.0, 4.0}, {4.0, 8.0}}, "table", rules);
   EXPECT_DOUBLE_EQ(curve.stiffness(1.5), -6.0);
   EXPECT_DOUBLE_EQ(curve.tension(1.5), 7.0);
-  EXPECT_NEAR(curve.energy_density(3.0), 0.5 * 10.0 + 0.5 * (10.0 + 4.0) + 0.5 * (4.0 + 6.0), 1e-12);
+  EXPECT_NEAR(curve.energy_density(3.0), 0.5 * 10.0 + 0.5 * (10.0 + 4.0) + 0.5 * (4.0 + 6.0),
+              1e-12);
   EXPECT_DOUBLE_EQ(curve.tension(5.0), 10.0); // the last segment goes on rising
 }
 
