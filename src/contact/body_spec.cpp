@@ -19,6 +19,9 @@ namespace sartor::contact {
 
 namespace {
 
+// m: the default smoothing of a mesh body with a skeleton (mesh_shape.hpp).
+constexpr double default_garment_body_smoothing = 1e-4;
+
 using Eigen::Vector3d;
 
 // The key=value pairs of a spec, each used at most once and every one
@@ -227,7 +230,14 @@ std::pair<std::shared_ptr<const Shape>, Vector3d> make_shape(Fields& fields) {
     return {std::make_shared<Box>(center, size, rounding), center};
   }
   if (kind == "mesh") {
-    std::shared_ptr<const Shape> shape = load_mesh_shape(fields.text_required("file"));
+    // A body with a skeleton is one garments drape on: its distance is
+    // smoothed by default (edge contact samples settle on the creases of an
+    // exact polygonal distance and stall the minimiser; docs/bodies.md).
+    const double smoothing =
+        fields.number("smoothing", fields.has("skeleton") ? default_garment_body_smoothing : 0.0);
+    if (!(smoothing >= 0.0 && smoothing <= 0.01))
+      fields.fail("smoothing must lie in [0, 0.01] m, got " + Fields::format(smoothing));
+    std::shared_ptr<const Shape> shape = load_mesh_shape(fields.text_required("file"), smoothing);
     // Garment construction reads it (garment_body); contact checks it only.
     if (fields.has("skeleton"))
       read_skeleton_file(fields.text("skeleton"), read_body_obj(fields.text("file")));

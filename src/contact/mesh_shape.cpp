@@ -13,6 +13,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <iterator>
+#include <sstream>
 #include <unordered_map>
 
 namespace sartor::contact {
@@ -76,7 +78,8 @@ std::uint64_t edge_key(int a, int b) {
 
 class MeshShape final : public Shape {
 public:
-  MeshShape(BodyMesh mesh, std::string name) : mesh_(std::move(mesh)), name_(std::move(name)) {
+  MeshShape(BodyMesh mesh, std::string name, double smoothing)
+      : mesh_(std::move(mesh)), name_(std::move(name)), smoothing_(smoothing) {
     const std::size_t face_count = mesh_.faces.size();
     triangles_.reserve(face_count);
     face_normals_.resize(face_count);
@@ -141,6 +144,10 @@ public:
     SurfaceQuery result;
     result.closest = nearest.point;
     result.distance = sign * gap;
+    if (smoothing_ > 0.0 && gap > tiny_distance_) {
+      smoothed(p, gap, sign, &result);
+      return result;
+    }
     if (nearest.feature == Feature::face || gap <= tiny_distance_) {
       result.normal = pseudo_normal;
       return result;
@@ -159,12 +166,56 @@ public:
   }
 
   std::string describe() const override {
-    return "mesh " + name_ + " (" + std::to_string(mesh_.faces.size()) + " triangles)";
+    std::string text = "mesh " + name_ + " (" + std::to_string(mesh_.faces.size()) + " triangles";
+    if (smoothing_ > 0.0) {
+      std::ostringstream eps;
+      eps << smoothing_;
+      text += ", distance smoothed over " + eps.str() + " m";
+    }
+    return text + ")";
   }
 
 private:
   const Eigen::Vector3d& vertex(int index) const {
     return mesh_.vertices[static_cast<std::size_t>(index)];
+  }
+
+  // The soft minimum over the triangles within the ball of radius
+  // gap + 12 eps (farther ones weigh less than exp(-12)); see the header.
+  void smoothed(const Eigen::Vector3d& p, double gap, double sign, SurfaceQuery* result) const {
+    const double reach = gap + 12.0 * smoothing_;
+    const Kernel::Sphere_3 ball(CgalPoint(p.x(), p.y(), p.z()), reach * reach);
+    std::vector<Tree::Primitive_id> near;
+    tree_.all_intersected_primitives(ball, std::back_inserter(near));
+    double total = 0.0;
+    Eigen::Vector3d mean_direction = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d curvature = Eigen::Matrix3d::Zero(), spread = Eigen::Matrix3d::Zero();
+    for (const auto& id : near) {
+      const auto& face = mesh_.faces[static_cast<std::size_t>(id - triangles_.begin())];
+      const Nearest n = nearest_on_triangle(p, vertex(face[0]), vertex(face[1]), vertex(face[2]));
+      const Eigen::Vector3d away = p - n.point;
+      const double g = away.norm();
+      const double w = std::exp(-(g - gap) / smoothing_);
+      const Eigen::Vector3d u = away / g;
+      total += w;
+      mean_direction += w * u;
+      spread += w * u * u.transpose();
+      if (n.feature == Feature::face) continue; // a plane: no curvature
+      Eigen::Matrix3d across = Eigen::Matrix3d::Identity() - u * u.transpose();
+      if (n.feature == Feature::edge) {
+        const Eigen::Vector3d along =
+            (vertex(face[(n.index + 1) % 3]) - vertex(face[n.index])).normalized();
+        across -= along * along.transpose();
+      }
+      curvature += (w / g) * across;
+    }
+    const Eigen::Vector3d gradient = mean_direction / total;
+    const Eigen::Matrix3d hessian =
+        curvature / total - (spread / total - gradient * gradient.transpose()) / smoothing_;
+    result->distance = sign * (gap - smoothing_ * std::log(total));
+    result->normal = sign * gradient;
+    result->hessian = sign * hessian;
+    result->closest = p - result->distance * result->normal;
   }
 
   BodyMesh mesh_;
@@ -175,6 +226,7 @@ private:
   std::vector<Eigen::Vector3d> edge_normals_;
   std::vector<Eigen::Vector3d> vertex_normals_;
   double tiny_distance_ = 0.0;
+  double smoothing_ = 0.0; // m; 0: the exact distance
   Tree tree_;
 };
 
@@ -182,19 +234,19 @@ private:
 
 std::unique_ptr<Shape> make_mesh_shape(const std::vector<Eigen::Vector3d>& vertices,
                                        const std::vector<std::array<int, 3>>& faces,
-                                       const std::string& name) {
+                                       const std::string& name, double smoothing) {
   BodyMesh mesh{vertices, faces};
   check_body_mesh(mesh, name);
-  return std::make_unique<MeshShape>(std::move(mesh), name);
+  return std::make_unique<MeshShape>(std::move(mesh), name, smoothing);
 }
 
-std::unique_ptr<Shape> load_mesh_shape(const std::string& path) {
-  return std::make_unique<MeshShape>(read_body_obj(path), path);
+std::unique_ptr<Shape> load_mesh_shape(const std::string& path, double smoothing) {
+  return std::make_unique<MeshShape>(read_body_obj(path), path, smoothing);
 }
 
 std::unique_ptr<Shape> make_mannequin_shape() {
   const Mannequin& mannequin = default_mannequin();
-  return std::make_unique<MeshShape>(mannequin.mesh, "mannequin");
+  return std::make_unique<MeshShape>(mannequin.mesh, "mannequin", 0.0);
 }
 
 } // namespace sartor::contact

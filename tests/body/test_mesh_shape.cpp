@@ -1,7 +1,8 @@
 // The mesh body's signed distance, normal and Hessian: against an analytic
 // sphere (an icosphere mesh, within its discretisation error), against the
 // exact answers of a cube at its faces, edges and vertices, and against
-// finite differences of themselves.
+// finite differences of themselves; the smoothed distance across a concave
+// crease (an L-shaped prism).
 
 #include "common/error.hpp"
 #include "contact/mesh_shape.hpp"
@@ -221,6 +222,77 @@ TEST(MeshShape, DerivativesMatchFiniteDifferences) {
     EXPECT_GT(curved, 50) << name;
     EXPECT_GT(flat, 50) << name;
   }
+}
+
+// An L-shaped prism (the L of [0,2]x[0,1] and [0,1]x[0,2], z in [0,1]): its
+// vertical edge at (1, 1) is concave, a crease of the exact distance.
+Mesh l_prism() {
+  const std::vector<Eigen::Vector2d> outline = {{0, 0}, {2, 0}, {2, 1}, {1, 1},
+                                                {1, 2}, {0, 2}, {0, 1}}; // counter-clockwise
+  const int n = int(outline.size());
+  Mesh m;
+  for (const double z : {0.0, 1.0})
+    for (const auto& c : outline)
+      m.vertices.emplace_back(c.x(), c.y(), z);
+  const int cap[5][3] = {{0, 1, 2}, {0, 2, 3}, {0, 3, 6}, {6, 3, 4}, {6, 4, 5}};
+  for (const auto& t : cap) {
+    m.faces.push_back({t[0] + n, t[1] + n, t[2] + n}); // top, seen from +z
+    m.faces.push_back({t[0], t[2], t[1]});             // bottom, reversed
+  }
+  for (int a = 0; a < n; ++a) {
+    const int b = (a + 1) % n;
+    m.faces.push_back({a, b, b + n});
+    m.faces.push_back({a, b + n, a + n});
+  }
+  return m;
+}
+
+// Smoothed, the distance has no crease: its normal is continuous across the
+// concave edge's bisector (exact: it jumps from one wall's normal to the
+// other's), it stays within eps ln(triangles) below the exact distance, and
+// far from other triangles it is the exact one.
+TEST(MeshShape, SmoothedDistanceHasNoCreaseAndStaysNearTheExactOne) {
+  const Mesh l = l_prism();
+  const double eps = 0.01;
+  const auto exact = sartor::contact::make_mesh_shape(l.vertices, l.faces, "L");
+  const auto smooth = sartor::contact::make_mesh_shape(l.vertices, l.faces, "L", eps);
+  const Eigen::Vector3d bisector(1.3, 1.3, 0.5), across(1e-7, -1e-7, 0.0);
+  const double exact_jump =
+      (exact->query(bisector + across).normal - exact->query(bisector - across).normal).norm();
+  EXPECT_NEAR(exact_jump, std::sqrt(2.0), 1e-9);
+  const double smooth_jump =
+      (smooth->query(bisector + across).normal - smooth->query(bisector - across).normal).norm();
+  // Continuous: it turns at the smoothed crease's curvature, about 1/(2 eps).
+  EXPECT_LT(smooth_jump, (1.0 / eps) * (2.0 * across).norm());
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> coordinate(-0.4, 2.4);
+  for (int i = 0; i < 300; ++i) {
+    const Eigen::Vector3d p(coordinate(random), coordinate(random), 0.5 * coordinate(random));
+    const double gap = exact->query(p).distance - smooth->query(p).distance;
+    const double sign = exact->query(p).distance >= 0.0 ? 1.0 : -1.0;
+    EXPECT_GE(sign * gap, -1e-12) << p.transpose();
+    EXPECT_LE(sign * gap, eps * std::log(double(l.faces.size()))) << p.transpose();
+  }
+  // Over the middle of a wall, 0.05 from it, every other triangle is more
+  // than 12 eps farther: the exact distance and normal.
+  const Eigen::Vector3d over_wall(1.5, -0.05, 0.25);
+  EXPECT_NEAR(smooth->query(over_wall).distance, 0.05, 1e-9);
+  EXPECT_LT((smooth->query(over_wall).normal - Eigen::Vector3d(0, -1, 0)).norm(), 1e-9);
+}
+
+TEST(MeshShape, SmoothedDerivativesMatchFiniteDifferences) {
+  std::mt19937 random(13);
+  std::uniform_real_distribution<double> coordinate(-0.3, 2.3);
+  const Mesh l = l_prism();
+  const auto shape = sartor::contact::make_mesh_shape(l.vertices, l.faces, "L", 0.02);
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 400; ++i)
+    points.emplace_back(coordinate(random), coordinate(random), 0.5 * coordinate(random));
+  int curved = 0;
+  int flat = 0;
+  check_derivatives(*shape, points, curved, flat);
+  EXPECT_GT(curved, 50);
+  EXPECT_EQ(shape->describe(), "mesh L (24 triangles, distance smoothed over 0.02 m)");
 }
 
 TEST(MeshShape, RejectsAnOpenMeshNamingIt) {
