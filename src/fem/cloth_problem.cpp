@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 #include "element/pressure.hpp"
 #include "fem/block_assembly.hpp"
+#include "fem/mesh_partition.hpp"
 #include "fem/petsc_call.hpp"
 
 #include <algorithm>
@@ -131,6 +132,7 @@ DM distribute_mesh(MPI_Comm comm, PetscMPIInt rank, const TriangleMesh& mesh,
   PetscPartitioner partitioner = nullptr;
   SartorPetscCall(DMPlexGetPartitioner(serial, &partitioner));
   SartorPetscCall(PetscPartitionerSetFromOptions(partitioner));
+  SartorPetscCall(set_default_partition(partitioner, comm, mesh));
   // Partition first, then add the overlap, carrying the mesh numbering of
   // every point through both migrations.
   DM distributed = nullptr, overlapping = nullptr;

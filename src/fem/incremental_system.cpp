@@ -41,9 +41,7 @@ PetscErrorCode attach_near_null_space(Vec x, Mat J) {
 } // namespace
 
 IncrementalSystem::IncrementalSystem(ClothProblem& problem, Vec like) : problem_(problem) {
-  SartorPetscCall(set_default_option("-ksp_type", "preonly"));
-  SartorPetscCall(set_default_option("-pc_type", "lu"));
-  SartorPetscCall(set_default_option("-pc_factor_mat_solver_type", "mumps"));
+  SartorPetscCall(set_default_direct_solver(problem.comm()));
   SartorPetscCall(problem.create_jacobian(&jacobian_));
   SartorPetscCall(attach_near_null_space(like, jacobian_));
   for (Vec* v : {&residual_, &mass_, &predicted_, &previous_, &work_, &switch_point_, &direction_,
@@ -68,6 +66,9 @@ PetscErrorCode IncrementalSystem::create_snes(bool with_objective, SNES* snes) {
   // of the membrane forces counts as converged.
   PetscCall(SNESSetTolerances(*snes, 1e-12 * problem_.force_scale(), 1e-10, 1e-14, 100, -1));
   PetscCall(SNESSetFromOptions(*snes));
+  KSP ksp = nullptr;
+  PetscCall(SNESGetKSP(*snes, &ksp));
+  PetscCall(gather_telescope_onto_one_rank(ksp));
   PetscCall(SNESSetConvergenceTest(*snes, sartor::converged, this, nullptr));
   PetscCall(SNESSetConvergenceHistory(*snes, norms_.data(), nullptr, PetscInt(norms_.size()),
                                       PETSC_TRUE));

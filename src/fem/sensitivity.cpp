@@ -1,5 +1,7 @@
 #include "fem/sensitivity.hpp"
 
+#include "fem/petsc_options.hpp"
+
 #include "common/error.hpp"
 #include "fem/petsc_call.hpp"
 
@@ -189,19 +191,14 @@ PetscErrorCode DesignSensitivity::factorise_tangent(ClothProblem& problem, bool*
   PetscCall(assembled);
   PetscCall(KSPCreate(problem.comm(), &ksp_));
   PetscCall(KSPSetOptionsPrefix(ksp_, "sensitivity_"));
-  PetscCall(KSPSetType(ksp_, KSPPREONLY));
-  PC pc = nullptr;
-  PetscCall(KSPGetPC(ksp_, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(set_default_direct_solver(problem.comm(), "sensitivity_"));
   PetscCall(KSPSetOperators(ksp_, tangent_, tangent_));
   PetscCall(KSPSetFromOptions(ksp_));
+  PetscCall(gather_telescope_onto_one_rank(ksp_));
   PetscCall(KSPSetUp(ksp_));
-  PCFailedReason failed = PC_NOERROR;
-  PetscCall(PCGetFailedReasonRank(pc, &failed));
-  int local_ok = failed == PC_NOERROR ? 1 : 0, all_ok = 0;
-  PetscCallMPI(MPI_Allreduce(&local_ok, &all_ok, 1, MPI_INT, MPI_MIN, problem.comm()));
-  *ok = all_ok == 1;
+  bool failed = false;
+  PetscCall(direct_solver_failed(ksp_, &failed));
+  *ok = !failed;
   PetscFunctionReturn(0);
 }
 
