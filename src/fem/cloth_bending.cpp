@@ -88,8 +88,8 @@ void ClothProblem::set_up_bending(const std::vector<bool>& triangle_owned,
     local.rest = element::hinge_rest(uv[0], uv[1], crease == creases.end() ? 0.0 : crease->second);
     hinges.push_back(local);
   }
-  forms_.push_back(std::make_unique<fem::HingeBendingForm>(
-      materials_.front().bending_model, std::move(hinges), mesh_.material_uv));
+  forms_.push_back(std::make_unique<fem::HingeBendingForm>(materials_.front().bending_model,
+                                                           std::move(hinges), mesh_.material_uv));
 }
 
 namespace {

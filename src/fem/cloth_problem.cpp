@@ -184,8 +184,7 @@ ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh,
   triangle_forms_.push_back(std::make_unique<fem::MembraneForm>(nonelastic, nonelastic_response));
   triangle_forms_.push_back(std::make_unique<fem::SurfaceLoadForm>(loads, mesh_));
   set_up_bending(triangle_owned, is_pinned);
-  forms_.push_back(
-      std::make_unique<fem::PointLoadForm>(loads, mesh_, vertex_dof_, vertex_owned_));
+  forms_.push_back(std::make_unique<fem::PointLoadForm>(loads, mesh_, vertex_dof_, vertex_owned_));
   std::vector<bool> moves(mesh.vertex_count(), true); // free, or a pin that is let go
   for (std::size_t i = 0; i < pinned_.size(); ++i)
     moves[std::size_t(pinned_[i])] = releasable(i);
@@ -195,7 +194,9 @@ ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh,
   forms_.push_back(std::move(contact_form));
 }
 
-void ClothProblem::add_form(std::unique_ptr<fem::Form> form) { forms_.push_back(std::move(form)); }
+void ClothProblem::add_form(std::unique_ptr<fem::Form> form) {
+  forms_.push_back(std::move(form));
+}
 
 std::vector<std::string> ClothProblem::form_names() const {
   std::vector<std::string> names;
@@ -549,8 +550,7 @@ PetscErrorCode ClothProblem::energy(Vec x, ClothEnergy* result) {
     form->add_energy(at, &local[int(form->part())]);
   PetscCall(VecRestoreArrayRead(local_x_, &values));
   double total[fem::energy_part_count];
-  PetscCallMPI(
-      MPIU_Allreduce(local, total, fem::energy_part_count, MPI_DOUBLE, MPI_SUM, comm_));
+  PetscCallMPI(MPIU_Allreduce(local, total, fem::energy_part_count, MPI_DOUBLE, MPI_SUM, comm_));
   for (auto* form : enabled(coupling_forms_)) {
     double energy = 0.0;
     PetscCall(form->energy(x, &energy));
@@ -665,8 +665,7 @@ PetscErrorCode ClothProblem::rest_derivative(Vec x, const RestChange& change, Ve
     const element::Vector9 xe = gather<9>(values, t.dofs);
     for (const auto* form : triangle_forms) {
       scatter_add<9>(changes, t.dofs,
-                     form->rest_derivative(triangle_view(t, xe), at,
-                                           change[std::size_t(t.index)]));
+                     form->rest_derivative(triangle_view(t, xe), at, change[std::size_t(t.index)]));
     }
   }
   for (const auto* form : forms)

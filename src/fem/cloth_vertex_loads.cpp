@@ -85,8 +85,7 @@ PetscErrorCode ClothProblem::gather_vertex_loads(Vec x, std::vector<ClothNodeFie
   if (contact_triples.empty()) PetscFunctionReturn(0); // not rank 0
   if (!bodies.empty()) {
     std::vector<double> pressure = slot_values(contact_triples, 0);
-    for (std::size_t v = 0; v < pressure.size(); ++v)
-      {
+    for (std::size_t v = 0; v < pressure.size(); ++v) {
       const double area = contact_form_->vertex_area(v);
       pressure[v] = area > 0.0 ? pressure[v] / area : 0.0;
     }

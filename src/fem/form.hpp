@@ -119,8 +119,7 @@ public:
   // Adds the triangle's Hessian (projected unless at.exact_hessian) to the
   // triangle's block, which the problem assembles once all triangle forms
   // have added theirs.
-  virtual void add_hessian(const TriangleView& t, const FormPoint& at,
-                           Matrix9& block) const = 0;
+  virtual void add_hessian(const TriangleView& t, const FormPoint& at, Matrix9& block) const = 0;
   // Whether the gradient is that of energy() (no follower load, no
   // position-dependent unloaded lengths).
   virtual bool has_potential() const { return true; }

@@ -76,8 +76,7 @@ void PatchBendingForm::add_gradient(const FormPoint& at, PetscScalar* f) const {
   for (const LocalPatch& p : patches_) {
     scatter_add<36>(
         f, p.dofs,
-        element::patch_bending(p.rest, gather<36>(at.x, p.dofs), element::Want::gradient)
-            .gradient);
+        element::patch_bending(p.rest, gather<36>(at.x, p.dofs), element::Want::gradient).gradient);
   }
 }
 
@@ -92,16 +91,17 @@ PetscErrorCode PatchBendingForm::add_element_hessians(const FormPoint& at,
                                                       ElementHessians& out) const {
   PetscFunctionBeginUser;
   for (const LocalPatch& p : patches_) {
-    auto result =
-        element::patch_bending(p.rest, gather<36>(at.x, p.dofs), element::Want::hessian);
-    if (p.project && !at.exact_hessian) element::project_patch_hessian_to_psd(p.rest, result.hessian);
+    auto result = element::patch_bending(p.rest, gather<36>(at.x, p.dofs), element::Want::hessian);
+    if (p.project && !at.exact_hessian)
+      element::project_patch_hessian_to_psd(p.rest, result.hessian);
     PetscCall(out.add<36>(p.dofs, result.hessian));
   }
   PetscFunctionReturn(0);
 }
 
 bool PatchBendingForm::projects() const {
-  return std::any_of(patches_.begin(), patches_.end(), [](const LocalPatch& p) { return p.project; });
+  return std::any_of(patches_.begin(), patches_.end(),
+                     [](const LocalPatch& p) { return p.project; });
 }
 
 } // namespace sartor::fem

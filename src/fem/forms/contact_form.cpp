@@ -37,11 +37,19 @@ ContactForm::ContactForm(const ClothProblem& problem, const std::vector<PetscInt
   }
 }
 
-const std::vector<contact::Body>& ContactForm::bodies() const { return problem_.bodies; }
-const ContactSettings& ContactForm::settings() const { return problem_.contact; }
-double ContactForm::clock() const { return problem_.contact_clock(); }
+const std::vector<contact::Body>& ContactForm::bodies() const {
+  return problem_.bodies;
+}
+const ContactSettings& ContactForm::settings() const {
+  return problem_.contact;
+}
+double ContactForm::clock() const {
+  return problem_.contact_clock();
+}
 
-bool ContactForm::projects() const { return settings().project_hessian; }
+bool ContactForm::projects() const {
+  return settings().project_hessian;
+}
 
 double ContactForm::stiffness(int vertex) const {
   if (settings().stiffness > 0.0) return settings().stiffness_scale * settings().stiffness;
@@ -74,8 +82,7 @@ contact::PointResult ContactForm::vertex_contact(std::size_t body, int vertex,
     const FrictionAnchor& anchor = anchors_[body][std::size_t(vertex)];
     if (anchor.active) {
       const contact::PointResult spring = contact::anchor_spring(
-          k, x, b.to_world(anchor.point, clock()),
-          b.direction_to_world(anchor.normal, clock()),
+          k, x, b.to_world(anchor.point, clock()), b.direction_to_world(anchor.normal, clock()),
           friction_bound(anchor, b.friction, settings().bounded_friction), want);
       result.energy += spring.energy;
       result.gradient += spring.gradient;
@@ -90,9 +97,9 @@ void ContactForm::add_energy(const FormPoint& at, double* sum) const {
   double energy = 0.0;
   for (std::size_t b = 0; b < bodies().size(); ++b) {
     for (int v : vertices_) {
-      energy +=
-          vertex_contact(b, v, vertex_position(x, vertex_dof_[std::size_t(v)]), element::Want::energy)
-              .energy;
+      energy += vertex_contact(b, v, vertex_position(x, vertex_dof_[std::size_t(v)]),
+                               element::Want::energy)
+                    .energy;
     }
   }
   *sum += energy + edge_energy(x);
@@ -136,7 +143,7 @@ PetscErrorCode ContactForm::add_hessian(const FormPoint& at, Mat J) const {
 }
 
 double ContactForm::vertex_step_bound(std::size_t body, const Eigen::Vector3d& p,
-                                       const Eigen::Vector3d& motion) const {
+                                      const Eigen::Vector3d& motion) const {
   const contact::Body& b = bodies()[body];
   const double length = motion.norm();
   const double slope = b.shape().slope_bound();
@@ -172,14 +179,14 @@ double ContactForm::step_bound(const PetscScalar* values, const PetscScalar* mot
     const double slope = bodies()[b].shape().slope_bound();
     for (int v : vertices_) {
       const PetscInt offset = vertex_dof_[std::size_t(v)];
-      const Eigen::Vector3d p = vertex_position(values, offset), motion = vertex_position(motions, offset);
+      const Eigen::Vector3d p = vertex_position(values, offset),
+                            motion = vertex_position(motions, offset);
       // The cached distance bounds the current one from below (surely_apart):
       // far vertices need no query.
       if (queried_.size() == bodies().size()) {
         const QueriedPlace& last = queried_[b][std::size_t(v)];
         const double lower = last.distance - slope * (p - last.point).norm();
-        if (last.clock == clock() && lower - slope * motion.norm() > settings().offset)
-          continue;
+        if (last.clock == clock() && lower - slope * motion.norm() > settings().offset) continue;
       }
       smallest = std::min(smallest, vertex_step_bound(b, p, motion));
     }
@@ -229,8 +236,8 @@ PetscErrorCode ContactForm::accept_step(const FormPoint& at) {
         continue;
       }
       if (!anchor.active) { // a new contact sticks where it touched
-        anchor = {true, body.to_body(q.closest, clock()),
-                  body.direction_to_body(normal, clock()), normal_force, false};
+        anchor = {true, body.to_body(q.closest, clock()), body.direction_to_body(normal, clock()),
+                  normal_force, false};
         continue;
       }
       const Eigen::Vector3d held = body.to_world(anchor.point, clock());
@@ -351,8 +358,7 @@ double ContactForm::edge_sample_stiffness(const EdgeSample& sample) const {
 }
 
 contact::EdgeSampleResult ContactForm::edge_sample_contact(std::size_t body, std::size_t index,
-                                                           const PetscScalar* x,
-                                                           element::Want want,
+                                                           const PetscScalar* x, element::Want want,
                                                            bool project) const {
   const EdgeSample& sample = edge_samples()[index];
   const Eigen::Vector3d p =
@@ -385,7 +391,8 @@ double ContactForm::edge_energy(const PetscScalar* x) const {
 void ContactForm::add_edge_forces(const PetscScalar* x, PetscScalar* f) const {
   for (std::size_t b = 0; b < bodies().size(); ++b) {
     for (std::size_t i = 0; i < edge_samples().size(); ++i) {
-      const contact::EdgeSampleResult r = edge_sample_contact(b, i, x, element::Want::gradient, false);
+      const contact::EdgeSampleResult r =
+          edge_sample_contact(b, i, x, element::Want::gradient, false);
       if (r.energy == 0.0) continue;
       const EdgeSample& sample = edge_samples_[i];
       const PetscInt offsets[2] = {vertex_dof_[std::size_t(sample.a)],
@@ -402,7 +409,8 @@ PetscErrorCode ContactForm::add_edge_hessian(const PetscScalar* x, bool project,
   PetscFunctionBeginUser;
   for (std::size_t b = 0; b < bodies().size(); ++b) {
     for (std::size_t i = 0; i < edge_samples().size(); ++i) {
-      const contact::EdgeSampleResult r = edge_sample_contact(b, i, x, element::Want::hessian, project);
+      const contact::EdgeSampleResult r =
+          edge_sample_contact(b, i, x, element::Want::hessian, project);
       if (r.energy == 0.0) continue; // outside the offset layer
       const EdgeSample& sample = edge_samples_[i];
       const PetscInt a = vertex_dof_[std::size_t(sample.a)], c = vertex_dof_[std::size_t(sample.b)];
@@ -421,15 +429,15 @@ double ContactForm::edge_step_bound(const PetscScalar* x, const PetscScalar* mot
     for (std::size_t i = 0; i < edge_samples().size(); ++i) {
       const EdgeSample& sample = edge_samples_[i];
       const PetscInt a = vertex_dof_[std::size_t(sample.a)], c = vertex_dof_[std::size_t(sample.b)];
-      const Eigen::Vector3d p = contact::edge_point(vertex_position(x, a), vertex_position(x, c), sample.s);
+      const Eigen::Vector3d p =
+          contact::edge_point(vertex_position(x, a), vertex_position(x, c), sample.s);
       const Eigen::Vector3d motion =
           contact::edge_point(vertex_position(motions, a), vertex_position(motions, c), sample.s);
       // The cached distance bounds the current one from below: far samples need no query.
       if (sample_queried_.size() == bodies().size()) {
         const QueriedPlace& last = sample_queried_[b][i];
         const double lower = last.distance - slope * (p - last.point).norm();
-        if (last.clock == clock() && lower - slope * motion.norm() > settings().offset)
-          continue;
+        if (last.clock == clock() && lower - slope * motion.norm() > settings().offset) continue;
       }
       smallest = std::min(smallest, vertex_step_bound(b, p, motion));
     }
@@ -450,8 +458,8 @@ PetscErrorCode ContactForm::edge_sample_loads(std::size_t body, const PetscScala
   for (const EdgeSample& sample : edge_samples()) {
     const PetscInt offsets[2] = {vertex_dof_[std::size_t(sample.a)],
                                  vertex_dof_[std::size_t(sample.b)]};
-    const Eigen::Vector3d p =
-        contact::edge_point(vertex_position(x, offsets[0]), vertex_position(x, offsets[1]), sample.s);
+    const Eigen::Vector3d p = contact::edge_point(vertex_position(x, offsets[0]),
+                                                  vertex_position(x, offsets[1]), sample.s);
     const contact::SurfaceQuery q = b.query(p, clock());
     const double gap = settings().offset - q.distance;
     if (gap <= 0.0) continue;
@@ -478,9 +486,8 @@ PetscErrorCode ContactForm::edge_sample_loads(std::size_t body, const PetscScala
   PetscFunctionReturn(0);
 }
 
-void ContactForm::add_edge_report(std::size_t body, const PetscScalar* x,
-                                           double normal_force[3], double* contacting,
-                                           double* deepest) const {
+void ContactForm::add_edge_report(std::size_t body, const PetscScalar* x, double normal_force[3],
+                                  double* contacting, double* deepest) const {
   const contact::Body& b = bodies()[body];
   for (const EdgeSample& sample : edge_samples()) {
     const Eigen::Vector3d p =
@@ -496,7 +503,6 @@ void ContactForm::add_edge_report(std::size_t body, const PetscScalar* x,
     *deepest = std::max(*deepest, gap);
   }
 }
-
 
 void ContactForm::add_vertex_loads(const PetscScalar* x, PetscScalar* per_vertex) const {
   // The larger mu_s |f_n| of a body, per vertex.
@@ -535,10 +541,9 @@ std::vector<double> ContactForm::anchor_rows() const {
     for (std::size_t vertex = 0; vertex < anchors_[body].size(); ++vertex) {
       const FrictionAnchor& anchor = anchors_[body][vertex];
       if (!anchor.active || !vertex_owned_[vertex]) continue;
-      rows.insert(rows.end(),
-                  {double(body), double(vertex), anchor.point.x(), anchor.point.y(),
-                   anchor.point.z(), anchor.normal.x(), anchor.normal.y(), anchor.normal.z(),
-                   anchor.normal_force, anchor.sliding ? 1.0 : 0.0});
+      rows.insert(rows.end(), {double(body), double(vertex), anchor.point.x(), anchor.point.y(),
+                               anchor.point.z(), anchor.normal.x(), anchor.normal.y(),
+                               anchor.normal.z(), anchor.normal_force, anchor.sliding ? 1.0 : 0.0});
     }
   }
   return rows;

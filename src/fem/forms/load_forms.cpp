@@ -29,8 +29,9 @@ void SurfaceLoadForm::add_hessian(const TriangleView& t, const FormPoint& at,
   block -= at.load_factor * element::follower_pressure(loads_.pressure, t.x).jacobian;
 }
 
-element::Vector9 SurfaceLoadForm::rest_derivative(const TriangleView& t, const FormPoint& at,
-                                                  const std::array<Eigen::Vector2d, 3>& delta_uv) const {
+element::Vector9
+SurfaceLoadForm::rest_derivative(const TriangleView& t, const FormPoint& at,
+                                 const std::array<Eigen::Vector2d, 3>& delta_uv) const {
   const double mass_change =
       t.material.areal_density * element::triangle_area_derivative(t.uv, delta_uv) / 3.0;
   element::Vector9 change;
@@ -42,8 +43,8 @@ element::Vector9 SurfaceLoadForm::rest_derivative(const TriangleView& t, const F
 void PointLoadForm::add_energy(const FormPoint& at, double* sum) const {
   for (const auto& [v, force] : loads_.point_forces) {
     if (!vertex_owned_[std::size_t(v)]) continue;
-    *sum -= at.load_factor *
-            force.dot(vertex_position(at.x, vertex_dof_[std::size_t(v)]) - mesh_.positions[std::size_t(v)]);
+    *sum -= at.load_factor * force.dot(vertex_position(at.x, vertex_dof_[std::size_t(v)]) -
+                                       mesh_.positions[std::size_t(v)]);
   }
 }
 

@@ -26,17 +26,18 @@ void MembraneForm::add_hessian(const TriangleView& t, const FormPoint& at, Matri
   if (t.material.project_membrane && !at.exact_hessian) element::project_to_psd<9>(result.hessian);
   if (response_) {
     // The force also moves with the unloaded lengths: dF/dn dn/dx.
-    result.hessian += element::membrane_creep_sensitivity(t.material.membrane_model,
-                                                          t.material.membrane, t.rest,
-                                                          response.strain, t.x)
-                          .force_per_nonelastic *
-                      response.per_position;
+    result.hessian +=
+        element::membrane_creep_sensitivity(t.material.membrane_model, t.material.membrane, t.rest,
+                                            response.strain, t.x)
+            .force_per_nonelastic *
+        response.per_position;
   }
   block += result.hessian;
 }
 
-element::Vector9 MembraneForm::rest_derivative(const TriangleView& t, const FormPoint&,
-                                               const std::array<Eigen::Vector2d, 3>& delta_uv) const {
+element::Vector9
+MembraneForm::rest_derivative(const TriangleView& t, const FormPoint&,
+                              const std::array<Eigen::Vector2d, 3>& delta_uv) const {
   return element::membrane_rest_derivative(t.material.membrane_model, t.material.membrane, t.uv,
                                            nonelastic_[std::size_t(t.index)], t.x, delta_uv);
 }

@@ -23,12 +23,8 @@ public:
   void add_energy(const TriangleView& t, const FormPoint& at, double* sum) const override;
   element::Vector9 gradient(const TriangleView& t, const FormPoint& at) const override;
   void add_hessian(const TriangleView& t, const FormPoint& at, Matrix9& block) const override;
-  bool has_potential() const override {
-    return !(response_ && response_->moves_with_positions());
-  }
-  bool projects(const ClothMaterial& material) const override {
-    return material.project_membrane;
-  }
+  bool has_potential() const override { return !(response_ && response_->moves_with_positions()); }
+  bool projects(const ClothMaterial& material) const override { return material.project_membrane; }
   // At the held non-elastic strains (the creep state of the step).
   bool has_rest_derivative() const override { return true; }
   element::Vector9 rest_derivative(const TriangleView& t, const FormPoint& at,
