@@ -3,6 +3,7 @@
 
 #include "common/error.hpp"
 #include "fem/cloth_problem.hpp"
+#include "fem/forms/bending_forms.hpp"
 
 #include <algorithm>
 #include <map>
@@ -64,25 +65,31 @@ void ClothProblem::set_up_bending(const std::vector<bool>& triangle_owned,
     return;
   }
   // Hinges of the owned triangle with the lower index.
+  std::vector<fem::LocalHinge> hinges;
   for (const Hinge& hinge : interior_edges(mesh_)) {
     const auto first = std::size_t(std::min(hinge.triangles[0], hinge.triangles[1]));
     if (!triangle_owned[first]) continue;
     const ClothMaterial& one = triangle_material(std::size_t(hinge.triangles[0]));
     const ClothMaterial& other = triangle_material(std::size_t(hinge.triangles[1]));
-    LocalHinge local;
+    fem::LocalHinge local;
     local.stiffness = 0.5 * (one.bending_stiffness + other.bending_stiffness);
     local.project = one.project_bending || other.project_bending;
     local.dofs = vertex_dofs<12>(hinge.vertices);
+    local.triangles = hinge.triangles;
     std::array<std::array<Eigen::Vector2d, 3>, 2> uv;
     for (std::size_t side = 0; side < 2; ++side) {
       const auto& corners = mesh_.material_uv[std::size_t(hinge.triangles[side])];
       for (std::size_t k = 0; k < 3; ++k)
         uv[side][k] = corners[std::size_t(hinge.corners[side][k])];
+      for (std::size_t k = 0; k < 3; ++k)
+        local.corners[side][k] = int(hinge.corners[side][k]);
     }
     const auto crease = creases.find(std::minmax(hinge.vertices[0], hinge.vertices[1]));
     local.rest = element::hinge_rest(uv[0], uv[1], crease == creases.end() ? 0.0 : crease->second);
-    hinges_.push_back(local);
+    hinges.push_back(local);
   }
+  forms_.push_back(std::make_unique<fem::HingeBendingForm>(materials_.front().bending_model,
+                                                           std::move(hinges), mesh_.material_uv));
 }
 
 namespace {
@@ -190,6 +197,7 @@ void ClothProblem::set_up_patches(const std::vector<bool>& triangle_owned,
       patches[t] = patch_of(mesh_, across, t, triangle_material(t).patch_rigidity());
     }
   }
+  std::vector<fem::LocalPatch> local_patches;
   for (std::size_t t = 0; t < mesh_.triangle_count(); ++t) {
     if (!triangle_owned[t] || fixed[t]) continue;
     const auto& corners = mesh_.triangles[t];
@@ -222,7 +230,7 @@ void ClothProblem::set_up_patches(const std::vector<bool>& triangle_owned,
         slopes[k](long(s)) -= share * other.slopes[edge](long(n));
       }
     }
-    LocalPatch local;
+    fem::LocalPatch local;
     local.dofs = vertex_dofs<36>(stencil);
     local.project = material.project_bending;
     const Eigen::Vector3d rest_curvature =
@@ -230,8 +238,9 @@ void ClothProblem::set_up_patches(const std::vector<bool>& triangle_owned,
     local.rest = element::patch_rest(mesh_.material_uv[t], slopes, material.patch_rigidity(),
                                      rest_curvature);
     local.rest.curves = material.bending_curves;
-    patches_.push_back(local);
+    local_patches.push_back(local);
   }
+  forms_.push_back(std::make_unique<fem::PatchBendingForm>(std::move(local_patches)));
 }
 
 } // namespace sartor

@@ -3,6 +3,11 @@
 #include "common/error.hpp"
 #include "element/pressure.hpp"
 #include "fem/block_assembly.hpp"
+#include "fem/forms/contact_form.hpp"
+#include "fem/forms/load_forms.hpp"
+#include "fem/forms/local_arrays.hpp"
+#include "fem/forms/membrane_form.hpp"
+#include "fem/forms/seam_form.hpp"
 #include "fem/mesh_partition.hpp"
 #include "fem/petsc_call.hpp"
 
@@ -64,29 +69,8 @@ PetscErrorCode foreign_points(DM dm, std::vector<bool>* foreign) {
   PetscFunctionReturn(0);
 }
 
-template <int N>
-void scatter_add(PetscScalar* f, const std::array<PetscInt, N>& dofs,
-                 const Eigen::Matrix<double, N, 1>& values) {
-  for (int i = 0; i < N; ++i)
-    f[dofs[std::size_t(i)]] += values[i];
-}
-
-template <int N>
-Eigen::Matrix<double, N, 1> gather(const PetscScalar* x, const std::array<PetscInt, N>& dofs) {
-  Eigen::Matrix<double, N, 1> values;
-  for (int i = 0; i < N; ++i)
-    values[i] = x[dofs[std::size_t(i)]];
-  return values;
-}
-
-template <int N>
-PetscErrorCode add_block(Mat J, const std::array<PetscInt, N>& dofs,
-                         const Eigen::Matrix<double, N, N>& block) {
-  PetscFunctionBeginUser;
-  const Eigen::Matrix<double, N, N, Eigen::RowMajor> row_major = block;
-  PetscCall(MatSetValuesLocal(J, N, dofs.data(), N, dofs.data(), row_major.data(), ADD_VALUES));
-  PetscFunctionReturn(0);
-}
+using fem::gather;
+using fem::scatter_add;
 
 // Every material uses the same bending model, and every triangle's
 // material id names one.
@@ -198,8 +182,70 @@ ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh,
   for (std::size_t i = 0; i < pinned.size(); ++i)
     is_pinned[std::size_t(pinned[i])] = !releasable(i);
   set_up_dofs(original, foreign, is_pinned);
-  set_up_bending(set_up_triangles(original, foreign), is_pinned);
-  set_up_contact();
+  const std::vector<bool> triangle_owned = set_up_triangles(original, foreign);
+  triangle_forms_.push_back(std::make_unique<fem::MembraneForm>(nonelastic, nonelastic_response));
+  triangle_forms_.push_back(std::make_unique<fem::SurfaceLoadForm>(loads, mesh_));
+  set_up_bending(triangle_owned, is_pinned);
+  forms_.push_back(std::make_unique<fem::PointLoadForm>(loads, mesh_, vertex_dof_, vertex_owned_));
+  std::vector<bool> moves(mesh.vertex_count(), true); // free, or a pin that is let go
+  for (std::size_t i = 0; i < pinned_.size(); ++i)
+    moves[std::size_t(pinned_[i])] = releasable(i);
+  auto contact_form = std::make_unique<fem::ContactForm>(*this, vertex_dof_, vertex_owned_, moves,
+                                                         triangle_owned, largest_modulus());
+  contact_form_ = contact_form.get();
+  forms_.push_back(std::move(contact_form));
+}
+
+void ClothProblem::add_form(std::unique_ptr<fem::Form> form) {
+  forms_.push_back(std::move(form));
+}
+
+std::vector<std::string> ClothProblem::form_names() const {
+  std::vector<std::string> names;
+  for (const auto& form : triangle_forms_)
+    names.emplace_back(form->name());
+  for (const auto& form : forms_)
+    names.emplace_back(form->name());
+  for (const auto& form : coupling_forms_)
+    names.emplace_back(form->name());
+  return names;
+}
+
+void ClothProblem::enable_form(const std::string& name, bool enabled) {
+  const std::vector<std::string> names = form_names();
+  if (std::find(names.begin(), names.end(), name) == names.end())
+    throw InputError("cloth: no form named '" + name + "'");
+  disabled_forms_.erase(std::remove(disabled_forms_.begin(), disabled_forms_.end(), name),
+                        disabled_forms_.end());
+  if (!enabled) disabled_forms_.push_back(name);
+}
+
+template <class F>
+std::vector<F*> ClothProblem::enabled(const std::vector<std::unique_ptr<F>>& all) const {
+  std::vector<F*> forms;
+  for (const auto& form : all) {
+    if (std::find(disabled_forms_.begin(), disabled_forms_.end(), form->name()) ==
+        disabled_forms_.end())
+      forms.push_back(form.get());
+  }
+  return forms;
+}
+
+bool ClothProblem::has_potential() const {
+  const auto potential = [](const auto& form) { return form->has_potential(); };
+  return std::all_of(triangle_forms_.begin(), triangle_forms_.end(), potential) &&
+         std::all_of(forms_.begin(), forms_.end(), potential);
+}
+
+bool ClothProblem::projects_hessians() const {
+  for (const ClothMaterial& m : materials_) {
+    if (m.project_bending) return true; // the bending forms' elements
+    for (const auto& form : triangle_forms_) {
+      if (form->projects(m)) return true;
+    }
+  }
+  return std::any_of(forms_.begin(), forms_.end(),
+                     [](const auto& form) { return form->projects(); });
 }
 
 // The local section (three dofs per vertex, pinned ones constrained), the
@@ -465,8 +511,27 @@ PetscErrorCode ClothProblem::replace_held_rows(Mat J) {
 }
 
 PetscErrorCode ClothProblem::accept_step(Vec x) {
+  const PetscScalar* values = nullptr;
   PetscFunctionBeginUser;
-  PetscCall(update_contact(x));
+  PetscCall(to_local(x));
+  PetscCall(VecGetArrayRead(local_x_, &values));
+  for (const auto& form : forms_) {
+    const PetscErrorCode failed = form->accept_step(form_point(values));
+    if (failed) PetscCall(VecRestoreArrayRead(local_x_, &values));
+    PetscCall(failed);
+  }
+  PetscCall(VecRestoreArrayRead(local_x_, &values));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::update_contact(Vec x) {
+  const PetscScalar* values = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(to_local(x));
+  PetscCall(VecGetArrayRead(local_x_, &values));
+  const PetscErrorCode failed = contact_form_->accept_step(form_point(values));
+  PetscCall(VecRestoreArrayRead(local_x_, &values));
+  PetscCall(failed);
   PetscFunctionReturn(0);
 }
 
@@ -475,45 +540,28 @@ PetscErrorCode ClothProblem::energy(Vec x, ClothEnergy* result) {
   PetscFunctionBeginUser;
   PetscCall(to_local(x));
   PetscCall(VecGetArrayRead(local_x_, &values));
-  double local[4] = {0.0, 0.0, 0.0, 0.0};
-  local[3] = contact_energy(values);
+  const fem::FormPoint at = form_point(values);
+  double local[fem::energy_part_count] = {};
+  const std::vector<fem::TriangleForm*> triangle_forms = enabled(triangle_forms_);
   for (const LocalTriangle& t : triangles_) {
     const element::Vector9 xe = gather<9>(values, t.dofs);
-    local[0] += element::membrane(t.material->membrane_model, t.material->membrane, t.rest,
-                                  nonelastic[std::size_t(t.index)], xe, element::Want::energy)
-                    .energy;
-    // Potentials of the loads are measured from the initial placement: a
-    // line search compares energies that differ by |F|^2/k near the
-    // solution, and g.x itself (~ weight x height) would bury that in
-    // round-off long before the residual is small.
-    const double mass = t.material->areal_density * t.rest.area / 3.0;
-    const auto& corners = mesh_.triangles[std::size_t(t.index)];
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d& start = mesh_.positions[std::size_t(corners[std::size_t(k)])];
-      local[2] -= load_factor * mass * loads.gravity.dot(xe.segment<3>(3 * k) - start);
-    }
+    for (const auto* form : triangle_forms)
+      form->add_energy(triangle_view(t, xe), at, &local[int(form->part())]);
   }
-  for (const LocalHinge& h : hinges_) {
-    local[1] += element::bending(materials_.front().bending_model, h.stiffness, h.rest,
-                                 gather<12>(values, h.dofs), element::Want::energy)
-                    .energy;
-  }
-  for (const LocalPatch& p : patches_) {
-    local[1] +=
-        element::patch_bending(p.rest, gather<36>(values, p.dofs), element::Want::energy).energy;
-  }
-  for (const auto& [v, force] : loads.point_forces) {
-    if (!vertex_owned_[std::size_t(v)]) continue;
-    const PetscInt offset = vertex_dof_[std::size_t(v)];
-    local[2] -= load_factor *
-                force.dot(Eigen::Vector3d(values[offset], values[offset + 1], values[offset + 2]) -
-                          mesh_.positions[std::size_t(v)]);
-  }
+  for (auto* form : enabled(forms_))
+    form->add_energy(at, &local[int(form->part())]);
   PetscCall(VecRestoreArrayRead(local_x_, &values));
-  double total[4];
-  PetscCallMPI(MPIU_Allreduce(local, total, 4, MPI_DOUBLE, MPI_SUM, comm_));
-  *result = {total[0], total[1], total[2], total[3]};
-  if (seams_) PetscCall(seam_energy(x, &result->seam));
+  double total[fem::energy_part_count];
+  PetscCallMPI(MPIU_Allreduce(local, total, fem::energy_part_count, MPI_DOUBLE, MPI_SUM, comm_));
+  for (auto* form : enabled(coupling_forms_)) {
+    double energy = 0.0;
+    PetscCall(form->energy(x, &energy));
+    total[int(form->part())] += energy;
+  }
+  using fem::EnergyPart;
+  *result = {total[int(EnergyPart::membrane)], total[int(EnergyPart::bending)],
+             total[int(EnergyPart::external)], total[int(EnergyPart::contact)],
+             total[int(EnergyPart::seam)]};
   PetscFunctionReturn(0);
 }
 
@@ -525,48 +573,37 @@ PetscErrorCode ClothProblem::residual(Vec x, Vec f) {
   PetscCall(VecSet(local_f_, 0.0));
   PetscCall(VecGetArrayRead(local_x_, &values));
   PetscCall(VecGetArray(local_f_, &forces));
+  const fem::FormPoint at = form_point(values);
+  const std::vector<fem::TriangleForm*> triangle_forms = enabled(triangle_forms_);
   for (const LocalTriangle& t : triangles_) {
     const element::Vector9 xe = gather<9>(values, t.dofs);
-    const element::NonelasticStrain strain =
-        nonelastic_response
-            ? nonelastic_response->respond(t.index, *t.material, t.rest, xe, false).strain
-            : nonelastic[std::size_t(t.index)];
-    scatter_add<9>(forces, t.dofs,
-                   element::membrane(t.material->membrane_model, t.material->membrane, t.rest,
-                                     strain, xe, element::Want::gradient)
-                       .gradient);
-    element::Vector9 external = element::Vector9::Zero();
-    const double mass = t.material->areal_density * t.rest.area / 3.0;
-    for (int k = 0; k < 3; ++k)
-      external.segment<3>(3 * k) = mass * loads.gravity;
-    if (loads.pressure != 0.0) external += element::follower_pressure(loads.pressure, xe).force;
-    scatter_add<9>(forces, t.dofs, element::Vector9(-load_factor * external));
+    for (const auto* form : triangle_forms)
+      scatter_add<9>(forces, t.dofs, form->gradient(triangle_view(t, xe), at));
   }
-  for (const LocalHinge& h : hinges_) {
-    scatter_add<12>(forces, h.dofs,
-                    element::bending(materials_.front().bending_model, h.stiffness, h.rest,
-                                     gather<12>(values, h.dofs), element::Want::gradient)
-                        .gradient);
-  }
-  for (const LocalPatch& p : patches_) {
-    scatter_add<36>(
-        forces, p.dofs,
-        element::patch_bending(p.rest, gather<36>(values, p.dofs), element::Want::gradient)
-            .gradient);
-  }
-  for (const auto& [v, force] : loads.point_forces) {
-    if (!vertex_owned_[std::size_t(v)]) continue;
-    const PetscInt offset = vertex_dof_[std::size_t(v)];
-    for (int d = 0; d < 3; ++d)
-      forces[offset + d] -= load_factor * force[d];
-  }
-  add_contact_forces(values, forces);
+  for (auto* form : enabled(forms_))
+    form->add_gradient(at, forces);
   PetscCall(VecRestoreArray(local_f_, &forces));
   PetscCall(VecRestoreArrayRead(local_x_, &values));
   PetscCall(VecSet(f, 0.0));
   PetscCall(DMLocalToGlobal(dm_, local_f_, ADD_VALUES, f));
-  if (seams_) PetscCall(add_seam_forces(x, f));
+  for (auto* form : enabled(coupling_forms_))
+    PetscCall(form->add_gradient(x, f));
   PetscCall(replace_held_rows(x, f));
+  PetscFunctionReturn(0);
+}
+
+// The triangle forms' Hessians, summed per triangle into one block.
+PetscErrorCode ClothProblem::triangle_hessians(const fem::FormPoint& at,
+                                               fem::ElementHessians& out) const {
+  PetscFunctionBeginUser;
+  const std::vector<fem::TriangleForm*> triangle_forms = enabled(triangle_forms_);
+  for (const LocalTriangle& t : triangles_) {
+    const element::Vector9 xe = gather<9>(at.x, t.dofs);
+    fem::Matrix9 block = fem::Matrix9::Zero();
+    for (const auto* form : triangle_forms)
+      form->add_hessian(triangle_view(t, xe), at, block);
+    PetscCall(out.add<9>(t.dofs, block));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -576,6 +613,7 @@ PetscErrorCode ClothProblem::jacobian(Vec x, Mat J) {
   PetscCall(to_local(x));
   PetscCall(MatZeroEntries(J));
   PetscCall(VecGetArrayRead(local_x_, &values));
+  const fem::FormPoint at = form_point(values);
   // Element matrices go straight into the value arrays when create_jacobian
   // left a scatter with J, through MatSetValuesLocal otherwise.
   PetscContainer container = nullptr;
@@ -583,58 +621,72 @@ PetscErrorCode ClothProblem::jacobian(Vec x, Mat J) {
   PetscCall(PetscObjectQuery(reinterpret_cast<PetscObject>(J), element_scatter_name,
                              reinterpret_cast<PetscObject*>(&container)));
   if (container) PetscCall(PetscContainerGetPointer(container, reinterpret_cast<void**>(&scatter)));
+  // The scatter walks every registered element in order: with a form left
+  // out, the blocks go through MatSetValuesLocal.
+  if (!disabled_forms_.empty()) scatter = nullptr;
   if (scatter) PetscCall(scatter->begin());
-  for (const LocalTriangle& t : triangles_) {
-    const element::Vector9 xe = gather<9>(values, t.dofs);
-    NonelasticResponse::Answer response;
-    response.strain = nonelastic[std::size_t(t.index)];
-    if (nonelastic_response) {
-      response = nonelastic_response->respond(t.index, *t.material, t.rest, xe, true);
-    }
-    auto result = element::membrane(t.material->membrane_model, t.material->membrane, t.rest,
-                                    response.strain, xe, element::Want::hessian);
-    if (t.material->project_membrane && !exact_hessian) element::project_to_psd<9>(result.hessian);
-    if (nonelastic_response) {
-      // The force also moves with the unloaded lengths: dF/dn dn/dx.
-      result.hessian +=
-          element::membrane_creep_sensitivity(t.material->membrane_model, t.material->membrane,
-                                              t.rest, response.strain, xe)
-              .force_per_nonelastic *
-          response.per_position;
-    }
-    if (loads.pressure != 0.0) {
-      result.hessian -= load_factor * element::follower_pressure(loads.pressure, xe).jacobian;
-    }
-    if (scatter)
-      PetscCall(scatter->add<9>(result.hessian));
-    else
-      PetscCall(add_block<9>(J, t.dofs, result.hessian));
-  }
-  for (const LocalHinge& h : hinges_) {
-    auto result = element::bending(materials_.front().bending_model, h.stiffness, h.rest,
-                                   gather<12>(values, h.dofs), element::Want::hessian);
-    if (h.project && !exact_hessian) element::project_to_psd<12>(result.hessian);
-    if (scatter)
-      PetscCall(scatter->add<12>(result.hessian));
-    else
-      PetscCall(add_block<12>(J, h.dofs, result.hessian));
-  }
-  for (const LocalPatch& p : patches_) {
-    auto result =
-        element::patch_bending(p.rest, gather<36>(values, p.dofs), element::Want::hessian);
-    if (p.project && !exact_hessian) element::project_patch_hessian_to_psd(p.rest, result.hessian);
-    if (scatter)
-      PetscCall(scatter->add<36>(result.hessian));
-    else
-      PetscCall(add_block<36>(J, p.dofs, result.hessian));
-  }
+  fem::ElementHessians elements(J, scatter);
+  PetscCall(triangle_hessians(at, elements));
+  for (auto* form : enabled(forms_))
+    PetscCall(form->add_element_hessians(at, elements));
   if (scatter) PetscCall(scatter->end());
-  PetscCall(add_contact_jacobian(values, J));
+  for (auto* form : enabled(forms_))
+    PetscCall(form->add_hessian(at, J));
   PetscCall(VecRestoreArrayRead(local_x_, &values));
-  if (seams_) PetscCall(add_seam_jacobian(J)); // global indices, across partitions
+  for (auto* form : enabled(coupling_forms_))
+    PetscCall(form->add_hessian(J)); // global indices, across partitions
   PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
   PetscCall(replace_held_rows(J));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::rest_derivative(Vec x, const RestChange& change, Vec derivative) {
+  const PetscScalar* values = nullptr;
+  PetscScalar* changes = nullptr;
+  PetscFunctionBeginUser;
+  PetscCheck(change.size() == mesh_.triangle_count(), comm_, PETSC_ERR_ARG_SIZ,
+             "rest change of %zu triangles for a mesh of %zu", change.size(),
+             mesh_.triangle_count());
+  const std::vector<fem::TriangleForm*> triangle_forms = enabled(triangle_forms_);
+  const std::vector<fem::Form*> forms = enabled(forms_);
+  for (const auto* form : triangle_forms)
+    PetscCheck(form->has_rest_derivative(), comm_, PETSC_ERR_SUP,
+               "the form '%s' has no rest derivative", form->name());
+  for (const auto* form : forms)
+    PetscCheck(form->has_rest_derivative(), comm_, PETSC_ERR_SUP,
+               "the form '%s' has no rest derivative", form->name());
+  for (const auto* form : enabled(coupling_forms_))
+    SETERRQ(comm_, PETSC_ERR_SUP, "the form '%s' has no rest derivative", form->name());
+  PetscCall(to_local(x));
+  PetscCall(VecSet(local_f_, 0.0));
+  PetscCall(VecGetArrayRead(local_x_, &values));
+  PetscCall(VecGetArray(local_f_, &changes));
+  const fem::FormPoint at = form_point(values);
+  for (const LocalTriangle& t : triangles_) {
+    const element::Vector9 xe = gather<9>(values, t.dofs);
+    for (const auto* form : triangle_forms) {
+      scatter_add<9>(changes, t.dofs,
+                     form->rest_derivative(triangle_view(t, xe), at, change[std::size_t(t.index)]));
+    }
+  }
+  for (const auto* form : forms)
+    form->add_rest_derivative(at, change, changes);
+  PetscCall(VecRestoreArray(local_f_, &changes));
+  PetscCall(VecRestoreArrayRead(local_x_, &values));
+  PetscCall(VecSet(derivative, 0.0));
+  PetscCall(DMLocalToGlobal(dm_, local_f_, ADD_VALUES, derivative));
+  // The rows of pins that hold are x = place, whatever the pattern.
+  std::vector<HeldRow> held;
+  PetscInt start = 0;
+  PetscCall(holding_rows(&held));
+  PetscCall(VecGetOwnershipRange(derivative, &start, nullptr));
+  PetscCall(VecGetArray(derivative, &changes));
+  for (const HeldRow& r : held) {
+    for (PetscInt d = 0; d < 3; ++d)
+      changes[r.first - start + d] = 0.0;
+  }
+  PetscCall(VecRestoreArray(derivative, &changes));
   PetscFunctionReturn(0);
 }
 
@@ -660,20 +712,28 @@ PetscErrorCode ClothProblem::create_jacobian(Mat* J) {
   // The exact block structure: every vertex pair of an element, plus the
   // couplings that other terms insert into `recording` (global indices).
   fem::BlockPattern pattern(comm_, layout);
-  for (const LocalTriangle& t : triangles_)
-    pattern.add_element(t.dofs);
-  for (const LocalHinge& h : hinges_)
-    pattern.add_element(h.dofs);
-  for (const LocalPatch& p : patches_)
-    pattern.add_element(p.dofs);
+  fem::ElementRegistry registry(&pattern, nullptr);
+  PetscCall(register_elements(registry));
   Mat recording = nullptr;
   PetscCall(pattern.recorder(&recording));
-  if (seams_) PetscCall(seams_->add_pattern(recording)); // seam couplings, global indices
+  for (const auto& form : coupling_forms_)
+    PetscCall(form->record_couplings(recording)); // global indices
   PetscCall(pattern.preallocate(*J));
   PetscCall(MatSetOption(*J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   // Held rows are zeroed in place: the element scatter keeps its positions.
   PetscCall(MatSetOption(*J, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
   PetscCall(attach_element_scatter(layout, *J));
+  PetscFunctionReturn(0);
+}
+
+// Every element whose block jacobian() adds, in that order: the triangles,
+// then each form's.
+PetscErrorCode ClothProblem::register_elements(fem::ElementRegistry& registry) const {
+  PetscFunctionBeginUser;
+  for (const LocalTriangle& t : triangles_)
+    PetscCall(registry.add(t.dofs));
+  for (const auto& form : forms_)
+    PetscCall(form->register_elements(registry));
   PetscFunctionReturn(0);
 }
 
@@ -688,12 +748,8 @@ PetscErrorCode ClothProblem::attach_element_scatter(const fem::BlockLayout& layo
   if (!aij) PetscFunctionReturn(0);
   auto scatter = std::make_unique<fem::ElementScatter>(layout);
   PetscCall(scatter->attach(J));
-  for (const LocalTriangle& t : triangles_)
-    PetscCall(scatter->add_element(t.dofs));
-  for (const LocalHinge& h : hinges_)
-    PetscCall(scatter->add_element(h.dofs));
-  for (const LocalPatch& p : patches_)
-    PetscCall(scatter->add_element(p.dofs));
+  fem::ElementRegistry registry(nullptr, scatter.get());
+  PetscCall(register_elements(registry));
   PetscCall(PetscContainerCreate(PETSC_COMM_SELF, &container));
   PetscCall(PetscContainerSetPointer(container, scatter.release()));
   PetscCall(PetscContainerSetUserDestroy(container, [](void* pointer) -> PetscErrorCode {
@@ -809,17 +865,7 @@ PetscErrorCode ClothProblem::visit_owned_triangles(Vec x, const TriangleVisitor&
 
 PetscErrorCode ClothProblem::gather_anchors(std::vector<AnchorRow>* rows) {
   PetscFunctionBeginUser;
-  std::vector<double> local;
-  for (std::size_t body = 0; body < anchors_.size(); ++body) {
-    for (std::size_t vertex = 0; vertex < anchors_[body].size(); ++vertex) {
-      const FrictionAnchor& anchor = anchors_[body][vertex];
-      if (!anchor.active || !vertex_owned_[vertex]) continue;
-      local.insert(local.end(),
-                   {double(body), double(vertex), anchor.point.x(), anchor.point.y(),
-                    anchor.point.z(), anchor.normal.x(), anchor.normal.y(), anchor.normal.z(),
-                    anchor.normal_force, anchor.sliding ? 1.0 : 0.0});
-    }
-  }
+  const std::vector<double> local = contact_form_->anchor_rows();
   PetscMPIInt ranks = 1, rank = 0;
   PetscCallMPI(MPI_Comm_size(comm_, &ranks));
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
@@ -841,21 +887,7 @@ PetscErrorCode ClothProblem::gather_anchors(std::vector<AnchorRow>* rows) {
 }
 
 void ClothProblem::restore_anchors(const std::vector<AnchorRow>& rows) {
-  anchors_.assign(bodies.size(), std::vector<FrictionAnchor>(mesh_.vertex_count()));
-  for (const auto& row : rows) {
-    const auto body = std::size_t(row[0]);
-    const auto vertex = std::size_t(row[1]);
-    if (body >= anchors_.size() || vertex >= mesh_.vertex_count()) {
-      throw InputError("checkpoint: friction anchor of body " + std::to_string(row[0]) +
-                       " at vertex " + std::to_string(row[1]) + " is not in this case");
-    }
-    anchors_[body][vertex].active = true;
-    anchors_[body][vertex].point = {row[2], row[3], row[4]};
-    anchors_[body][vertex].normal = {row[5], row[6], row[7]};
-    anchors_[body][vertex].normal_force = row[8];
-    anchors_[body][vertex].sliding = row[9] != 0.0;
-  }
-  solved_anchors_ = anchors_;
+  contact_form_->restore_anchors(rows);
 }
 
 PetscErrorCode ClothProblem::pin_reaction(Vec x, Eigen::Vector3d* reaction) {
@@ -880,7 +912,7 @@ PetscErrorCode ClothProblem::pin_reaction(Vec x, Eigen::Vector3d* reaction) {
   double total[3];
   PetscCallMPI(MPIU_Allreduce(local, total, 3, MPI_DOUBLE, MPI_SUM, comm_));
   *reaction = Eigen::Vector3d(total[0], total[1], total[2]);
-  if (seams_) PetscCall(add_seam_pin_reaction(x, reaction));
+  if (seam_form_) PetscCall(seam_form_->add_pin_reaction(x, reaction));
   PetscFunctionReturn(0);
 }
 

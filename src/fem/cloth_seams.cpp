@@ -1,9 +1,12 @@
-// ClothProblem's seam terms: the setup of the cross-partition seam coupling
-// (fem/seam_coupling.hpp) and its calls from energy, residual and reactions.
+// ClothProblem's seams: the setup of the cross-partition seam coupling
+// (fem/seam_coupling.hpp) as a coupling form (fem/forms/seam_form.hpp).
 
 #include "common/error.hpp"
 #include "fem/cloth_problem.hpp"
+#include "fem/forms/seam_form.hpp"
 #include "fem/petsc_call.hpp"
+
+#include <algorithm>
 
 namespace sartor {
 
@@ -39,70 +42,28 @@ void ClothProblem::set_seams(const std::vector<SeamSpring>& springs) {
   }
   Vec layout = nullptr;
   SartorPetscCall(DMGetGlobalVector(dm_, &layout));
-  seams_ = std::make_unique<SeamCoupling>(comm_, layout, std::move(assigned), std::move(first_dof),
-                                          std::move(pin_index));
-  if (sewing_tension > 0.0) seams_->start_sewing(sewing_tension, mesh_.positions);
+  auto coupling = std::make_unique<SeamCoupling>(comm_, layout, std::move(assigned),
+                                                 std::move(first_dof), std::move(pin_index));
+  if (sewing_tension > 0.0) coupling->start_sewing(sewing_tension, mesh_.positions);
   SartorPetscCall(DMRestoreGlobalVector(dm_, &layout));
-}
-
-// The seam springs' stiffness of this moment.
-void ClothProblem::update_sewing_progress() {
-  if (!sewing()) {
-    seams_->set_sewing_progress(1.0);
-  } else {
-    seams_->set_sewing_progress(pins_follow_time ? time / sewing_end_time : sewing_stage);
+  // A second call replaces the seams.
+  if (seam_form_) {
+    coupling_forms_.erase(std::find_if(coupling_forms_.begin(), coupling_forms_.end(),
+                                       [&](const auto& form) { return form.get() == seam_form_; }));
   }
+  auto form = std::make_unique<fem::SeamForm>(*this, std::move(coupling));
+  seam_form_ = form.get();
+  coupling_forms_.push_back(std::move(form));
 }
 
-// The pins' places, and the seam springs' stiffness of this moment.
-PetscErrorCode ClothProblem::prepare_seams(std::vector<Eigen::Vector3d>* places) {
-  PetscFunctionBeginUser;
-  PetscCall(pin_places(places));
-  update_sewing_progress();
-  PetscFunctionReturn(0);
+const SeamCoupling* ClothProblem::seam_coupling() const {
+  return seam_form_ ? &seam_form_->coupling() : nullptr;
 }
 
 PetscErrorCode ClothProblem::seam_gap(Vec x, double* gap) {
-  std::vector<Eigen::Vector3d> places;
   PetscFunctionBeginUser;
   *gap = 0.0;
-  if (!seams_) PetscFunctionReturn(0);
-  PetscCall(pin_places(&places));
-  PetscCall(seams_->largest_gap(x, places, gap));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode ClothProblem::seam_energy(Vec x, double* energy) {
-  std::vector<Eigen::Vector3d> places;
-  PetscFunctionBeginUser;
-  PetscCall(prepare_seams(&places));
-  PetscCall(seams_->energy(x, places, energy));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode ClothProblem::add_seam_forces(Vec x, Vec f) {
-  std::vector<Eigen::Vector3d> places;
-  PetscFunctionBeginUser;
-  PetscCall(prepare_seams(&places));
-  PetscCall(seams_->add_forces(x, places, f));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode ClothProblem::add_seam_jacobian(Mat J) {
-  PetscFunctionBeginUser;
-  update_sewing_progress(); // the springs are linear: no positions needed
-  PetscCall(seams_->add_jacobian(J));
-  PetscFunctionReturn(0);
-}
-
-// The seam springs pull on pinned vertices too; the pins hold against that.
-PetscErrorCode ClothProblem::add_seam_pin_reaction(Vec x, Eigen::Vector3d* reaction) {
-  std::vector<Eigen::Vector3d> places;
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();
-  PetscFunctionBeginUser;
-  PetscCall(prepare_seams(&places));
-  PetscCall(seams_->pinned_force(x, places, &force));
-  *reaction += force;
+  if (seam_form_) PetscCall(seam_form_->largest_gap(x, gap));
   PetscFunctionReturn(0);
 }
 

@@ -2,6 +2,8 @@
 // and the seams do to each vertex of the cloth (docs/formats.md).
 
 #include "fem/cloth_problem.hpp"
+#include "fem/forms/contact_form.hpp"
+#include "fem/forms/seam_form.hpp"
 
 #include <algorithm>
 
@@ -57,34 +59,8 @@ PetscErrorCode ClothProblem::gather_vertex_loads(Vec x, std::vector<ClothNodeFie
   PetscCall(VecSet(contact_local, 0.0));
   PetscCall(VecGetArrayRead(local_x_, &values));
   PetscCall(VecGetArray(contact_local, &per_vertex));
-  // Per vertex: normal force, friction force, the larger mu_s |f_n| of a body.
-  std::vector<double> cone(mesh_.vertex_count(), 0.0);
-  for (std::size_t b = 0; b < bodies.size(); ++b) {
-    const contact::Body& body = bodies[b];
-    for (int v : contact_vertices_) {
-      const PetscInt offset = vertex_dof_[std::size_t(v)];
-      const Eigen::Vector3d p = position(values, offset);
-      const contact::SurfaceQuery q = body.query(p, contact_clock());
-      const double k = contact_stiffness(v);
-      const double normal = k * std::max(0.0, contact.offset - q.distance) * q.normal.norm();
-      per_vertex[offset] += normal;
-      cone[std::size_t(v)] += body.friction.static_coefficient * normal;
-      if (solved_anchors_.size() != bodies.size() || !solved_anchors_[b][std::size_t(v)].active)
-        continue;
-      const FrictionAnchor& anchor = solved_anchors_[b][std::size_t(v)];
-      per_vertex[offset + 1] +=
-          contact::anchor_spring(k, p, body.to_world(anchor.point, contact_clock()),
-                                 body.direction_to_world(anchor.normal, contact_clock()),
-                                 friction_bound(anchor, body.friction, solved_bounded_),
-                                 element::Want::gradient)
-              .gradient.norm();
-    }
-  }
-  for (int v : contact_vertices_) {
-    const PetscInt offset = vertex_dof_[std::size_t(v)];
-    if (cone[std::size_t(v)] > 0.0)
-      per_vertex[offset + 2] = per_vertex[offset + 1] / cone[std::size_t(v)];
-  }
+  // Per vertex: normal force, friction force, utilisation of the cone.
+  contact_form_->add_vertex_loads(values, per_vertex);
   PetscCall(VecRestoreArray(contact_local, &per_vertex));
   PetscCall(VecRestoreArrayRead(local_x_, &values));
   std::vector<Eigen::Vector3d> contact_triples, seam_triples;
@@ -92,11 +68,11 @@ PetscErrorCode ClothProblem::gather_vertex_loads(Vec x, std::vector<ClothNodeFie
   PetscCall(gather_vertex_triples(values, &contact_triples));
   PetscCall(VecRestoreArrayRead(contact_local, &values));
   PetscCall(DMRestoreLocalVector(dm_, &contact_local));
-  if (seams_) {
+  if (seam_form_) {
     Vec forces = nullptr;
     PetscCall(DMGetGlobalVector(dm_, &forces));
     PetscCall(VecSet(forces, 0.0));
-    PetscCall(add_seam_forces(x, forces));
+    PetscCall(seam_form_->add_gradient(x, forces));
     PetscCall(DMGetLocalVector(dm_, &seam_local));
     PetscCall(VecSet(seam_local, 0.0));
     PetscCall(magnitudes_to_local(dm_, forces, vertex_dof_, vertex_owned_, seam_local));
@@ -109,14 +85,16 @@ PetscErrorCode ClothProblem::gather_vertex_loads(Vec x, std::vector<ClothNodeFie
   if (contact_triples.empty()) PetscFunctionReturn(0); // not rank 0
   if (!bodies.empty()) {
     std::vector<double> pressure = slot_values(contact_triples, 0);
-    for (std::size_t v = 0; v < pressure.size(); ++v)
-      pressure[v] = vertex_area_[v] > 0.0 ? pressure[v] / vertex_area_[v] : 0.0;
+    for (std::size_t v = 0; v < pressure.size(); ++v) {
+      const double area = contact_form_->vertex_area(v);
+      pressure[v] = area > 0.0 ? pressure[v] / area : 0.0;
+    }
     fields->push_back({"contact_pressure", pressure, "Pa"});
     fields->push_back({"contact_normal_force", slot_values(contact_triples, 0), "N"});
     fields->push_back({"friction_force", slot_values(contact_triples, 1), "N"});
     fields->push_back({"friction_utilisation", slot_values(contact_triples, 2), "1"});
   }
-  if (seams_) fields->push_back({"seam_force", slot_values(seam_triples, 0), "N"});
+  if (seam_form_) fields->push_back({"seam_force", slot_values(seam_triples, 0), "N"});
   PetscFunctionReturn(0);
 }
 

@@ -36,10 +36,6 @@
 
 namespace sartor {
 
-// A change of the rest coordinates, per triangle corner as the mesh stores
-// them (TriangleMesh::material_uv), m.
-using RestChange = std::vector<std::array<Eigen::Vector2d, 3>>;
-
 // The same change for every corner of a vertex (panels' vertices are not
 // shared between panels, so one (u, v) change per vertex is a pattern change).
 RestChange rest_change_per_vertex(const TriangleMesh& mesh,

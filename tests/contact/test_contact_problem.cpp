@@ -5,6 +5,7 @@
 // skipped body queries that change nothing.
 
 #include "contact/analytic_shapes.hpp"
+#include "contact/edge_penalty.hpp"
 #include "fem/cloth_problem.hpp"
 #include "fem/statics.hpp"
 #include "mesh/generators.hpp"

@@ -1,0 +1,72 @@
+#pragma once
+// The bending energy: hinges between neighbouring triangles (discrete shell
+// or quadratic, element/bending.hpp) or the patch triangles of the model
+// that converges to plate theory (element/patch_bending.hpp). The problem
+// builds the elements this rank assembles (fem/cloth_bending.cpp).
+
+#include "element/bending.hpp"
+#include "element/patch_bending.hpp"
+#include "fem/form.hpp"
+
+#include <array>
+#include <vector>
+
+namespace sartor::fem {
+
+struct LocalHinge {
+  std::array<PetscInt, 12> dofs; // local-vector offsets, vertex by vertex
+  element::HingeRest rest;
+  double stiffness; // N m
+  bool project;     // PSD-project its Hessian
+  // Its two mesh triangles, and which of their corners hinge_rest took
+  // (element/bending.hpp), for the rest derivative.
+  std::array<int, 2> triangles;
+  std::array<std::array<int, 3>, 2> corners;
+};
+
+class HingeBendingForm final : public Form {
+public:
+  // `material_uv`: the mesh's (TriangleMesh::material_uv), for the rest derivative.
+  HingeBendingForm(element::BendingModel model, std::vector<LocalHinge> hinges,
+                   const std::vector<std::array<Eigen::Vector2d, 3>>& material_uv)
+      : model_(model), hinges_(std::move(hinges)), uv_(material_uv) {}
+  const char* name() const override { return "hinge bending"; }
+  EnergyPart part() const override { return EnergyPart::bending; }
+  void add_energy(const FormPoint& at, double* sum) const override;
+  void add_gradient(const FormPoint& at, PetscScalar* f) const override;
+  PetscErrorCode register_elements(ElementRegistry& registry) const override;
+  PetscErrorCode add_element_hessians(const FormPoint& at, ElementHessians& out) const override;
+  bool projects() const override;
+  bool has_rest_derivative() const override { return true; }
+  void add_rest_derivative(const FormPoint& at, const RestChange& change,
+                           PetscScalar* f) const override;
+
+private:
+  element::BendingModel model_;
+  std::vector<LocalHinge> hinges_;
+  const std::vector<std::array<Eigen::Vector2d, 3>>& uv_;
+};
+
+// The patch model's triangle: its twelve-node stencil as PatchRest numbers it.
+struct LocalPatch {
+  std::array<PetscInt, 36> dofs;
+  element::PatchRest rest;
+  bool project; // PSD-project its Hessian
+};
+
+class PatchBendingForm final : public Form {
+public:
+  explicit PatchBendingForm(std::vector<LocalPatch> patches) : patches_(std::move(patches)) {}
+  const char* name() const override { return "patch bending"; }
+  EnergyPart part() const override { return EnergyPart::bending; }
+  void add_energy(const FormPoint& at, double* sum) const override;
+  void add_gradient(const FormPoint& at, PetscScalar* f) const override;
+  PetscErrorCode register_elements(ElementRegistry& registry) const override;
+  PetscErrorCode add_element_hessians(const FormPoint& at, ElementHessians& out) const override;
+  bool projects() const override;
+
+private:
+  std::vector<LocalPatch> patches_;
+};
+
+} // namespace sartor::fem

@@ -1,0 +1,38 @@
+#pragma once
+// The membrane energy of every triangle (element/membrane.hpp) at the
+// triangle's non-elastic strains: the creep state held from the last step,
+// or, with a NonelasticResponse (monolithic creep coupling), strains that
+// follow the element's positions within the step, whose dependence the
+// Hessian includes (then the residual has no potential).
+
+#include "fem/cloth_model.hpp"
+#include "fem/form.hpp"
+
+#include <vector>
+
+namespace sartor::fem {
+
+class MembraneForm final : public TriangleForm {
+public:
+  // Both are the problem's, read at every evaluation.
+  MembraneForm(const std::vector<element::NonelasticStrain>& nonelastic,
+               const NonelasticResponse* const& response)
+      : nonelastic_(nonelastic), response_(response) {}
+  const char* name() const override { return "membrane"; }
+  EnergyPart part() const override { return EnergyPart::membrane; }
+  void add_energy(const TriangleView& t, const FormPoint& at, double* sum) const override;
+  element::Vector9 gradient(const TriangleView& t, const FormPoint& at) const override;
+  void add_hessian(const TriangleView& t, const FormPoint& at, Matrix9& block) const override;
+  bool has_potential() const override { return !(response_ && response_->moves_with_positions()); }
+  bool projects(const ClothMaterial& material) const override { return material.project_membrane; }
+  // At the held non-elastic strains (the creep state of the step).
+  bool has_rest_derivative() const override { return true; }
+  element::Vector9 rest_derivative(const TriangleView& t, const FormPoint& at,
+                                   const std::array<Eigen::Vector2d, 3>& delta_uv) const override;
+
+private:
+  const std::vector<element::NonelasticStrain>& nonelastic_;
+  const NonelasticResponse* const& response_;
+};
+
+} // namespace sartor::fem

@@ -1,0 +1,43 @@
+#pragma once
+// Seam springs between any vertices of the cloth, on any ranks
+// (fem/seam_coupling.hpp), at the problem's sewing progress: while the
+// garment is sewn the springs stiffen from a gentle pull to their own
+// stiffness (docs/seams.md). Pinned vertices enter at their places.
+
+#include "fem/form.hpp"
+#include "fem/seam_coupling.hpp"
+
+#include <memory>
+
+namespace sartor {
+class ClothProblem;
+}
+
+namespace sartor::fem {
+
+class SeamForm final : public CouplingForm {
+public:
+  SeamForm(const ClothProblem& problem, std::unique_ptr<SeamCoupling> coupling)
+      : problem_(problem), coupling_(std::move(coupling)) {}
+  const char* name() const override { return "seams"; }
+  EnergyPart part() const override { return EnergyPart::seam; }
+  PetscErrorCode energy(Vec x, double* energy) override;
+  PetscErrorCode add_gradient(Vec x, Vec f) override;
+  PetscErrorCode add_hessian(Mat J) override;
+  PetscErrorCode record_couplings(Mat recording) override;
+
+  const SeamCoupling& coupling() const { return *coupling_; }
+  // Collective: the largest gap of a spring at x, m.
+  PetscErrorCode largest_gap(Vec x, double* gap);
+  // Collective: adds the springs' pull on the pinned vertices.
+  PetscErrorCode add_pin_reaction(Vec x, Eigen::Vector3d* reaction);
+
+private:
+  // The pins' places, with the springs set to the sewing progress of now.
+  PetscErrorCode prepare(std::vector<Eigen::Vector3d>* places);
+
+  const ClothProblem& problem_;
+  std::unique_ptr<SeamCoupling> coupling_;
+};
+
+} // namespace sartor::fem

@@ -1,0 +1,277 @@
+// The discrete problem as a sum of energy forms (fem/form.hpp): every form's
+// gradient against central differences of its energy and its exact Hessian
+// against central differences of its gradient, each form alone; the exact
+// rest-coordinate derivatives against central differences of problems
+// rebuilt on moved patterns; the sum of
+// the forms' residuals is the problem's; a toy form added in one file
+// (spring_to_point_form.hpp) holds a free sheet where its springs pull it.
+
+#include "common/error.hpp"
+#include "contact/analytic_shapes.hpp"
+#include "fem/cloth_problem.hpp"
+#include "fem/sensitivity.hpp"
+#include "fem/statics.hpp"
+#include "mesh/generators.hpp"
+#include "tests/fem/jacobian_check.hpp"
+#include "tests/fem/spring_to_point_form.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace sartor {
+namespace {
+
+ClothMaterial cotton(element::BendingModel model) {
+  ClothMaterial m(
+      {TensionCurve::linear(65200, "test"), TensionCurve::linear(28200, "test"), 4288.0, 0.0});
+  m.bending_model = model;
+  m.bending_stiffness = 1e-3;
+  m.areal_density = 0.2;
+  return m;
+}
+
+// A jittered sheet 0.4 x 0.3 m near the top of a ball (its vertices around
+// the middle within the contact offset), with every kind of form: membrane
+// with creep strains, gravity, bending, a point force, contact with edge
+// samples and friction anchors, a seam and springs to points.
+struct Scene {
+  TriangleMesh mesh;
+  std::unique_ptr<ClothProblem> problem;
+};
+
+Scene scene(element::BendingModel model) {
+  Scene s;
+  s.mesh = mesh::rectangle(0.4, 0.3, 6, 5, mesh::RectanglePattern::perturbed);
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> jitter(-0.004, 0.004);
+  for (auto& p : s.mesh.positions)
+    p += Eigen::Vector3d(jitter(random), jitter(random), jitter(random));
+  s.problem =
+      std::make_unique<ClothProblem>(PETSC_COMM_WORLD, s.mesh, cotton(model), std::vector<int>{0});
+  ClothProblem& p = *s.problem;
+  p.loads.gravity = {0, 0, -9.81};
+  p.loads.point_forces = {{9, {0.1, -0.2, 0.3}}};
+  p.nonelastic.assign(s.mesh.triangle_count(), {0.01, 0.02});
+  // A ball whose top is 0.5 mm below the sheet's middle: the middle
+  // vertices and edge samples lie in the 3 mm offset layer.
+  const Eigen::Vector3d middle(0.2, 0.15, 0.0);
+  const double radius = 0.5;
+  contact::Body ball(
+      "ball",
+      std::make_shared<contact::Sphere>(middle - Eigen::Vector3d(0, 0, radius + 0.0005), radius),
+      Eigen::Vector3d::Zero());
+  ball.friction.static_coefficient = ball.friction.kinetic_coefficient = 0.4;
+  p.bodies.push_back(ball);
+  p.contact.offset = 3e-3;
+  p.contact.edge_sample_spacing = 0.02;
+  SeamSpring seam;
+  seam.vertices = {{1, 40, -1}};
+  seam.stiffness = 50.0;
+  seam.length = 0.05;
+  p.set_seams({seam});
+  const int last = int(s.mesh.vertex_count()) - 1;
+  p.add_form(std::make_unique<testing::SpringToPointForm>(
+      p, std::vector<testing::SpringToPointForm::Spring>{{last, {0.5, 0.4, 0.1}}}, 30.0));
+  return s;
+}
+
+double directional_energy_error(ClothProblem& problem, Vec x, Vec v, double h) {
+  Vec g = nullptr, shifted = nullptr;
+  VecDuplicate(x, &g);
+  VecDuplicate(x, &shifted);
+  ClothEnergy up, down;
+  EXPECT_EQ(problem.residual(x, g), 0);
+  VecWAXPY(shifted, h, v, x);
+  EXPECT_EQ(problem.energy(shifted, &up), 0);
+  VecWAXPY(shifted, -h, v, x);
+  EXPECT_EQ(problem.energy(shifted, &down), 0);
+  PetscScalar slope = 0.0;
+  VecDot(g, v, &slope);
+  VecDestroy(&g);
+  VecDestroy(&shifted);
+  const double difference = (up.total() - down.total()) / (2.0 * h);
+  EXPECT_NE(slope, 0.0) << "the form does nothing here";
+  return std::abs(difference - slope) / std::abs(slope);
+}
+
+Vec random_direction(Vec x) {
+  Vec v = nullptr;
+  VecDuplicate(x, &v);
+  PetscRandom generator = nullptr;
+  PetscRandomCreate(PETSC_COMM_WORLD, &generator);
+  PetscRandomSetSeed(generator, 11);
+  PetscRandomSeed(generator);
+  VecSetRandom(v, generator);
+  PetscRandomDestroy(&generator);
+  return v;
+}
+
+TEST(Forms, EachFormsGradientAndHessianMatchDifferences) {
+  for (auto model : {element::BendingModel::discrete_shell, element::BendingModel::patch}) {
+    Scene s = scene(model);
+    ClothProblem& problem = *s.problem;
+    Vec x = nullptr;
+    ASSERT_EQ(problem.create_solution(&x), 0);
+    ASSERT_EQ(problem.update_contact(x), 0); // anchors where the sheet touches
+    Vec v = random_direction(x);
+    problem.exact_hessian = true;
+    const std::vector<std::string> names = problem.form_names();
+    for (const std::string& name : names) {
+      for (const std::string& other : names)
+        problem.enable_form(other, other == name);
+      EXPECT_LT(directional_energy_error(problem, x, v, 1e-6), 1e-6) << name;
+      // Gravity and point forces do not depend on the positions: J v and
+      // the differences of the gradient are both exactly zero.
+      const bool constant = name == "surface loads" || name == "point loads";
+      const double error = testing::directional_jacobian_error(problem, x, v, 1e-6, NORM_2);
+      if (!constant) {
+        EXPECT_GE(error, 0.0) << name << ": assembly failed";
+        EXPECT_LT(error, 1e-6) << name;
+      } else {
+        EXPECT_TRUE(std::isnan(error)) << name << ": 0/0 expected, got " << error;
+      }
+    }
+    // Follower pressure (no potential): its Hessian alone.
+    problem.loads.pressure = 5.0;
+    for (const std::string& name : names)
+      problem.enable_form(name, name == "surface loads");
+    EXPECT_FALSE(problem.has_potential());
+    EXPECT_LT(testing::directional_jacobian_error(problem, x, v, 1e-6, NORM_2), 1e-6);
+    VecDestroy(&x);
+    VecDestroy(&v);
+  }
+}
+
+TEST(Forms, TheProblemsResidualIsTheSumOfItsForms) {
+  Scene s = scene(element::BendingModel::discrete_shell);
+  ClothProblem& problem = *s.problem;
+  const std::vector<std::string> expected = {"membrane",    "surface loads", "hinge bending",
+                                             "point loads", "contact",       "spring to point",
+                                             "seams"};
+  EXPECT_EQ(problem.form_names(), expected);
+  Vec x = nullptr, total = nullptr, sum = nullptr, one = nullptr;
+  ASSERT_EQ(problem.create_solution(&x), 0);
+  ASSERT_EQ(problem.update_contact(x), 0);
+  for (Vec* w : {&total, &sum, &one})
+    VecDuplicate(x, w);
+  ASSERT_EQ(problem.residual(x, total), 0);
+  VecSet(sum, 0.0);
+  for (const std::string& name : expected) {
+    for (const std::string& other : expected)
+      problem.enable_form(other, other == name);
+    ASSERT_EQ(problem.residual(x, one), 0);
+    VecAXPY(sum, 1.0, one);
+  }
+  PetscReal scale = 0.0, difference = 0.0;
+  VecNorm(total, NORM_INFINITY, &scale);
+  VecAXPY(sum, -1.0, total);
+  VecNorm(sum, NORM_INFINITY, &difference);
+  EXPECT_LT(difference, 1e-12 * scale);
+  EXPECT_THROW(problem.enable_form("gravity", false), InputError);
+  for (Vec* w : {&x, &total, &sum, &one})
+    VecDestroy(w);
+}
+
+TEST(Forms, RestDerivativesMatchDifferencesOfRebuiltProblems) {
+  TriangleMesh mesh = mesh::rectangle(0.4, 0.3, 6, 5, mesh::RectanglePattern::perturbed);
+  std::mt19937_64 random(5);
+  std::uniform_real_distribution<double> jitter(-0.01, 0.01);
+  for (auto& p : mesh.positions)
+    p += Eigen::Vector3d(jitter(random), jitter(random), jitter(random));
+  std::vector<Eigen::Vector2d> delta_uv(mesh.vertex_count());
+  for (auto& d : delta_uv)
+    d = {jitter(random), jitter(random)};
+  const RestChange change = rest_change_per_vertex(mesh, delta_uv);
+  const auto build = [](const TriangleMesh& m, const std::string& form) {
+    auto problem = std::make_unique<ClothProblem>(
+        PETSC_COMM_WORLD, m, cotton(element::BendingModel::discrete_shell), std::vector<int>{0});
+    problem->loads.gravity = {0, 0, -9.81};
+    problem->loads.point_forces = {{9, {0.1, -0.2, 0.3}}};
+    problem->nonelastic.assign(m.triangle_count(), {0.01, 0.02});
+    for (const std::string& name : problem->form_names())
+      problem->enable_form(name, name == form);
+    return problem;
+  };
+  const double h = 1e-4; // times a change of up to 1 cm: 1 micrometre
+  for (const std::string form : {"membrane", "surface loads", "hinge bending", "point loads"}) {
+    auto base = build(mesh, form);
+    Vec x = nullptr, exact = nullptr, difference = nullptr, side = nullptr;
+    ASSERT_EQ(base->create_solution(&x), 0);
+    for (Vec* w : {&exact, &difference, &side})
+      VecDuplicate(x, w);
+    ASSERT_EQ(base->rest_derivative(x, change, exact), 0);
+    VecSet(difference, 0.0);
+    for (const double s : {h, -h}) {
+      const TriangleMesh moved = moved_rest(mesh, change, s);
+      auto other = build(moved, form);
+      Vec y = nullptr, f = nullptr;
+      ASSERT_EQ(other->create_solution(&y), 0);
+      VecDuplicate(y, &f);
+      ASSERT_EQ(transfer_vector(*base, x, *other, y), 0);
+      ASSERT_EQ(other->residual(y, f), 0);
+      ASSERT_EQ(transfer_vector(*other, f, *base, side), 0);
+      VecAXPY(difference, s > 0 ? 0.5 / h : -0.5 / h, side);
+      VecDestroy(&y);
+      VecDestroy(&f);
+    }
+    PetscReal size = 0.0, error = 0.0;
+    VecNorm(exact, NORM_2, &size);
+    VecAXPY(difference, -1.0, exact);
+    VecNorm(difference, NORM_2, &error);
+    if (form == "point loads") {
+      EXPECT_EQ(size, 0.0) << form;
+      EXPECT_LT(error, 1e-9) << form; // N: the forces do not depend on the pattern
+    } else {
+      EXPECT_GT(size, 0.0) << form;
+      EXPECT_LT(error, 1e-6 * size) << form;
+    }
+    for (Vec* w : {&x, &exact, &difference, &side})
+      VecDestroy(w);
+  }
+  // Forms without an exact rest derivative (patch bending) are refused,
+  // not left out.
+  ClothProblem patch(PETSC_COMM_WORLD, mesh, cotton(element::BendingModel::patch), {0});
+  Vec x = nullptr, derivative = nullptr;
+  ASSERT_EQ(patch.create_solution(&x), 0);
+  VecDuplicate(x, &derivative);
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  EXPECT_NE(patch.rest_derivative(x, change, derivative), 0);
+  PetscPopErrorHandler();
+  VecDestroy(&x);
+  VecDestroy(&derivative);
+}
+
+TEST(Forms, SpringsToPointsHoldAFreeSheetWhereTheyPullIt) {
+  // No pins, no loads: three springs to the placement of three corners
+  // moved by d carry the sheet there rigidly, unstrained.
+  TriangleMesh mesh = mesh::rectangle(0.4, 0.3, 4, 3, mesh::RectanglePattern::perturbed);
+  ClothProblem problem(PETSC_COMM_WORLD, mesh, cotton(element::BendingModel::patch), {});
+  const Eigen::Vector3d d(0.01, -0.02, 0.005);
+  std::vector<testing::SpringToPointForm::Spring> springs;
+  for (int v : {0, 4, int(mesh.vertex_count()) - 1})
+    springs.push_back({v, mesh.positions[std::size_t(v)] + d});
+  problem.add_form(std::make_unique<testing::SpringToPointForm>(problem, springs, 100.0));
+  Vec x = nullptr;
+  ASSERT_EQ(problem.create_solution(&x), 0);
+  StaticOptions options;
+  options.load_steps = 1;
+  StaticReport report;
+  ASSERT_EQ(solve_static(problem, x, options, &report), 0);
+  EXPECT_TRUE(report.converged);
+  std::vector<Eigen::Vector3d> positions;
+  ASSERT_EQ(problem.gather_positions(x, &positions), 0);
+  for (std::size_t v = 0; v < positions.size(); ++v)
+    EXPECT_LT((positions[v] - mesh.positions[v] - d).norm(), 1e-9) << "vertex " << v;
+  ClothEnergy energy;
+  ASSERT_EQ(problem.energy(x, &energy), 0);
+  EXPECT_LT(energy.membrane, 1e-12);
+  VecDestroy(&x);
+}
+
+} // namespace
+} // namespace sartor
