@@ -23,8 +23,8 @@
 #include "fem/cloth_model.hpp"
 #include "fem/cloth_output.hpp"
 #include "fem/form.hpp"
+#include "fem/forms/seam_coupling.hpp"
 #include "fem/pin_motion.hpp"
-#include "fem/seam_coupling.hpp"
 #include "mesh/triangle_mesh.hpp"
 
 #include <petscdmplex.h>
@@ -150,7 +150,7 @@ public:
   PetscErrorCode contact_step_bound(Vec x, Vec direction, double* bound);
 
   // Seam springs (mesh/seams.hpp) between any vertices of the mesh, on any
-  // ranks (fem/seam_coupling.hpp). Collective, with the same springs on every
+  // ranks (fem/forms/seam_coupling.hpp). Collective, with the same springs on every
   // rank; call before create_jacobian. Energy, residual, Jacobian and pin
   // reaction include them.
   void set_seams(const std::vector<SeamSpring>& springs);

@@ -1,5 +1,5 @@
 // ClothProblem's seams: the setup of the cross-partition seam coupling
-// (fem/seam_coupling.hpp) as a coupling form (fem/forms/seam_form.hpp).
+// (fem/forms/seam_coupling.hpp) as a coupling form (fem/forms/seam_form.hpp).
 
 #include "common/error.hpp"
 #include "fem/cloth_problem.hpp"

@@ -15,7 +15,7 @@
 //
 // Sewing by continuation: with problem.sewing_tension > 0 and seams, the
 // seams close in `sewing_stages` stages of their stiffness (the geometric
-// ramp of gradual sewing, fem/seam_coupling.hpp, at progress 0, 1/(n-1),
+// ramp of gradual sewing, fem/forms/seam_coupling.hpp, at progress 0, 1/(n-1),
 // ..., 1), the loads growing from start_load_factor to the target with the
 // same progress, the bodies without friction until the last; every stage but the
 // last two is solved to `stage_rtol` of its first residual or for at most

@@ -9,6 +9,9 @@
 # machine; the garments agree to about 1e-8 m, the solver's tolerance).
 #
 #   drape_prescott_agrees.sh SARTOR PATTERN CASE OUT_DIR [DRAPE_OPTION ...]
+#
+# SARTOR_AGREE_TOLERANCE (m, default 1e-6) sets the bound for a garment
+# whose frictional equilibrium is known to be less sharply defined.
 set -euo pipefail
 [ $# -ge 4 ] || { echo "usage: $0 SARTOR PATTERN CASE OUT_DIR [DRAPE_OPTION ...]" >&2; exit 2; }
 sartor=$1 pattern=$2 case=$3 dir=$4
@@ -21,9 +24,9 @@ mkdir -p "$dir"
   > "$dir/default.log"
 OPENBLAS_CORETYPE=Prescott "$sartor" drape "$pattern" -options_file_yaml "$case" --no-plot "$@" \
   --output "$dir/prescott" > "$dir/prescott.log"
-"$python" - "$dir" <<'PY'
+"$python" - "$dir" "${SARTOR_AGREE_TOLERANCE:-1e-6}" <<'PY'
 import json, os, sys
-d = sys.argv[1]
+d, tolerance = sys.argv[1], float(sys.argv[2])
 
 def vertices(run):
     with open(os.path.join(d, run, "final.obj")) as f:
@@ -42,5 +45,5 @@ apart = max(max(abs(p - q) for p, q in zip(u, v)) for u, v in zip(a, b))
 iterations = [summary(run)["solver"]["newton_iterations"] for run in ("default", "prescott")]
 print("drape_prescott_agrees: %d vertices, %s Newton iterations, the runs %.2e m apart"
       % (len(a), iterations, apart))
-assert apart < 1e-6, f"the default and Prescott drapes end {apart} m apart"
+assert apart < tolerance, f"the default and Prescott drapes end {apart} m apart (bound {tolerance} m)"
 PY

@@ -1,11 +1,11 @@
 #pragma once
 // Seam springs between any vertices of the cloth, on any ranks
-// (fem/seam_coupling.hpp), at the problem's sewing progress: while the
+// (fem/forms/seam_coupling.hpp), at the problem's sewing progress: while the
 // garment is sewn the springs stiffen from a gentle pull to their own
 // stiffness (docs/seams.md). Pinned vertices enter at their places.
 
 #include "fem/form.hpp"
-#include "fem/seam_coupling.hpp"
+#include "fem/forms/seam_coupling.hpp"
 
 #include <memory>
 

@@ -16,7 +16,7 @@
 #include <vector>
 
 #ifndef SARTOR_TEST_DATA_DIR
-#error "SARTOR_TEST_DATA_DIR must name tests/unit/data"
+#error "SARTOR_TEST_DATA_DIR must name tests/material/data"
 #endif
 
 namespace sartor {

@@ -1,5 +1,5 @@
 // Unit tests of fabrics: the Table 5.1 presets, the fabric specification
-// strings, and YAML fabric files (fixtures in tests/unit/data/).
+// strings, and YAML fabric files (fixtures in tests/material/data/).
 
 #include "material/fabric.hpp"
 
@@ -12,7 +12,7 @@
 #include <vector>
 
 #ifndef SARTOR_TEST_DATA_DIR
-#error "SARTOR_TEST_DATA_DIR must name tests/unit/data"
+#error "SARTOR_TEST_DATA_DIR must name tests/material/data"
 #endif
 
 namespace sartor {

@@ -1,4 +1,4 @@
-#include "fem/seam_coupling.hpp"
+#include "fem/forms/seam_coupling.hpp"
 
 #include "element/seam.hpp"
 #include "fem/petsc_call.hpp"
