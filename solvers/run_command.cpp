@@ -72,7 +72,16 @@ const std::vector<OptionSpec>& mesh_option_specs() {
   return specs;
 }
 
-// The cloth's material: fabric, membrane and bending models.
+// "a, b or c".
+std::string alternatives(const std::vector<std::string>& names) {
+  std::string text;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  return text;
+}
+
+// The cloth's material: fabric, membrane and bending models (the membrane
+// models as registered, element/membrane_models.hpp).
 const std::vector<OptionSpec>& material_option_specs() {
   static const std::vector<OptionSpec> specs{
       {"fabric", "SPEC", "cotton_twill",
@@ -83,7 +92,8 @@ const std::vector<OptionSpec>& material_option_specs() {
        "in-plane shear modulus, N/m [the fabric's, else 0.1 sqrt(k_warp k_weft)]"},
       {"poisson", "NU", "0", "warp-weft Poisson coupling (stvk model)"},
       {"membrane-model", "M", "baraff_witkin",
-       "baraff_witkin, stvk or measured (Wang et al. table) [measured for a fabric with one]"},
+       alternatives(element::membrane_model_names()) +
+           " [measured (a Wang et al. table) for a fabric with one]"},
       {"membrane-psd", "", "",
        "project membrane (and contact) Hessians to PSD (compression stabilisation)"},
       {"bending-model", "M", "patch",
@@ -392,12 +402,7 @@ TriangleMesh build_mesh(const Options& options, int extra_refinements, int* refi
 element::MembraneModel membrane_model(const Options& options, const Fabric& fabric) {
   if (!options.is_set("membrane-model") && fabric.stretching)
     return element::MembraneModel::measured;
-  const std::string membrane = options.text("membrane-model");
-  if (membrane == "baraff_witkin") return element::MembraneModel::baraff_witkin;
-  if (membrane == "stvk") return element::MembraneModel::saint_venant_kirchhoff;
-  if (membrane == "measured") return element::MembraneModel::measured;
-  throw InputError("option --membrane-model: unknown model '" + membrane +
-                   "' (baraff_witkin, stvk, measured)");
+  return element::membrane_model_named(options.text("membrane-model"), "option --membrane-model");
 }
 
 // The bending model of the options; a mesh with creases (rest angles on

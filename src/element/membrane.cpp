@@ -1,5 +1,7 @@
 #include "element/membrane.hpp"
 
+#include "element/membrane_models.hpp"
+
 #include "common/error.hpp"
 
 #include <Eigen/LU>
@@ -18,20 +20,6 @@ using Eigen::Vector3d;
 // Material triangles flatter than this (|det| relative to the longest edge
 // squared) are rejected.
 constexpr double degenerate_ratio = 1e-12;
-// A column of F_e shorter than this has no direction (BW model).
-constexpr double min_stretch = 1e-12;
-
-// The elastic energy density W (J/m^2) as a function of the columns
-// a = F_e e1 and b = F_e e2, with its derivatives: gradient (dW/da, dW/db)
-// and the 3x3 blocks of the Hessian (Hab = d^2 W / da db^T).
-struct Density {
-  double energy = 0.0;
-  Vector3d grad_a = Vector3d::Zero();
-  Vector3d grad_b = Vector3d::Zero();
-  Matrix3d haa = Matrix3d::Zero();
-  Matrix3d hab = Matrix3d::Zero();
-  Matrix3d hbb = Matrix3d::Zero();
-};
 
 // The columns of F_e are linear in x: a = sum_i c_i x_i, b = sum_i d_i x_i.
 struct Columns {
@@ -52,122 +40,6 @@ Columns columns(const TriangleRest& rest, const NonelasticStrain& nonelastic, co
   k.a = k.c(0) * x.segment<3>(0) + k.c(1) * x.segment<3>(3) + k.c(2) * x.segment<3>(6);
   k.b = k.d(0) * x.segment<3>(0) + k.d(1) * x.segment<3>(3) + k.d(2) * x.segment<3>(6);
   return k;
-}
-
-// Length of a column, its unit direction and the Hessian of the length,
-// (I - u u^T)/|v|; direction and Hessian are zero below min_stretch.
-struct Stretch {
-  double length = 0.0;
-  Vector3d unit = Vector3d::Zero();
-  Matrix3d hessian = Matrix3d::Zero();
-};
-
-Stretch stretch_of(const Vector3d& v) {
-  Stretch s;
-  s.length = v.norm();
-  if (s.length < min_stretch) return s;
-  s.unit = v / s.length;
-  s.hessian = (Matrix3d::Identity() - s.unit * s.unit.transpose()) / s.length;
-  return s;
-}
-
-// W = W_warp(|a| - 1) + W_weft(|b| - 1) + G (a.b)^2 / 2.
-Density baraff_witkin(const MembraneMaterial& material, const Vector3d& a, const Vector3d& b) {
-  const Stretch sa = stretch_of(a);
-  const Stretch sb = stretch_of(b);
-  const double eu = sa.length - 1.0;
-  const double ev = sb.length - 1.0;
-  const double g = a.dot(b);
-  const double shear = material.shear_modulus;
-  const double tu = material.warp.tension(eu);
-  const double tv = material.weft.tension(ev);
-  const double ku = material.warp.stiffness(eu);
-  const double kv = material.weft.stiffness(ev);
-
-  Density w;
-  w.energy =
-      material.warp.energy_density(eu) + material.weft.energy_density(ev) + 0.5 * shear * g * g;
-  w.grad_a = tu * sa.unit + shear * g * b;
-  w.grad_b = tv * sb.unit + shear * g * a;
-  w.haa = ku * sa.unit * sa.unit.transpose() + tu * sa.hessian + shear * b * b.transpose();
-  w.hbb = kv * sb.unit * sb.unit.transpose() + tv * sb.hessian + shear * a * a.transpose();
-  w.hab = shear * (b * a.transpose() + g * Matrix3d::Identity());
-  return w;
-}
-
-// c12 = poisson sqrt(k_warp k_weft), initial moduli.
-double coupling_modulus(const MembraneMaterial& material) {
-  return material.poisson *
-         std::sqrt(material.warp.initial_modulus() * material.weft.initial_modulus());
-}
-
-// W = W_warp(E11) + W_weft(E22) + c12 E11 E22 + G (a.b)^2 / 2, with
-// E11 = (a.a - 1)/2, E22 = (b.b - 1)/2 and a.b = 2 E12.
-Density saint_venant_kirchhoff(const MembraneMaterial& material, const Vector3d& a,
-                               const Vector3d& b) {
-  const double e11 = 0.5 * (a.squaredNorm() - 1.0);
-  const double e22 = 0.5 * (b.squaredNorm() - 1.0);
-  const double g = a.dot(b);
-  const double shear = material.shear_modulus;
-  const double c12 = coupling_modulus(material);
-  const double s11 = material.warp.tension(e11) + c12 * e22;
-  const double s22 = material.weft.tension(e22) + c12 * e11;
-  const double ku = material.warp.stiffness(e11);
-  const double kv = material.weft.stiffness(e22);
-  const Matrix3d identity = Matrix3d::Identity();
-
-  Density w;
-  w.energy = material.warp.energy_density(e11) + material.weft.energy_density(e22) +
-             c12 * e11 * e22 + 0.5 * shear * g * g;
-  w.grad_a = s11 * a + shear * g * b;
-  w.grad_b = s22 * b + shear * g * a;
-  w.haa = ku * a * a.transpose() + s11 * identity + shear * b * b.transpose();
-  w.hbb = kv * b * b.transpose() + s22 * identity + shear * a * a.transpose();
-  w.hab = c12 * a * b.transpose() + shear * (b * a.transpose() + g * identity);
-  return w;
-}
-
-const MeasuredStretching& table_of(const MembraneMaterial& material) {
-  if (!material.stretching) {
-    throw InputError("the measured membrane model needs a fabric with a stretching table "
-                     "(a measured material, docs/fabrics.md)");
-  }
-  return *material.stretching;
-}
-
-// The measured table's W(E11, E22, E12) with E11 = (a.a - 1)/2,
-// E22 = (b.b - 1)/2, E12 = a.b/2 (chain rule; the Green strain is quadratic).
-Density measured(const MembraneMaterial& material, const Vector3d& a, const Vector3d& b) {
-  const StrainEnergy e = table_of(material).energy(0.5 * (a.squaredNorm() - 1.0),
-                                                   0.5 * (b.squaredNorm() - 1.0), 0.5 * a.dot(b));
-  const Eigen::Vector3d& g = e.gradient;
-  const Eigen::Matrix3d& h = e.hessian;
-  const Matrix3d identity = Matrix3d::Identity();
-  Density w;
-  w.energy = e.energy;
-  w.grad_a = g[0] * a + 0.5 * g[2] * b;
-  w.grad_b = g[1] * b + 0.5 * g[2] * a;
-  w.haa = h(0, 0) * a * a.transpose() + 0.5 * h(0, 2) * (a * b.transpose() + b * a.transpose()) +
-          0.25 * h(2, 2) * b * b.transpose() + g[0] * identity;
-  w.hbb = h(1, 1) * b * b.transpose() + 0.5 * h(1, 2) * (a * b.transpose() + b * a.transpose()) +
-          0.25 * h(2, 2) * a * a.transpose() + g[1] * identity;
-  w.hab = h(0, 1) * a * b.transpose() + 0.5 * h(0, 2) * a * a.transpose() +
-          0.5 * h(1, 2) * b * b.transpose() + 0.25 * h(2, 2) * b * a.transpose() +
-          0.5 * g[2] * identity;
-  return w;
-}
-
-Density density(MembraneModel model, const MembraneMaterial& material, const Vector3d& a,
-                const Vector3d& b) {
-  switch (model) {
-  case MembraneModel::measured:
-    return measured(material, a, b);
-  case MembraneModel::baraff_witkin:
-    return baraff_witkin(material, a, b);
-  case MembraneModel::saint_venant_kirchhoff:
-    return saint_venant_kirchhoff(material, a, b);
-  }
-  return {};
 }
 
 std::string corners_text(const std::array<Eigen::Vector2d, 3>& uv) {
@@ -204,7 +76,7 @@ TriangleRest triangle_rest(const std::array<Eigen::Vector2d, 3>& uv) {
 Result<9> membrane(MembraneModel model, const MembraneMaterial& material, const TriangleRest& rest,
                    const NonelasticStrain& nonelastic, const Vector9& x, Want want) {
   const Columns k = columns(rest, nonelastic, x);
-  const Density w = density(model, material, k.a, k.b);
+  const Density w = membrane_model_kernels(model).density(material, k.a, k.b);
   const double unloaded_area = rest.area * (1.0 + nonelastic.warp) * (1.0 + nonelastic.weft);
 
   Result<9> result;
@@ -235,96 +107,17 @@ MembraneStrain membrane_strain(MembraneModel model, const MembraneMaterial& mate
                                const TriangleRest& rest, const NonelasticStrain& nonelastic,
                                const Vector9& x) {
   const Columns k = columns(rest, nonelastic, x);
+  const MembraneModelKernels& kernels = membrane_model_kernels(model);
+  const Eigen::Vector2d strains = kernels.strains(k.a, k.b);
+  const ColumnTensions tensions = kernels.tensions(material, k.a, k.b);
   MembraneStrain strain;
   strain.shear = k.a.dot(k.b);
-  switch (model) {
-  case MembraneModel::baraff_witkin:
-    strain.warp = k.a.norm() - 1.0;
-    strain.weft = k.b.norm() - 1.0;
-    strain.tension_warp = material.warp.tension(strain.warp);
-    strain.tension_weft = material.weft.tension(strain.weft);
-    break;
-  case MembraneModel::saint_venant_kirchhoff: {
-    strain.warp = 0.5 * (k.a.squaredNorm() - 1.0);
-    strain.weft = 0.5 * (k.b.squaredNorm() - 1.0);
-    const double c12 = coupling_modulus(material);
-    strain.tension_warp = (material.warp.tension(strain.warp) + c12 * strain.weft) * k.a.norm();
-    strain.tension_weft = (material.weft.tension(strain.weft) + c12 * strain.warp) * k.b.norm();
-    break;
-  }
-  case MembraneModel::measured: {
-    strain.warp = 0.5 * (k.a.squaredNorm() - 1.0);
-    strain.weft = 0.5 * (k.b.squaredNorm() - 1.0);
-    const StrainEnergy e = table_of(material).energy(strain.warp, strain.weft, 0.5 * strain.shear);
-    strain.tension_warp = e.gradient[0] * k.a.norm();
-    strain.tension_weft = e.gradient[1] * k.b.norm();
-    break;
-  }
-  }
+  strain.warp = strains[0];
+  strain.weft = strains[1];
+  strain.tension_warp = tensions.tension[0];
+  strain.tension_weft = tensions.tension[1];
   return strain;
 }
-
-namespace {
-
-// The tensions of membrane_strain as functions of the columns a and b of F_e,
-// with their gradients: row r of per_a is d tension_r / d a.
-struct ColumnTensions {
-  Eigen::Vector2d tension;
-  Eigen::Matrix<double, 2, 3> per_a = Eigen::Matrix<double, 2, 3>::Zero();
-  Eigen::Matrix<double, 2, 3> per_b = Eigen::Matrix<double, 2, 3>::Zero();
-};
-
-ColumnTensions column_tensions(MembraneModel model, const MembraneMaterial& material,
-                               const Vector3d& a, const Vector3d& b) {
-  ColumnTensions t;
-  switch (model) {
-  case MembraneModel::baraff_witkin: {
-    // tension_warp = T_warp(|a| - 1), tension_weft = T_weft(|b| - 1).
-    const Stretch sa = stretch_of(a);
-    const Stretch sb = stretch_of(b);
-    t.tension << material.warp.tension(sa.length - 1.0), material.weft.tension(sb.length - 1.0);
-    t.per_a.row(0) = material.warp.stiffness(sa.length - 1.0) * sa.unit.transpose();
-    t.per_b.row(1) = material.weft.stiffness(sb.length - 1.0) * sb.unit.transpose();
-    break;
-  }
-  case MembraneModel::saint_venant_kirchhoff: {
-    // tension_warp = S11 |a|, S11 = T_warp(E11) + c12 E22, and the same for weft.
-    const Stretch sa = stretch_of(a);
-    const Stretch sb = stretch_of(b);
-    const double e11 = 0.5 * (a.squaredNorm() - 1.0);
-    const double e22 = 0.5 * (b.squaredNorm() - 1.0);
-    const double c12 = coupling_modulus(material);
-    const double s11 = material.warp.tension(e11) + c12 * e22;
-    const double s22 = material.weft.tension(e22) + c12 * e11;
-    t.tension << s11 * sa.length, s22 * sb.length;
-    t.per_a.row(0) = (material.warp.stiffness(e11) * sa.length * a + s11 * sa.unit).transpose();
-    t.per_b.row(0) = (c12 * sa.length * b).transpose();
-    t.per_a.row(1) = (c12 * sb.length * a).transpose();
-    t.per_b.row(1) = (material.weft.stiffness(e22) * sb.length * b + s22 * sb.unit).transpose();
-    break;
-  }
-  case MembraneModel::measured: {
-    // tension_warp = W_0 |a|, tension_weft = W_1 |b|, W_m = dW/dg_m over
-    // g = (E11, E22, E12); dg/da = (a, 0, b/2), dg/db = (0, b, a/2).
-    const Stretch sa = stretch_of(a);
-    const Stretch sb = stretch_of(b);
-    const StrainEnergy e = table_of(material).energy(0.5 * (a.squaredNorm() - 1.0),
-                                                     0.5 * (b.squaredNorm() - 1.0), 0.5 * a.dot(b));
-    const Eigen::Matrix3d& h = e.hessian;
-    t.tension << e.gradient[0] * sa.length, e.gradient[1] * sb.length;
-    t.per_a.row(0) =
-        ((h(0, 0) * a + 0.5 * h(0, 2) * b) * sa.length + e.gradient[0] * sa.unit).transpose();
-    t.per_b.row(0) = ((h(0, 1) * b + 0.5 * h(0, 2) * a) * sa.length).transpose();
-    t.per_a.row(1) = ((h(0, 1) * a + 0.5 * h(1, 2) * b) * sb.length).transpose();
-    t.per_b.row(1) =
-        ((h(1, 1) * b + 0.5 * h(1, 2) * a) * sb.length + e.gradient[1] * sb.unit).transpose();
-    break;
-  }
-  }
-  return t;
-}
-
-} // namespace
 
 MembraneCreepSensitivity membrane_creep_sensitivity(MembraneModel model,
                                                     const MembraneMaterial& material,
@@ -336,8 +129,9 @@ MembraneCreepSensitivity membrane_creep_sensitivity(MembraneModel model,
   // i is A [(1 + n_weft) c0_i dW/da + (1 + n_warp) d0_i dW/db] with the
   // weights c0 = (1 + n_warp) c, d0 = (1 + n_weft) d independent of n.
   const Columns k = columns(rest, nonelastic, x);
-  const Density w = density(model, material, k.a, k.b);
-  const ColumnTensions t = column_tensions(model, material, k.a, k.b);
+  const MembraneModelKernels& kernels = membrane_model_kernels(model);
+  const Density w = kernels.density(material, k.a, k.b);
+  const ColumnTensions t = kernels.tensions(material, k.a, k.b);
   const double stretch_warp = 1.0 + nonelastic.warp;
   const double stretch_weft = 1.0 + nonelastic.weft;
   const Vector3d a_per_warp = -k.a / stretch_warp;
@@ -389,7 +183,7 @@ Vector9 membrane_rest_derivative(MembraneModel model, const MembraneMaterial& ma
                                  const std::array<Eigen::Vector2d, 3>& delta_uv) {
   const TriangleRest rest = triangle_rest(uv);
   const Columns k = columns(rest, nonelastic, x);
-  const Density w = density(model, material, k.a, k.b);
+  const Density w = membrane_model_kernels(model).density(material, k.a, k.b);
   const Eigen::Matrix2d unloaded =
       Eigen::Vector2d(1.0 / (1.0 + nonelastic.warp), 1.0 / (1.0 + nonelastic.weft)).asDiagonal();
   const Eigen::Matrix2d delta_m = edge_matrix(delta_uv);

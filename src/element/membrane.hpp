@@ -33,6 +33,8 @@
 
 #include <array>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace sartor::element {
 
@@ -46,7 +48,39 @@ struct TriangleRest {
 };
 TriangleRest triangle_rest(const std::array<Eigen::Vector2d, 3>& uv);
 
-enum class MembraneModel { baraff_witkin, saint_venant_kirchhoff, measured };
+// A membrane model: its place in the registry of membrane models
+// (element/membrane_models.hpp), where each is one file of kernels and one
+// registration line. The built-in ones by name: Baraff-Witkin (tensions of
+// the stretches |F e_i| - 1), Saint Venant-Kirchhoff (of the Green strains,
+// warp-weft coupling by the Poisson ratio) and measured (a fabric's
+// stretching table, Wang et al. 2011).
+class MembraneModel {
+public:
+  constexpr MembraneModel() = default;
+  constexpr explicit MembraneModel(int index) : index_(index) {}
+  constexpr int index() const { return index_; }
+  friend constexpr bool operator==(MembraneModel a, MembraneModel b) {
+    return a.index_ == b.index_;
+  }
+  friend constexpr bool operator!=(MembraneModel a, MembraneModel b) { return !(a == b); }
+  static const MembraneModel baraff_witkin;
+  static const MembraneModel saint_venant_kirchhoff;
+  static const MembraneModel measured;
+
+private:
+  int index_ = 0;
+};
+// In the registry's order (register_membrane_models).
+inline constexpr MembraneModel MembraneModel::baraff_witkin{0};
+inline constexpr MembraneModel MembraneModel::saint_venant_kirchhoff{1};
+inline constexpr MembraneModel MembraneModel::measured{2};
+
+// The model of that name (as --membrane-model and case files name it);
+// throws InputError naming `context` and the registered names.
+MembraneModel membrane_model_named(const std::string& name, const std::string& context);
+// Its name, and every registered name in registration order.
+const std::string& membrane_model_name(MembraneModel model);
+std::vector<std::string> membrane_model_names();
 
 struct MembraneMaterial {
   TensionCurve warp;

@@ -61,7 +61,7 @@ void expect_membrane_derivative(MembraneModel model) {
     const TriangleRest rest = triangle_rest(moved(triangle_uv, triangle_change, h));
     return membrane(model, material, rest, nonelastic, x, Want::gradient).gradient;
   };
-  EXPECT_LT(relative_error(central(force, 1e-6), exact), 1e-7) << int(model);
+  EXPECT_LT(relative_error(central(force, 1e-6), exact), 1e-7) << membrane_model_name(model);
 }
 
 TEST(RestDerivative, MembraneBaraffWitkin) {
