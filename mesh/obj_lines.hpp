@@ -1,6 +1,6 @@
 #pragma once
 // The statement level of Wavefront OBJ files, shared by the cloth reader
-// (mesh/obj.cpp) and the body reader (mesh/body_obj.cpp).
+// (mesh/obj.cpp) and the body reader (src/contact/body_obj.cpp).
 
 #include <fstream>
 #include <string>

@@ -3,12 +3,12 @@
 
 #include "common/error.hpp"
 #include "common/output.hpp"
+#include "contact/body_files.hpp"
+#include "contact/body_obj.hpp"
 #include "contact/body_spec.hpp"
+#include "contact/mannequin.hpp"
 #include "contact/mesh_shape.hpp"
 #include "fem/petsc_call.hpp"
-#include "mesh/body_files.hpp"
-#include "mesh/body_obj.hpp"
-#include "mesh/mannequin.hpp"
 #include "solvers/commands.hpp"
 
 #include <nlohmann/json.hpp>

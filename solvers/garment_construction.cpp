@@ -5,12 +5,12 @@
 
 #include "common/error.hpp"
 #include "common/output.hpp"
+#include "contact/mannequin.hpp"
 #include "contact/mesh_shape.hpp"
 #include "fem/petsc_call.hpp"
 #include "garment/pattern_svg.hpp"
 #include "garment/seam_overrides.hpp"
 #include "garment/tagcon_svg.hpp"
-#include "mesh/mannequin.hpp"
 #include "solvers/case_checks.hpp"
 #include "solvers/commands.hpp"
 

@@ -2,10 +2,10 @@
 
 #include "common/error.hpp"
 #include "contact/analytic_shapes.hpp"
+#include "contact/body_files.hpp"
+#include "contact/body_obj.hpp"
 #include "contact/mannequin_surface.hpp"
 #include "contact/mesh_shape.hpp"
-#include "mesh/body_files.hpp"
-#include "mesh/body_obj.hpp"
 
 #include <cmath>
 #include <map>

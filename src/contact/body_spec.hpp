@@ -9,11 +9,11 @@
 //   disk      top=T (centre of the top face)  radius=R  thickness=H (0.01)
 //             direction=D (0,0,1, the top face's normal)
 //   box       center=C  size=SX,SY,SZ (full extents)  rounding=R (0)
-//   mesh      file=BODY.obj (a closed triangle mesh, mesh/body_obj.hpp)
+//   mesh      file=BODY.obj (a closed triangle mesh, contact/body_obj.hpp)
 //             skeleton=SKELETON.json (for garment construction; checked here)
-//   mannequin (the built-in one, mesh/mannequin.hpp: feet on z = 0, facing -y)
-//             measurements=FILE.json (sized to them, mesh/body_files.hpp)
-//             pose=JOINT:DEG,... (e.g. knee_l:90,hip_l:45; mesh/mannequin.hpp)
+//   mannequin (the built-in one, contact/mannequin.hpp: feet on z = 0, facing -y)
+//             measurements=FILE.json (sized to them, contact/body_files.hpp)
+//             pose=JOINT:DEG,... (e.g. knee_l:90,hip_l:45; contact/mannequin.hpp)
 // Every body also takes
 //   name=NAME (body, body2, ...: the option's name), mu=MU (static and kinetic),
 //   mu_s=, mu_k= (separately; mu_k <= mu_s), pivot=P (the fixed point of
@@ -23,7 +23,7 @@
 //   scale=T:S;...  (piecewise-linear motions; no spaces inside a value)
 
 #include "contact/body.hpp"
-#include "mesh/mannequin.hpp"
+#include "contact/mannequin.hpp"
 
 #include <memory>
 #include <string>

@@ -1,6 +1,6 @@
 #pragma once
 // The built-in mannequin for contact: its smooth implicit surface
-// (mesh/mannequin.hpp) instead of the triangles polygonised from it.
+// (contact/mannequin.hpp) instead of the triangles polygonised from it.
 //
 // The distance to a triangle mesh has a kink wherever the surface is
 // concave: on the outside of a concave edge the nearest face switches from
@@ -32,8 +32,8 @@
 //     const PoseHistory history = parse_pose_history("0:;3600:hip_l:90,knee_l:90");
 //     auto shape = make_posed_mannequin_shape(sized, history.at(t));
 
+#include "contact/mannequin.hpp"
 #include "contact/shape.hpp"
-#include "mesh/mannequin.hpp"
 
 #include <memory>
 #include <string>

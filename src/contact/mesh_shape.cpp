@@ -1,8 +1,8 @@
 #include "contact/mesh_shape.hpp"
 
 #include "common/error.hpp"
-#include "mesh/body_obj.hpp"
-#include "mesh/mannequin.hpp"
+#include "contact/body_obj.hpp"
+#include "contact/mannequin.hpp"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>

@@ -37,7 +37,7 @@
 namespace sartor::contact {
 
 // Checks the mesh as a body (closed, 2-manifold, outward; see
-// mesh/body_obj.hpp) and throws InputError, starting with `name`, when it is
+// contact/body_obj.hpp) and throws InputError, starting with `name`, when it is
 // not one. `name` also starts describe().
 std::unique_ptr<Shape> make_mesh_shape(const std::vector<Eigen::Vector3d>& vertices,
                                        const std::vector<std::array<int, 3>>& faces,
@@ -47,7 +47,7 @@ std::unique_ptr<Shape> make_mesh_shape(const std::vector<Eigen::Vector3d>& verti
 // as above.
 std::unique_ptr<Shape> load_mesh_shape(const std::string& path, double smoothing = 0.0);
 
-// The built-in mannequin (mesh/mannequin.hpp), built on the first call.
+// The built-in mannequin (contact/mannequin.hpp), built on the first call.
 std::unique_ptr<Shape> make_mannequin_shape();
 
 } // namespace sartor::contact

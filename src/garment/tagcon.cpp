@@ -1,7 +1,7 @@
 #include "garment/tagcon.hpp"
 
 #include "common/error.hpp"
-#include "mesh/mannequin.hpp"
+#include "contact/mannequin.hpp"
 
 #include <Eigen/Geometry>
 

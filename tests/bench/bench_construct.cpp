@@ -4,11 +4,11 @@
 // once, outside the timing). They measure; they never fail.
 // Run: ./dev bench --benchmark_filter=Construct
 
+#include "contact/mannequin.hpp"
 #include "contact/mesh_shape.hpp"
 #include "garment/garment_mesh.hpp"
 #include "garment/pattern.hpp"
 #include "garment/tagcon.hpp"
-#include "mesh/mannequin.hpp"
 
 #include <benchmark/benchmark.h>
 

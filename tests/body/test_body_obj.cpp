@@ -2,7 +2,7 @@
 // rule, each rejected with FILE:LINE and what is wrong.
 
 #include "common/error.hpp"
-#include "mesh/body_obj.hpp"
+#include "contact/body_obj.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,9 +2,9 @@
 // arms clear of the torso, joints inside, deterministic.
 
 #include "common/error.hpp"
+#include "contact/mannequin.hpp"
 #include "contact/mannequin_surface.hpp"
 #include "contact/mesh_shape.hpp"
-#include "mesh/mannequin.hpp"
 
 #include <gtest/gtest.h>
 

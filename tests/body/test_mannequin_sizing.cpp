@@ -3,9 +3,9 @@
 // rotations, measurement and pose input errors.
 
 #include "common/error.hpp"
+#include "contact/body_files.hpp"
+#include "contact/mannequin.hpp"
 #include "contact/mannequin_surface.hpp"
-#include "mesh/body_files.hpp"
-#include "mesh/mannequin.hpp"
 
 #include <gtest/gtest.h>
 

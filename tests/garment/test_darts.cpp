@@ -3,10 +3,10 @@
 // a dart get the same vertices along their equal lengths.
 
 #include "common/error.hpp"
+#include "contact/mannequin.hpp"
 #include "contact/mesh_shape.hpp"
 #include "garment/garment_mesh.hpp"
 #include "garment/tagcon.hpp"
-#include "mesh/mannequin.hpp"
 
 #include <gtest/gtest.h>
 

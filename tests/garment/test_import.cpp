@@ -6,11 +6,11 @@
 // darts sewn by construction.
 
 #include "common/error.hpp"
+#include "contact/mannequin.hpp"
 #include "contact/mesh_shape.hpp"
 #include "garment/import_dxf.hpp"
 #include "garment/import_svg.hpp"
 #include "garment/tagcon.hpp"
-#include "mesh/mannequin.hpp"
 
 #include <gtest/gtest.h>
 

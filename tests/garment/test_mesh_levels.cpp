@@ -6,10 +6,10 @@
 // closing the seams joins the sewn vertices.
 
 #include "common/error.hpp"
+#include "contact/mannequin.hpp"
 #include "contact/mesh_shape.hpp"
 #include "garment/mesh_levels.hpp"
 #include "garment/tagcon.hpp"
-#include "mesh/mannequin.hpp"
 
 #include <gtest/gtest.h>
 

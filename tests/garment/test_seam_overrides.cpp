@@ -3,10 +3,10 @@
 // removes those it unseams, keeps the rest, and never touches a dart.
 
 #include "common/error.hpp"
+#include "contact/mannequin.hpp"
 #include "contact/mesh_shape.hpp"
 #include "garment/garment_mesh.hpp"
 #include "garment/seam_overrides.hpp"
-#include "mesh/mannequin.hpp"
 
 #include <gtest/gtest.h>
 

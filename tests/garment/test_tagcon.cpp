@@ -4,9 +4,9 @@
 // expected/*.json; the out-of-range garment (thesis Fig. 3.9) is rejected.
 
 #include "common/error.hpp"
+#include "contact/mannequin.hpp"
 #include "contact/mesh_shape.hpp"
 #include "garment/tagcon.hpp"
-#include "mesh/mannequin.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -2,10 +2,10 @@
 // The files a body is described by besides its OBJ mesh (docs/bodies.md):
 //   * a measurement set, JSON, the layout agreed with the FreeSewing import:
 //       {"name": "...", "units": "mm", "measurements": {"waist": 760, ...}}
-//     names are FreeSewing's (mesh/mannequin.hpp: is_known_measurement);
+//     names are FreeSewing's (contact/mannequin.hpp: is_known_measurement);
 //   * a skeleton, JSON, as `sartor body` writes it ("format": "sartor-skeleton").
 
-#include "mesh/mannequin.hpp"
+#include "contact/mannequin.hpp"
 
 #include <string>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "mesh/body_obj.hpp"
+#include "contact/body_obj.hpp"
 
 #include "common/csv.hpp"
 #include "common/error.hpp"

@@ -1,4 +1,4 @@
-#include "mesh/body_files.hpp"
+#include "contact/body_files.hpp"
 
 #include "common/error.hpp"
 

@@ -14,7 +14,7 @@
 // forearm_l/r, hand_l/r, hip_l/r, thigh_l/r, shin_l/r, foot_l/r. Every joint
 // lies inside the body. docs/bodies.md has the dimensions.
 
-#include "mesh/body_obj.hpp"
+#include "contact/body_obj.hpp"
 
 #include <Eigen/Core>
 
@@ -137,7 +137,7 @@ public:
   // Those measurements taken on the unposed body as sizing takes them, mm.
   const Measurements& achieved() const;
 
-  struct Parts; // the pieces of the body (mesh/mannequin.cpp)
+  struct Parts; // the pieces of the body (src/contact/mannequin.cpp)
 
 private:
   std::shared_ptr<const Parts> sized_;

@@ -1,4 +1,4 @@
-#include "mesh/mannequin.hpp"
+#include "contact/mannequin.hpp"
 
 #include "common/error.hpp"
 
