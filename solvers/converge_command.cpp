@@ -1,12 +1,12 @@
 // sartor converge: a mesh-refinement study of a static cloth case.
 
+#include "analysis/convergence.hpp"
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
 #include "fem/petsc_call.hpp"
 #include "solvers/cloth_case.hpp"
 #include "solvers/commands.hpp"
-#include "solvers/convergence.hpp"
 
 #include <nlohmann/json.hpp>
 #include <petscsys.h>

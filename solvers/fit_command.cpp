@@ -4,9 +4,9 @@
 #include "common/error.hpp"
 #include "common/output.hpp"
 #include "fem/petsc_call.hpp"
+#include "fit/creep_fit.hpp"
 #include "material/fabric.hpp"
 #include "solvers/commands.hpp"
-#include "solvers/creep_fit.hpp"
 
 #include <nlohmann/json.hpp>
 #include <petscsys.h>

@@ -5,10 +5,10 @@
 #include "common/error.hpp"
 #include "common/output.hpp"
 #include "fem/petsc_call.hpp"
+#include "fit/creep_fit.hpp"
 #include "material/creep_recovery_model.hpp"
 #include "material/fabric.hpp"
 #include "solvers/commands.hpp"
-#include "solvers/creep_fit.hpp"
 
 #include <petscsys.h>
 

@@ -4,8 +4,8 @@
 #include "common/error.hpp"
 #include "common/output.hpp"
 #include "fem/petsc_call.hpp"
+#include "fit/creep_fit.hpp"
 #include "solvers/commands.hpp"
-#include "solvers/creep_fit.hpp"
 
 #include <nlohmann/json.hpp>
 #include <petscsys.h>

@@ -1,7 +1,7 @@
-// The arithmetic of `sartor converge` (solvers/convergence.hpp) on sequences
+// The arithmetic of `sartor converge` (analysis/convergence.hpp) on sequences
 // whose orders are known exactly.
 
-#include "solvers/convergence.hpp"
+#include "analysis/convergence.hpp"
 
 #include <gtest/gtest.h>
 

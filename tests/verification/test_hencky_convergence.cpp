@@ -1,6 +1,6 @@
 // Verification: `sartor converge` on Hencky's clamped circular membrane
 // (cases/fe/hencky.yaml) against the analytic centre deflection of Föppl's
-// membrane theory (solvers/hencky.hpp).
+// membrane theory (analysis/hencky.hpp).
 //
 // The finite elements are geometrically exact (StVK in Green strain, follower
 // pressure); Föppl's theory keeps moderate rotations only. The two differ by
@@ -14,10 +14,10 @@
 // The command runs in this process: the options database is filled as the
 // command line would fill it (case file first, then the overrides).
 
+#include "analysis/hencky.hpp"
 #include "fem/petsc_call.hpp"
 #include "solvers/cloth_case.hpp"
 #include "solvers/commands.hpp"
-#include "solvers/hencky.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

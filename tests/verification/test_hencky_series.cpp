@@ -1,9 +1,9 @@
 // Hencky's power-series solution of the clamped circular membrane
-// (solvers/hencky.hpp), checked against the literature and against an
+// (analysis/hencky.hpp), checked against the literature and against an
 // independent numerical solution of the same boundary-value problem.
 
+#include "analysis/hencky.hpp"
 #include "common/error.hpp"
-#include "solvers/hencky.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "solvers/creep_fit.hpp"
+#include "fit/creep_fit.hpp"
 
 #include "common/csv.hpp"
 #include "common/error.hpp"

@@ -1,4 +1,4 @@
-#include "solvers/convergence.hpp"
+#include "analysis/convergence.hpp"
 
 #include <cmath>
 #include <limits>

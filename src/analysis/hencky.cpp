@@ -1,4 +1,4 @@
-#include "solvers/hencky.hpp"
+#include "analysis/hencky.hpp"
 
 #include "common/error.hpp"
 
