@@ -13,7 +13,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
+#include <string>
 
 namespace sartor {
 
@@ -71,6 +73,20 @@ PetscErrorCode foreign_points(DM dm, std::vector<bool>* foreign) {
 
 using fem::gather;
 using fem::scatter_add;
+
+// The PETSc log event of a form ("form membrane", ...; "form triangles" for
+// the pass over the triangles, which evaluates the triangle forms), so that
+// -log_view shows where an evaluation's time goes. Registered on first use,
+// in the same order on every rank (every rank has the same forms).
+PetscLogEvent form_event(const std::string& form) {
+  static PetscClassId forms_class = 0;
+  static std::map<std::string, PetscLogEvent> events;
+  if (!forms_class) SartorPetscCall(PetscClassIdRegister("Sartor forms", &forms_class));
+  const auto [found, added] = events.try_emplace(form, 0);
+  if (added)
+    SartorPetscCall(PetscLogEventRegister(("form " + form).c_str(), forms_class, &found->second));
+  return found->second;
+}
 
 // Every material uses the same bending model, and every triangle's
 // material id names one.
@@ -543,19 +559,26 @@ PetscErrorCode ClothProblem::energy(Vec x, ClothEnergy* result) {
   const fem::FormPoint at = form_point(values);
   double local[fem::energy_part_count] = {};
   const std::vector<fem::TriangleForm*> triangle_forms = enabled(triangle_forms_);
+  PetscCall(PetscLogEventBegin(form_event("triangles"), 0, 0, 0, 0));
   for (const LocalTriangle& t : triangles_) {
     const element::Vector9 xe = gather<9>(values, t.dofs);
     for (const auto* form : triangle_forms)
       form->add_energy(triangle_view(t, xe), at, &local[int(form->part())]);
   }
-  for (auto* form : enabled(forms_))
+  PetscCall(PetscLogEventEnd(form_event("triangles"), 0, 0, 0, 0));
+  for (auto* form : enabled(forms_)) {
+    PetscCall(PetscLogEventBegin(form_event(form->name()), 0, 0, 0, 0));
     form->add_energy(at, &local[int(form->part())]);
+    PetscCall(PetscLogEventEnd(form_event(form->name()), 0, 0, 0, 0));
+  }
   PetscCall(VecRestoreArrayRead(local_x_, &values));
   double total[fem::energy_part_count];
   PetscCallMPI(MPIU_Allreduce(local, total, fem::energy_part_count, MPI_DOUBLE, MPI_SUM, comm_));
   for (auto* form : enabled(coupling_forms_)) {
     double energy = 0.0;
+    PetscCall(PetscLogEventBegin(form_event(form->name()), 0, 0, 0, 0));
     PetscCall(form->energy(x, &energy));
+    PetscCall(PetscLogEventEnd(form_event(form->name()), 0, 0, 0, 0));
     total[int(form->part())] += energy;
   }
   using fem::EnergyPart;
@@ -575,19 +598,27 @@ PetscErrorCode ClothProblem::residual(Vec x, Vec f) {
   PetscCall(VecGetArray(local_f_, &forces));
   const fem::FormPoint at = form_point(values);
   const std::vector<fem::TriangleForm*> triangle_forms = enabled(triangle_forms_);
+  PetscCall(PetscLogEventBegin(form_event("triangles"), 0, 0, 0, 0));
   for (const LocalTriangle& t : triangles_) {
     const element::Vector9 xe = gather<9>(values, t.dofs);
     for (const auto* form : triangle_forms)
       scatter_add<9>(forces, t.dofs, form->gradient(triangle_view(t, xe), at));
   }
-  for (auto* form : enabled(forms_))
+  PetscCall(PetscLogEventEnd(form_event("triangles"), 0, 0, 0, 0));
+  for (auto* form : enabled(forms_)) {
+    PetscCall(PetscLogEventBegin(form_event(form->name()), 0, 0, 0, 0));
     form->add_gradient(at, forces);
+    PetscCall(PetscLogEventEnd(form_event(form->name()), 0, 0, 0, 0));
+  }
   PetscCall(VecRestoreArray(local_f_, &forces));
   PetscCall(VecRestoreArrayRead(local_x_, &values));
   PetscCall(VecSet(f, 0.0));
   PetscCall(DMLocalToGlobal(dm_, local_f_, ADD_VALUES, f));
-  for (auto* form : enabled(coupling_forms_))
+  for (auto* form : enabled(coupling_forms_)) {
+    PetscCall(PetscLogEventBegin(form_event(form->name()), 0, 0, 0, 0));
     PetscCall(form->add_gradient(x, f));
+    PetscCall(PetscLogEventEnd(form_event(form->name()), 0, 0, 0, 0));
+  }
   PetscCall(replace_held_rows(x, f));
   PetscFunctionReturn(0);
 }
@@ -626,15 +657,26 @@ PetscErrorCode ClothProblem::jacobian(Vec x, Mat J) {
   if (!disabled_forms_.empty()) scatter = nullptr;
   if (scatter) PetscCall(scatter->begin());
   fem::ElementHessians elements(J, scatter);
+  PetscCall(PetscLogEventBegin(form_event("triangles"), 0, 0, 0, 0));
   PetscCall(triangle_hessians(at, elements));
-  for (auto* form : enabled(forms_))
+  PetscCall(PetscLogEventEnd(form_event("triangles"), 0, 0, 0, 0));
+  for (auto* form : enabled(forms_)) {
+    PetscCall(PetscLogEventBegin(form_event(form->name()), 0, 0, 0, 0));
     PetscCall(form->add_element_hessians(at, elements));
+    PetscCall(PetscLogEventEnd(form_event(form->name()), 0, 0, 0, 0));
+  }
   if (scatter) PetscCall(scatter->end());
-  for (auto* form : enabled(forms_))
+  for (auto* form : enabled(forms_)) {
+    PetscCall(PetscLogEventBegin(form_event(form->name()), 0, 0, 0, 0));
     PetscCall(form->add_hessian(at, J));
+    PetscCall(PetscLogEventEnd(form_event(form->name()), 0, 0, 0, 0));
+  }
   PetscCall(VecRestoreArrayRead(local_x_, &values));
-  for (auto* form : enabled(coupling_forms_))
-    PetscCall(form->add_hessian(J)); // global indices, across partitions
+  for (auto* form : enabled(coupling_forms_)) { // global indices, across partitions
+    PetscCall(PetscLogEventBegin(form_event(form->name()), 0, 0, 0, 0));
+    PetscCall(form->add_hessian(J));
+    PetscCall(PetscLogEventEnd(form_event(form->name()), 0, 0, 0, 0));
+  }
   PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
   PetscCall(replace_held_rows(J));
