@@ -16,6 +16,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <type_traits>
 
 namespace sartor {
 
@@ -86,6 +87,22 @@ PetscLogEvent form_event(const std::string& form) {
   if (added)
     SartorPetscCall(PetscLogEventRegister(("form " + form).c_str(), forms_class, &found->second));
   return found->second;
+}
+
+// Runs `evaluate` (void, or returning a PetscErrorCode) under the form's
+// log event.
+template <class Evaluate>
+PetscErrorCode logged(const std::string& form, Evaluate&& evaluate) {
+  const PetscLogEvent event = form_event(form);
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(event, 0, 0, 0, 0));
+  if constexpr (std::is_void_v<std::invoke_result_t<Evaluate>>) {
+    evaluate();
+  } else {
+    PetscCall(evaluate());
+  }
+  PetscCall(PetscLogEventEnd(event, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
 }
 
 // Every material uses the same bending model, and every triangle's
@@ -559,26 +576,21 @@ PetscErrorCode ClothProblem::energy(Vec x, ClothEnergy* result) {
   const fem::FormPoint at = form_point(values);
   double local[fem::energy_part_count] = {};
   const std::vector<fem::TriangleForm*> triangle_forms = enabled(triangle_forms_);
-  PetscCall(PetscLogEventBegin(form_event("triangles"), 0, 0, 0, 0));
-  for (const LocalTriangle& t : triangles_) {
-    const element::Vector9 xe = gather<9>(values, t.dofs);
-    for (const auto* form : triangle_forms)
-      form->add_energy(triangle_view(t, xe), at, &local[int(form->part())]);
-  }
-  PetscCall(PetscLogEventEnd(form_event("triangles"), 0, 0, 0, 0));
-  for (auto* form : enabled(forms_)) {
-    PetscCall(PetscLogEventBegin(form_event(form->name()), 0, 0, 0, 0));
-    form->add_energy(at, &local[int(form->part())]);
-    PetscCall(PetscLogEventEnd(form_event(form->name()), 0, 0, 0, 0));
-  }
+  PetscCall(logged("triangles", [&] {
+    for (const LocalTriangle& t : triangles_) {
+      const element::Vector9 xe = gather<9>(values, t.dofs);
+      for (const auto* form : triangle_forms)
+        form->add_energy(triangle_view(t, xe), at, &local[int(form->part())]);
+    }
+  }));
+  for (auto* form : enabled(forms_))
+    PetscCall(logged(form->name(), [&] { form->add_energy(at, &local[int(form->part())]); }));
   PetscCall(VecRestoreArrayRead(local_x_, &values));
   double total[fem::energy_part_count];
   PetscCallMPI(MPIU_Allreduce(local, total, fem::energy_part_count, MPI_DOUBLE, MPI_SUM, comm_));
   for (auto* form : enabled(coupling_forms_)) {
     double energy = 0.0;
-    PetscCall(PetscLogEventBegin(form_event(form->name()), 0, 0, 0, 0));
-    PetscCall(form->energy(x, &energy));
-    PetscCall(PetscLogEventEnd(form_event(form->name()), 0, 0, 0, 0));
+    PetscCall(logged(form->name(), [&] { return form->energy(x, &energy); }));
     total[int(form->part())] += energy;
   }
   using fem::EnergyPart;
@@ -598,27 +610,21 @@ PetscErrorCode ClothProblem::residual(Vec x, Vec f) {
   PetscCall(VecGetArray(local_f_, &forces));
   const fem::FormPoint at = form_point(values);
   const std::vector<fem::TriangleForm*> triangle_forms = enabled(triangle_forms_);
-  PetscCall(PetscLogEventBegin(form_event("triangles"), 0, 0, 0, 0));
-  for (const LocalTriangle& t : triangles_) {
-    const element::Vector9 xe = gather<9>(values, t.dofs);
-    for (const auto* form : triangle_forms)
-      scatter_add<9>(forces, t.dofs, form->gradient(triangle_view(t, xe), at));
-  }
-  PetscCall(PetscLogEventEnd(form_event("triangles"), 0, 0, 0, 0));
-  for (auto* form : enabled(forms_)) {
-    PetscCall(PetscLogEventBegin(form_event(form->name()), 0, 0, 0, 0));
-    form->add_gradient(at, forces);
-    PetscCall(PetscLogEventEnd(form_event(form->name()), 0, 0, 0, 0));
-  }
+  PetscCall(logged("triangles", [&] {
+    for (const LocalTriangle& t : triangles_) {
+      const element::Vector9 xe = gather<9>(values, t.dofs);
+      for (const auto* form : triangle_forms)
+        scatter_add<9>(forces, t.dofs, form->gradient(triangle_view(t, xe), at));
+    }
+  }));
+  for (auto* form : enabled(forms_))
+    PetscCall(logged(form->name(), [&] { form->add_gradient(at, forces); }));
   PetscCall(VecRestoreArray(local_f_, &forces));
   PetscCall(VecRestoreArrayRead(local_x_, &values));
   PetscCall(VecSet(f, 0.0));
   PetscCall(DMLocalToGlobal(dm_, local_f_, ADD_VALUES, f));
-  for (auto* form : enabled(coupling_forms_)) {
-    PetscCall(PetscLogEventBegin(form_event(form->name()), 0, 0, 0, 0));
-    PetscCall(form->add_gradient(x, f));
-    PetscCall(PetscLogEventEnd(form_event(form->name()), 0, 0, 0, 0));
-  }
+  for (auto* form : enabled(coupling_forms_))
+    PetscCall(logged(form->name(), [&] { return form->add_gradient(x, f); }));
   PetscCall(replace_held_rows(x, f));
   PetscFunctionReturn(0);
 }
@@ -657,26 +663,15 @@ PetscErrorCode ClothProblem::jacobian(Vec x, Mat J) {
   if (!disabled_forms_.empty()) scatter = nullptr;
   if (scatter) PetscCall(scatter->begin());
   fem::ElementHessians elements(J, scatter);
-  PetscCall(PetscLogEventBegin(form_event("triangles"), 0, 0, 0, 0));
-  PetscCall(triangle_hessians(at, elements));
-  PetscCall(PetscLogEventEnd(form_event("triangles"), 0, 0, 0, 0));
-  for (auto* form : enabled(forms_)) {
-    PetscCall(PetscLogEventBegin(form_event(form->name()), 0, 0, 0, 0));
-    PetscCall(form->add_element_hessians(at, elements));
-    PetscCall(PetscLogEventEnd(form_event(form->name()), 0, 0, 0, 0));
-  }
+  PetscCall(logged("triangles", [&] { return triangle_hessians(at, elements); }));
+  for (auto* form : enabled(forms_))
+    PetscCall(logged(form->name(), [&] { return form->add_element_hessians(at, elements); }));
   if (scatter) PetscCall(scatter->end());
-  for (auto* form : enabled(forms_)) {
-    PetscCall(PetscLogEventBegin(form_event(form->name()), 0, 0, 0, 0));
-    PetscCall(form->add_hessian(at, J));
-    PetscCall(PetscLogEventEnd(form_event(form->name()), 0, 0, 0, 0));
-  }
+  for (auto* form : enabled(forms_))
+    PetscCall(logged(form->name(), [&] { return form->add_hessian(at, J); }));
   PetscCall(VecRestoreArrayRead(local_x_, &values));
-  for (auto* form : enabled(coupling_forms_)) { // global indices, across partitions
-    PetscCall(PetscLogEventBegin(form_event(form->name()), 0, 0, 0, 0));
-    PetscCall(form->add_hessian(J));
-    PetscCall(PetscLogEventEnd(form_event(form->name()), 0, 0, 0, 0));
-  }
+  for (auto* form : enabled(coupling_forms_)) // global indices, across partitions
+    PetscCall(logged(form->name(), [&] { return form->add_hessian(J); }));
   PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
   PetscCall(replace_held_rows(J));
