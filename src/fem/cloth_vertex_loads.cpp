@@ -3,6 +3,7 @@
 
 #include "fem/cloth_problem.hpp"
 #include "fem/forms/contact_form.hpp"
+#include "fem/forms/local_arrays.hpp"
 #include "fem/forms/seam_form.hpp"
 
 #include <algorithm>
@@ -10,10 +11,6 @@
 namespace sartor {
 
 namespace {
-
-Eigen::Vector3d position(const PetscScalar* x, PetscInt offset) {
-  return {x[offset], x[offset + 1], x[offset + 2]};
-}
 
 // The magnitudes of the per-vertex triples of the global vector `forces`,
 // in the first slot of each vertex's triple of `local` (same layout as the
@@ -30,7 +27,7 @@ PetscErrorCode magnitudes_to_local(DM dm, Vec forces, const std::vector<PetscInt
   PetscCall(VecGetArrayRead(local_forces, &f));
   PetscCall(VecGetArray(local, &out));
   for (std::size_t v = 0; v < vertex_dof.size(); ++v) {
-    if (owned[v]) out[vertex_dof[v]] = position(f, vertex_dof[v]).norm();
+    if (owned[v]) out[vertex_dof[v]] = fem::vertex_position(f, vertex_dof[v]).norm();
   }
   PetscCall(VecRestoreArray(local, &out));
   PetscCall(VecRestoreArrayRead(local_forces, &f));
