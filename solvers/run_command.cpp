@@ -173,8 +173,8 @@ const std::vector<OptionSpec>& static_option_specs() {
       {"sewing-time", "S", "", "the end of the sewing stage, s [half of --time-end]"},
       {"static-solver", "KIND", "minimise",
        "static: minimise (Newton on the total potential with a contact step bound, "
-       "docs/drape.md) or snes (PETSc's SNES with pseudo-transient continuation); a follower "
-       "load always takes snes"},
+       "docs/drape.md) or snes (PETSc's SNES with pseudo-transient continuation); pressure on a "
+       "cloth with a free (unpinned) edge has no potential and takes snes"},
       {"sewing-stages", "N", "1",
        "static: sew in N continuation stages of the seam stiffness, starting from "
        "--sewing-start-tension (1: at once)"},

@@ -37,4 +37,11 @@ PressureLoad follower_pressure(double pressure, const Eigen::Matrix<double, 9, 1
   return load;
 }
 
+double spanned_volume(const Eigen::Matrix<double, 9, 1>& x, const Eigen::Vector3d& centre) {
+  const Eigen::Vector3d a = x.segment<3>(0) - centre;
+  const Eigen::Vector3d b = x.segment<3>(3) - centre;
+  const Eigen::Vector3d c = x.segment<3>(6) - centre;
+  return a.dot(b.cross(c)) / 6.0;
+}
+
 } // namespace sartor::element

@@ -217,7 +217,10 @@ ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh,
   set_up_dofs(original, foreign, is_pinned);
   const std::vector<bool> triangle_owned = set_up_triangles(original, foreign);
   triangle_forms_.push_back(std::make_unique<fem::MembraneForm>(nonelastic, nonelastic_response));
-  triangle_forms_.push_back(std::make_unique<fem::SurfaceLoadForm>(loads, mesh_));
+  const std::vector<int> boundary = boundary_vertices(mesh);
+  const bool boundary_held = std::all_of(boundary.begin(), boundary.end(),
+                                         [&](int v) { return is_pinned[std::size_t(v)]; });
+  triangle_forms_.push_back(std::make_unique<fem::SurfaceLoadForm>(loads, mesh_, boundary_held));
   set_up_bending(triangle_owned, is_pinned);
   forms_.push_back(std::make_unique<fem::PointLoadForm>(loads, mesh_, vertex_dof_, vertex_owned_));
   std::vector<bool> moves(mesh.vertex_count(), true); // free, or a pin that is let go

@@ -220,9 +220,8 @@ public:
   PetscErrorCode energy(Vec x, ClothEnergy* energy);
   // Preallocated exactly for the element couplings (membrane and hinges).
   PetscErrorCode create_jacobian(Mat* J);
-  bool has_follower_load() const { return loads.pressure != 0.0; }
-  // The residual is the gradient of energy(): no follower load, no
-  // position-dependent unloaded lengths.
+  // The residual is the gradient of energy(): no pressure on a surface with
+  // a free edge, no position-dependent unloaded lengths.
   bool has_potential() const;
 
   // All vertex positions, in mesh numbering, on rank 0 (empty elsewhere).

@@ -120,8 +120,8 @@ public:
   // triangle's block, which the problem assembles once all triangle forms
   // have added theirs.
   virtual void add_hessian(const TriangleView& t, const FormPoint& at, Matrix9& block) const = 0;
-  // Whether the gradient is that of energy() (no follower load, no
-  // position-dependent unloaded lengths).
+  // Whether the gradient is that of energy() (not pressure on a surface
+  // with a free edge, nor position-dependent unloaded lengths).
   virtual bool has_potential() const { return true; }
   // Whether the Hessian differs from the exact one unless at.exact_hessian.
   virtual bool projects(const ClothMaterial&) const { return false; }

@@ -59,7 +59,7 @@ PetscErrorCode IncrementalSystem::create_snes(bool with_objective, SNES* snes) {
   PetscCall(SNESCreate(problem_.comm(), snes));
   PetscCall(SNESSetFunction(*snes, residual_, form_residual, this));
   PetscCall(SNESSetJacobian(*snes, jacobian_, jacobian_, form_jacobian, this));
-  // Without a potential (a follower load, monolithic creep) the line search
+  // Without a potential (pressure on a surface with a free edge, monolithic creep) the line search
   // uses the residual norm; otherwise Phi.
   if (with_objective) PetscCall(SNESSetObjective(*snes, form_objective, this));
   // Defaults the options database can override: a residual below round-off

@@ -11,11 +11,11 @@
 //
 // The SNES takes every choice from the options database (no prefix), with
 // defaults: Newton with a line search on Phi (on the residual norm while
-// there is no potential: a follower load, monolithic creep), MUMPS LU, and a residual tolerance at
-// round-off of the membrane forces. Where the line search on Phi stalls at Phi's round-off after
-// the residual has fallen 1e3-fold, Newton finishes on the residual norm.
+// there is no potential: pressure on a surface with a free edge, monolithic creep), MUMPS LU, and a
+// residual tolerance at round-off of the membrane forces. Where the line search on Phi stalls at
+// Phi's round-off after the residual has fallen 1e3-fold, Newton finishes on the residual norm.
 //
-// Statics of a potential (a = b = 0, no follower load, no pin held by
+// Statics of a potential (a = b = 0, no pressure on a free edge, no pin held by
 // equations) go to `minimise` instead (fem/minimiser.cpp) unless
 // `minimise_statics` is off: Newton on Phi with a Levenberg-style
 // regularisation mu M, a step bound from the bodies' signed distances and a

@@ -3,7 +3,8 @@
 // IncrementalSystem: for a potential, the static minimiser (Newton on the
 // total potential, regularised by mu M, its steps bounded by the bodies'
 // signed distances, with a line search on the potential; fem/minimiser.cpp,
-// docs/drape.md#the-static-minimiser); otherwise (a follower load, or
+// docs/drape.md#the-static-minimiser); otherwise (pressure on a surface with
+// a free edge, or
 // `minimise` off) PETSc's SNES, and a load step it cannot solve from the
 // previous state is approached by pseudo-transient continuation: heavily
 // damped backward-Euler steps, each minimising

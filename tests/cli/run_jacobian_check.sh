@@ -35,7 +35,7 @@ check() { # NAME CASE ARGS...
 check hanging_sheet_bending hanging_sheet.yaml --bending-stiffness 1e-3 --static-solver snes
 check stvk_poisson hanging_sheet.yaml --membrane-model stvk --poisson 0.3 --bending-model quadratic \
   --static-solver snes
-check follower_pressure square_membrane_pressure.yaml --load-steps 1
+check follower_pressure square_membrane_pressure.yaml --load-steps 1 --static-solver snes
 check dynamic_step hanging_sheet_dynamic.yaml --time-end 0.02 --damping 2
 
 # (--no-certificate: the flat sheet both Newtons reach is a saddle, which

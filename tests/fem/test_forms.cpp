@@ -147,6 +147,68 @@ TEST(Forms, EachFormsGradientAndHessianMatchDifferences) {
   }
 }
 
+// The volume under a piecewise-linear surface whose boundary lies in z = 0:
+// each triangle's prism, its signed area in the xy plane times its mean
+// height (an independent formula: the form sums tetrahedra on a centre).
+double volume_under(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& x) {
+  double volume = 0.0;
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d a = x[std::size_t(t[0])], b = x[std::size_t(t[1])],
+                          c = x[std::size_t(t[2])];
+    const double area_xy = 0.5 * ((b - a).x() * (c - a).y() - (c - a).x() * (b - a).y());
+    volume += area_xy * (a.z() + b.z() + c.z()) / 3.0;
+  }
+  return volume;
+}
+
+// Follower pressure on a sheet whose whole boundary is pinned is the
+// gradient of -p times the enclosed volume (and has a potential only then):
+// the energy is that volume's work, and its central differences are the
+// problem's residual.
+TEST(Forms, PressureOnAHeldBoundaryIsMinusPTimesTheVolume) {
+  const TriangleMesh flat = mesh::rectangle(0.4, 0.3, 6, 5, mesh::RectanglePattern::perturbed);
+  const std::vector<int> boundary = boundary_vertices(flat);
+  ClothMaterial material = cotton(element::BendingModel::discrete_shell);
+  material.areal_density = 0.0;
+  ClothProblem problem(PETSC_COMM_WORLD, flat, material, boundary);
+  const double pressure = 5.0;
+  problem.loads.pressure = pressure;
+  for (const std::string& name : problem.form_names())
+    problem.enable_form(name, name == "surface loads");
+  EXPECT_TRUE(problem.has_potential());
+  // A bulge with the boundary in place, and sideways moves of the inside.
+  std::vector<Eigen::Vector3d> bulged = flat.positions;
+  std::mt19937_64 random(3);
+  std::uniform_real_distribution<double> jitter(-0.01, 0.01);
+  std::vector<bool> on_boundary(flat.vertex_count(), false);
+  for (int v : boundary)
+    on_boundary[std::size_t(v)] = true;
+  for (std::size_t v = 0; v < bulged.size(); ++v) {
+    if (on_boundary[v]) continue;
+    const Eigen::Vector3d p = bulged[v];
+    bulged[v] += Eigen::Vector3d(jitter(random), jitter(random),
+                                 std::sin(M_PI * p.x() / 0.4) * std::sin(M_PI * p.y() / 0.3) *
+                                     (0.05 + jitter(random)));
+  }
+  Vec x = nullptr;
+  ASSERT_EQ(problem.create_solution(&x), 0);
+  ASSERT_EQ(problem.set_solution(bulged, x), 0);
+  ClothEnergy energy;
+  ASSERT_EQ(problem.energy(x, &energy), 0);
+  const double work = pressure * volume_under(flat, bulged);
+  EXPECT_GT(work, 0.0);
+  EXPECT_NEAR(energy.external, -work, 1e-12 * work);
+  Vec v = random_direction(x);
+  EXPECT_LT(directional_energy_error(problem, x, v, 1e-6), 1e-7);
+  VecDestroy(&x);
+  VecDestroy(&v);
+  // One boundary vertex let go: the loads are no gradient any more.
+  ClothProblem loose(PETSC_COMM_WORLD, flat, material,
+                     std::vector<int>(boundary.begin() + 1, boundary.end()));
+  loose.loads.pressure = pressure;
+  EXPECT_FALSE(loose.has_potential());
+}
+
 TEST(Forms, TheProblemsResidualIsTheSumOfItsForms) {
   Scene s = scene(element::BendingModel::discrete_shell);
   ClothProblem& problem = *s.problem;

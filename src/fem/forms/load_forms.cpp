@@ -5,13 +5,28 @@
 
 namespace sartor::fem {
 
+SurfaceLoadForm::SurfaceLoadForm(const ClothLoads& loads, const TriangleMesh& mesh,
+                                 bool boundary_held)
+    : loads_(loads), mesh_(mesh), boundary_held_(boundary_held),
+      volume_centre_(Eigen::Vector3d::Zero()) {
+  for (const Eigen::Vector3d& p : mesh.positions)
+    volume_centre_ += p;
+  if (!mesh.positions.empty()) volume_centre_ /= double(mesh.positions.size());
+}
+
 void SurfaceLoadForm::add_energy(const TriangleView& t, const FormPoint& at, double* sum) const {
   const double mass = t.material.areal_density * t.rest.area / 3.0;
   const auto& corners = mesh_.triangles[std::size_t(t.index)];
+  element::Vector9 start;
   for (int k = 0; k < 3; ++k) {
-    const Eigen::Vector3d& start = mesh_.positions[std::size_t(corners[std::size_t(k)])];
-    *sum -= at.load_factor * mass * loads_.gravity.dot(t.x.segment<3>(3 * k) - start);
+    start.segment<3>(3 * k) = mesh_.positions[std::size_t(corners[std::size_t(k)])];
+    *sum -=
+        at.load_factor * mass * loads_.gravity.dot(t.x.segment<3>(3 * k) - start.segment<3>(3 * k));
   }
+  if (loads_.pressure == 0.0 || !boundary_held_) return;
+  *sum -= at.load_factor * loads_.pressure *
+          (element::spanned_volume(t.x, volume_centre_) -
+           element::spanned_volume(start, volume_centre_));
 }
 
 element::Vector9 SurfaceLoadForm::gradient(const TriangleView& t, const FormPoint& at) const {
