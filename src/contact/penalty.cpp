@@ -43,6 +43,16 @@ PointResult anchor_spring(double stiffness, const Eigen::Vector3d& x, const Eige
   return result;
 }
 
+Eigen::Vector3d anchor_spring_stiffness_derivative(double stiffness, const Eigen::Vector3d& x,
+                                                   const Eigen::Vector3d& anchor,
+                                                   const Eigen::Vector3d& normal, double bound) {
+  // anchor_spring's arithmetic, so that both take the same branch.
+  const Eigen::Matrix3d tangent = Eigen::Matrix3d::Identity() - normal * normal.transpose();
+  const Eigen::Vector3d stretch = tangent * (x - anchor);
+  if (stiffness * stretch.norm() <= bound) return stretch;
+  return Eigen::Vector3d::Zero();
+}
+
 AnchorUpdate slide_anchor(double stiffness, const Eigen::Vector3d& x, const Eigen::Vector3d& anchor,
                           const Eigen::Vector3d& normal, double normal_force,
                           double static_coefficient, double kinetic_coefficient) {

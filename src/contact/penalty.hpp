@@ -57,6 +57,13 @@ PointResult penalty(double stiffness, double offset, const SurfaceQuery& query, 
 PointResult anchor_spring(double stiffness, const Eigen::Vector3d& x, const Eigen::Vector3d& anchor,
                           const Eigen::Vector3d& normal, double bound, element::Want want);
 
+// d(anchor_spring's gradient)/d(stiffness) at fixed bound: the tangential
+// stretch while the spring sticks (its force is linear in the stiffness),
+// zero once it slides (the force is the bound).
+Eigen::Vector3d anchor_spring_stiffness_derivative(double stiffness, const Eigen::Vector3d& x,
+                                                   const Eigen::Vector3d& anchor,
+                                                   const Eigen::Vector3d& normal, double bound);
+
 // Coulomb's law on an anchor spring at an accepted state: when the spring's
 // tangential force k_t |P (x - a)| exceeds mu_s * normal_force, the anchor
 // slides towards x along the tangent plane until the force is mu_k *

@@ -308,6 +308,74 @@ TEST(Forms, RestDerivativesMatchDifferencesOfRebuiltProblems) {
   VecDestroy(&derivative);
 }
 
+// The contact form's rest derivative (through the automatic penalty
+// stiffness: vertex areas and the longest edge) against central differences
+// of problems rebuilt on moved patterns that share the friction anchors: a
+// jittered sheet on a ball, its vertices and edge samples in the offset
+// layer, moved 1 mm off the anchors so that the springs pull.
+TEST(Forms, ContactRestDerivativeMatchesDifferencesOfRebuiltProblems) {
+  TriangleMesh mesh = mesh::rectangle(0.4, 0.3, 6, 5, mesh::RectanglePattern::perturbed);
+  std::mt19937_64 random(9);
+  std::uniform_real_distribution<double> jitter(-0.004, 0.004);
+  for (auto& p : mesh.positions)
+    p += Eigen::Vector3d(jitter(random), jitter(random), 0.25 * jitter(random));
+  std::vector<Eigen::Vector2d> delta_uv(mesh.vertex_count());
+  for (auto& d : delta_uv)
+    d = {2.5 * jitter(random), 2.5 * jitter(random)};
+  const RestChange change = rest_change_per_vertex(mesh, delta_uv);
+  const auto build = [](const TriangleMesh& m) {
+    auto problem = std::make_unique<ClothProblem>(
+        PETSC_COMM_WORLD, m, cotton(element::BendingModel::discrete_shell), std::vector<int>{0});
+    const Eigen::Vector3d middle(0.2, 0.15, 0.0);
+    const double radius = 0.5;
+    contact::Body ball(
+        "ball",
+        std::make_shared<contact::Sphere>(middle - Eigen::Vector3d(0, 0, radius + 0.0005), radius),
+        Eigen::Vector3d::Zero());
+    ball.friction.static_coefficient = ball.friction.kinetic_coefficient = 0.4;
+    problem->bodies.push_back(ball);
+    problem->contact.offset = 3e-3;
+    problem->contact.edge_sample_spacing = 0.02;
+    for (const std::string& name : problem->form_names())
+      problem->enable_form(name, name == "contact");
+    return problem;
+  };
+  auto base = build(mesh);
+  Vec x = nullptr, exact = nullptr, difference = nullptr, side = nullptr;
+  ASSERT_EQ(base->create_solution(&x), 0);
+  ASSERT_EQ(base->update_contact(x), 0); // anchors where the sheet touches
+  Vec shift = random_direction(x);
+  VecShift(shift, -0.5); // entries in [-0.5, 0.5)
+  VecAXPY(x, 2e-3, shift);
+  for (Vec* w : {&exact, &difference, &side})
+    VecDuplicate(x, w);
+  ASSERT_EQ(base->rest_derivative(x, change, exact), 0);
+  const double h = 1e-4; // times a change of up to 1 cm: 1 micrometre
+  VecSet(difference, 0.0);
+  for (const double s : {h, -h}) {
+    const TriangleMesh moved = moved_rest(mesh, change, s); // the problem keeps a reference
+    auto other = build(moved);
+    ASSERT_EQ(copy_problem_state(*base, *other), 0);
+    Vec y = nullptr, f = nullptr;
+    ASSERT_EQ(other->create_solution(&y), 0);
+    VecDuplicate(y, &f);
+    ASSERT_EQ(transfer_vector(*base, x, *other, y), 0);
+    ASSERT_EQ(other->residual(y, f), 0);
+    ASSERT_EQ(transfer_vector(*other, f, *base, side), 0);
+    VecAXPY(difference, s > 0 ? 0.5 / h : -0.5 / h, side);
+    VecDestroy(&y);
+    VecDestroy(&f);
+  }
+  PetscReal size = 0.0, error = 0.0;
+  VecNorm(exact, NORM_2, &size);
+  VecAXPY(difference, -1.0, exact);
+  VecNorm(difference, NORM_2, &error);
+  EXPECT_GT(size, 0.0);
+  EXPECT_LT(error, 1e-6 * size);
+  for (Vec* w : {&x, &exact, &difference, &side, &shift})
+    VecDestroy(w);
+}
+
 TEST(Forms, SpringsToPointsHoldAFreeSheetWhereTheyPullIt) {
   // No pins, no loads: three springs to the placement of three corners
   // moved by d carry the sheet there rigidly, unstrained.

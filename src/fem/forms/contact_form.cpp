@@ -6,6 +6,7 @@
 #include "fem/forms/contact_form.hpp"
 
 #include "common/error.hpp"
+#include "element/membrane.hpp"
 #include "fem/cloth_problem.hpp"
 #include "fem/forms/local_arrays.hpp"
 
@@ -56,6 +57,75 @@ double ContactForm::stiffness(int vertex) const {
   return settings().stiffness_scale *
          contact::penalty_stiffness(settings().stiffness_factor, modulus_,
                                     vertex_area_[std::size_t(vertex)], mesh_size_);
+}
+
+std::vector<double> ContactForm::relative_stiffness_changes(const RestChange& change) const {
+  std::vector<double> relative(mesh_.vertex_count(), 0.0);
+  if (settings().stiffness > 0.0) return relative; // given, not from the pattern
+  // The longest edge's change; edges within round-off of the longest count
+  // as tied, and the largest change among them wins.
+  double longest_change = -std::numeric_limits<double>::infinity();
+  std::vector<double> area_change(mesh_.vertex_count(), 0.0);
+  for (std::size_t t = 0; t < mesh_.triangle_count(); ++t) {
+    const auto& uv = mesh_.material_uv[t];
+    const auto& delta = change[t];
+    const double d_area = element::triangle_area_derivative(uv, delta);
+    for (std::size_t k = 0; k < 3; ++k) {
+      area_change[std::size_t(mesh_.triangles[t][k])] += d_area / 3.0;
+      const Eigen::Vector2d edge = uv[(k + 1) % 3] - uv[k];
+      if (edge.norm() < (1.0 - 1e-12) * mesh_size_) continue;
+      longest_change =
+          std::max(longest_change, edge.dot(delta[(k + 1) % 3] - delta[k]) / edge.norm());
+    }
+  }
+  for (std::size_t v = 0; v < relative.size(); ++v) {
+    if (vertex_area_[v] > 0.0)
+      relative[v] = area_change[v] / vertex_area_[v] - 2.0 * longest_change / mesh_size_;
+  }
+  return relative;
+}
+
+void ContactForm::add_rest_derivative(const FormPoint& at, const RestChange& change,
+                                      PetscScalar* changes) const {
+  if (bodies().empty()) return;
+  const std::vector<double> relative = relative_stiffness_changes(change);
+  const auto needs = contact::query_needs(element::Want::gradient);
+  for (std::size_t b = 0; b < bodies().size(); ++b) {
+    const contact::Body& body = bodies()[b];
+    for (int v : vertices_) {
+      const PetscInt offset = vertex_dof_[std::size_t(v)];
+      const Eigen::Vector3d x = vertex_position(at.x, offset);
+      const double k = stiffness(v), d_k = k * relative[std::size_t(v)];
+      Eigen::Vector3d d_force =
+          contact::penalty(d_k, settings().offset, body.query(x, clock(), needs),
+                           element::Want::gradient)
+              .gradient;
+      if (anchors_.size() == bodies().size() && anchors_[b][std::size_t(v)].active) {
+        const FrictionAnchor& anchor = anchors_[b][std::size_t(v)];
+        d_force += d_k * contact::anchor_spring_stiffness_derivative(
+                             k, x, body.to_world(anchor.point, clock()),
+                             body.direction_to_world(anchor.normal, clock()),
+                             friction_bound(anchor, body.friction, settings().bounded_friction));
+      }
+      for (int d = 0; d < 3; ++d)
+        changes[offset + d] += d_force[d];
+    }
+    for (const EdgeSample& sample : edge_samples()) {
+      const PetscInt offsets[2] = {vertex_dof_[std::size_t(sample.a)],
+                                   vertex_dof_[std::size_t(sample.b)]};
+      const Eigen::Vector3d p = contact::edge_point(vertex_position(at.x, offsets[0]),
+                                                    vertex_position(at.x, offsets[1]), sample.s);
+      const double d_k = 0.5 * (stiffness(sample.a) * relative[std::size_t(sample.a)] +
+                                stiffness(sample.b) * relative[std::size_t(sample.b)]);
+      const contact::EdgeSampleResult r = contact::edge_sample_penalty(
+          d_k, settings().offset, sample.s, body.query(p, clock(), needs), element::Want::gradient,
+          false);
+      for (int k = 0; k < 2; ++k) {
+        for (int d = 0; d < 3; ++d)
+          changes[offsets[k] + d] += r.gradient[3 * k + d];
+      }
+    }
+  }
 }
 
 bool ContactForm::surely_apart(std::size_t body, int vertex, const Eigen::Vector3d& x) const {

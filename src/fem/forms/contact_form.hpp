@@ -48,9 +48,17 @@ public:
   // slide to mu_k of it, vertices that left contact lose theirs.
   PetscErrorCode accept_step(const FormPoint& at) override;
   bool projects() const override;
-  // Through the automatic stiffness the penalty depends on the pattern;
-  // that derivative is not written yet: exact (zero) only without bodies.
-  bool has_rest_derivative() const override { return bodies().empty(); }
+  // The pattern enters through the automatic penalty stiffness, c E A_v /
+  // h^2 (A_v the vertex's share of the material area, h the longest rest
+  // edge): every force of the form is linear in its stiffness (an anchor
+  // past its friction bound excepted, whose force is the bound), so each
+  // changes by its own relative change dA_v / A_v - 2 dh / h. The edge
+  // samples' parameters and counts are held (their count is a step
+  // function of the rest lengths). Where several edges are the longest, dh
+  // is the largest of their changes: the derivative for a step forwards.
+  bool has_rest_derivative() const override { return true; }
+  void add_rest_derivative(const FormPoint& at, const RestChange& change,
+                           PetscScalar* changes) const override;
 
   // The largest t in (0, 1] that no point of this rank bounds the step from
   // x along `motions` at (ClothProblem::contact_step_bound).
@@ -94,6 +102,8 @@ private:
   const ContactSettings& settings() const;
   double clock() const;
   double stiffness(int vertex) const;
+  // Per mesh vertex, d(stiffness) / stiffness under the rest change.
+  std::vector<double> relative_stiffness_changes(const RestChange& change) const;
   contact::PointResult vertex_contact(std::size_t body, int vertex, const Eigen::Vector3d& x,
                                       element::Want want) const;
   double vertex_step_bound(std::size_t body, const Eigen::Vector3d& p,
