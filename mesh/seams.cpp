@@ -1,6 +1,7 @@
 #include "mesh/seams.hpp"
 
 #include "common/csv.hpp"
+#include "common/dual.hpp"
 #include "common/error.hpp"
 #include "common/json_input.hpp"
 #include "common/output.hpp"
@@ -13,6 +14,7 @@
 #include <iterator>
 #include <map>
 #include <set>
+#include <type_traits>
 
 namespace sartor {
 
@@ -40,21 +42,36 @@ EdgeTriangles edge_triangles(const TriangleMesh& mesh) {
   return edges;
 }
 
-// Material length of the edge p-q in triangle t.
-double segment_length(const TriangleMesh& mesh, int t, int p, int q) {
+// The springs are built on double for their values and on Dual for their
+// change with the material coordinates (seam_spring_changes): the same
+// source, the lengths of the seams' segments seeded with their changes.
+
+// Material length of the edge p-q in triangle t; as a Dual, with its change
+// when the triangle's corners move by (*change)[t].
+template <class Scalar>
+Scalar segment_length(const TriangleMesh& mesh, const MaterialChange* change, int t, int p, int q) {
   const auto& tri = mesh.triangles[std::size_t(t)];
   const auto& uv = mesh.material_uv[std::size_t(t)];
+  std::size_t cp = 0, cq = 0;
   Eigen::Vector2d up = Eigen::Vector2d::Zero(), uq = Eigen::Vector2d::Zero();
   for (std::size_t c = 0; c < 3; ++c) {
-    if (tri[c] == p) up = uv[c];
-    if (tri[c] == q) uq = uv[c];
+    if (tri[c] == p) up = uv[cp = c];
+    if (tri[c] == q) uq = uv[cq = c];
   }
-  return (uq - up).norm();
+  const double length = (uq - up).norm();
+  if constexpr (std::is_same_v<Scalar, double>) {
+    return length;
+  } else {
+    const auto& delta = (*change)[std::size_t(t)];
+    return Dual(length, (uq - up).dot(delta[cq] - delta[cp]) / length);
+  }
 }
 
-std::vector<double> arc_length(const TriangleMesh& mesh, const EdgeTriangles& edges,
-                               const std::vector<int>& line) {
-  std::vector<double> length(line.size(), 0.0);
+template <class Scalar>
+std::vector<Scalar> arc_length(const TriangleMesh& mesh, const EdgeTriangles& edges,
+                               const std::vector<int>& line,
+                               const MaterialChange* change = nullptr) {
+  std::vector<Scalar> length(line.size(), Scalar(0.0));
   for (std::size_t i = 1; i < line.size(); ++i) {
     const int p = line[i - 1], q = line[i];
     const auto found = edges.find({std::min(p, q), std::max(p, q)});
@@ -62,23 +79,25 @@ std::vector<double> arc_length(const TriangleMesh& mesh, const EdgeTriangles& ed
       throw InputError("vertices " + std::to_string(p) + " and " + std::to_string(q) +
                        " are not joined by a mesh edge");
     }
-    length[i] = length[i - 1] + segment_length(mesh, found->second.front(), p, q);
+    length[i] = length[i - 1] + segment_length<Scalar>(mesh, change, found->second.front(), p, q);
   }
   return length;
 }
 
-std::vector<double> normalised(std::vector<double> length) {
-  const double total = length.back();
-  for (double& t : length)
-    t /= total;
+template <class Scalar>
+std::vector<Scalar> normalised(std::vector<Scalar> length) {
+  const Scalar total = length.back();
+  for (Scalar& t : length)
+    t = t / total;
   return length;
 }
 
 // Half the material length of the segments next to each vertex, m.
-std::vector<double> tributary_length(const std::vector<double>& arc) {
-  std::vector<double> tributary(arc.size(), 0.0);
+template <class Scalar>
+std::vector<Scalar> tributary_length(const std::vector<Scalar>& arc) {
+  std::vector<Scalar> tributary(arc.size(), Scalar(0.0));
   for (std::size_t i = 1; i < arc.size(); ++i) {
-    const double half = 0.5 * (arc[i] - arc[i - 1]);
+    const Scalar half = 0.5 * (arc[i] - arc[i - 1]);
     tributary[i - 1] += half;
     tributary[i] += half;
   }
@@ -91,46 +110,59 @@ std::vector<int> paired_b(const Seam& seam) {
   return b;
 }
 
-bool lines_match(const std::vector<double>& ta, const std::vector<double>& tb) {
+template <class Scalar>
+bool lines_match(const std::vector<Scalar>& ta, const std::vector<Scalar>& tb) {
   if (ta.size() != tb.size()) return false;
   for (std::size_t i = 0; i < ta.size(); ++i) {
-    if (std::abs(ta[i] - tb[i]) > match_tolerance) return false;
+    if (std::abs(value_of(ta[i]) - value_of(tb[i])) > match_tolerance) return false;
   }
   return true;
 }
 
+// A spring with its stiffness and edge parameter in either scalar.
+template <class Scalar>
+struct BuiltSpring {
+  SeamSpring spring;
+  Scalar stiffness, s;
+};
+
 // Springs from every vertex of `emitting` to the point of `receiving` at the
 // same normalised arc length: vertex-to-edge, or vertex-to-vertex where the
 // point is (within the match tolerance) a vertex.
-void emit_to_edges(const std::vector<int>& emitting, const std::vector<double>& t_emitting,
-                   const std::vector<double>& tributary, const std::vector<int>& receiving,
-                   const std::vector<double>& t_receiving, double kappa, int seam,
-                   std::vector<SeamSpring>& springs) {
+template <class Scalar>
+void emit_to_edges(const std::vector<int>& emitting, const std::vector<Scalar>& t_emitting,
+                   const std::vector<Scalar>& tributary, const std::vector<int>& receiving,
+                   const std::vector<Scalar>& t_receiving, Scalar kappa, int seam,
+                   std::vector<BuiltSpring<Scalar>>& springs) {
   for (std::size_t i = 0; i < emitting.size(); ++i) {
-    const double t = t_emitting[i];
+    const Scalar t = t_emitting[i];
     // The receiving segment [j, j + 1] holding t.
     const auto upper = std::upper_bound(t_receiving.begin(), t_receiving.end(), t);
     std::size_t j = std::size_t(std::max<long>(0, long(upper - t_receiving.begin()) - 1));
     j = std::min(j, t_receiving.size() - 2);
-    const double s =
-        std::clamp((t - t_receiving[j]) / (t_receiving[j + 1] - t_receiving[j]), 0.0, 1.0);
-    SeamSpring spring;
+    const Scalar s =
+        std::clamp(Scalar((t - t_receiving[j]) / (t_receiving[j + 1] - t_receiving[j])),
+                   Scalar(0.0), Scalar(1.0));
+    BuiltSpring<Scalar> built{SeamSpring{}, Scalar(0.0), Scalar(0.0)};
+    SeamSpring& spring = built.spring;
     spring.seam = seam;
-    spring.length = 0.5 * tributary[i]; // both lines emit: half each
-    spring.stiffness = kappa * spring.length;
+    const Scalar length = 0.5 * tributary[i]; // both lines emit: half each
+    built.stiffness = kappa * length;
+    spring.length = value_of(length);
     spring.vertices[0] = emitting[i];
-    if (s * (t_receiving[j + 1] - t_receiving[j]) <= match_tolerance) {
+    const double gap = value_of(t_receiving[j + 1] - t_receiving[j]);
+    if (value_of(s) * gap <= match_tolerance) {
       spring.vertices[1] = receiving[j];
-    } else if ((1.0 - s) * (t_receiving[j + 1] - t_receiving[j]) <= match_tolerance) {
+    } else if ((1.0 - value_of(s)) * gap <= match_tolerance) {
       spring.vertices[1] = receiving[j + 1];
     } else {
       spring.to_edge = true;
-      spring.s = s;
+      built.s = s;
       spring.vertices[1] = receiving[j];
       spring.vertices[2] = receiving[j + 1];
     }
     if (!spring.to_edge && spring.vertices[0] == spring.vertices[1]) continue; // a dart's tip
-    springs.push_back(spring);
+    springs.push_back(built);
   }
 }
 
@@ -260,43 +292,49 @@ void write_seams(const std::string& path, const std::vector<Seam>& seams) {
 }
 
 std::vector<double> material_arc_length(const TriangleMesh& mesh, const std::vector<int>& line) {
-  return arc_length(mesh, edge_triangles(mesh), line);
+  return arc_length<double>(mesh, edge_triangles(mesh), line);
 }
 
 bool seam_is_matched(const TriangleMesh& mesh, const Seam& seam) {
   const EdgeTriangles edges = edge_triangles(mesh);
-  return lines_match(normalised(arc_length(mesh, edges, seam.a)),
-                     normalised(arc_length(mesh, edges, paired_b(seam))));
+  return lines_match(normalised(arc_length<double>(mesh, edges, seam.a)),
+                     normalised(arc_length<double>(mesh, edges, paired_b(seam))));
 }
 
-std::vector<SeamSpring> seam_springs(const TriangleMesh& mesh, const std::vector<Seam>& seams,
-                                     const SeamStiffness& stiffness) {
+namespace {
+
+template <class Scalar>
+std::vector<BuiltSpring<Scalar>>
+build_springs(const TriangleMesh& mesh, const std::vector<Seam>& seams,
+              const SeamStiffness& stiffness, const MaterialChange* change) {
   check_seams(mesh, seams, "");
   const EdgeTriangles edges = edge_triangles(mesh);
-  std::vector<SeamSpring> springs;
+  std::vector<BuiltSpring<Scalar>> springs;
   for (std::size_t index = 0; index < seams.size(); ++index) {
     const Seam& seam = seams[index];
     const std::vector<int> b = paired_b(seam);
-    const std::vector<double> arc_a = arc_length(mesh, edges, seam.a);
-    const std::vector<double> arc_b = arc_length(mesh, edges, b);
-    const double spacing =
+    const std::vector<Scalar> arc_a = arc_length<Scalar>(mesh, edges, seam.a, change);
+    const std::vector<Scalar> arc_b = arc_length<Scalar>(mesh, edges, b, change);
+    const Scalar spacing =
         (arc_a.back() + arc_b.back()) / double(seam.a.size() + seam.b.size() - 2);
-    const double kappa = seam.certainty * (stiffness.per_length > 0.0
-                                               ? stiffness.per_length
-                                               : stiffness.penalty * stiffness.modulus / spacing);
-    const std::vector<double> ta = normalised(arc_a), tb = normalised(arc_b);
-    const std::vector<double> tributary_a = tributary_length(arc_a);
-    const std::vector<double> tributary_b = tributary_length(arc_b);
+    const Scalar kappa =
+        seam.certainty * (stiffness.per_length > 0.0
+                              ? Scalar(stiffness.per_length)
+                              : Scalar(stiffness.penalty * stiffness.modulus / spacing));
+    const std::vector<Scalar> ta = normalised(arc_a), tb = normalised(arc_b);
+    const std::vector<Scalar> tributary_a = tributary_length(arc_a);
+    const std::vector<Scalar> tributary_b = tributary_length(arc_b);
     if (lines_match(ta, tb)) {
       for (std::size_t i = 0; i < ta.size(); ++i) {
         if (seam.a[i] == b[i]) continue; // a dart's tip
-        SeamSpring spring;
-        spring.seam = int(index);
-        spring.vertices[0] = seam.a[i];
-        spring.vertices[1] = b[i];
-        spring.length = 0.5 * (tributary_a[i] + tributary_b[i]);
-        spring.stiffness = kappa * spring.length;
-        springs.push_back(spring);
+        BuiltSpring<Scalar> built{SeamSpring{}, Scalar(0.0), Scalar(0.0)};
+        built.spring.seam = int(index);
+        built.spring.vertices[0] = seam.a[i];
+        built.spring.vertices[1] = b[i];
+        const Scalar length = 0.5 * (tributary_a[i] + tributary_b[i]);
+        built.spring.length = value_of(length);
+        built.stiffness = kappa * length;
+        springs.push_back(built);
       }
     } else {
       emit_to_edges(seam.a, ta, tributary_a, b, tb, kappa, int(index), springs);
@@ -304,6 +342,33 @@ std::vector<SeamSpring> seam_springs(const TriangleMesh& mesh, const std::vector
     }
   }
   return springs;
+}
+
+} // namespace
+
+std::vector<SeamSpring> seam_springs(const TriangleMesh& mesh, const std::vector<Seam>& seams,
+                                     const SeamStiffness& stiffness) {
+  std::vector<SeamSpring> springs;
+  for (const BuiltSpring<double>& built : build_springs<double>(mesh, seams, stiffness, nullptr)) {
+    springs.push_back(built.spring);
+    springs.back().stiffness = built.stiffness;
+    springs.back().s = built.s;
+  }
+  return springs;
+}
+
+std::vector<SeamSpringChange> seam_spring_changes(const TriangleMesh& mesh,
+                                                  const std::vector<Seam>& seams,
+                                                  const SeamStiffness& stiffness,
+                                                  const MaterialChange& change) {
+  if (change.size() != mesh.triangle_count()) {
+    throw InputError("seam springs: a material change of " + std::to_string(change.size()) +
+                     " triangles for a mesh of " + std::to_string(mesh.triangle_count()));
+  }
+  std::vector<SeamSpringChange> changes;
+  for (const BuiltSpring<Dual>& built : build_springs<Dual>(mesh, seams, stiffness, &change))
+    changes.push_back({built.stiffness.derivative, built.s.derivative});
+  return changes;
 }
 
 std::vector<std::pair<int, int>> matched_vertex_pairs(const TriangleMesh& mesh,

@@ -88,6 +88,24 @@ bool seam_is_matched(const TriangleMesh& mesh, const Seam& seam);
 std::vector<SeamSpring> seam_springs(const TriangleMesh& mesh, const std::vector<Seam>& seams,
                                      const SeamStiffness& stiffness);
 
+// A change of the material coordinates, per triangle corner (as
+// TriangleMesh::material_uv), m.
+using MaterialChange = std::vector<std::array<Eigen::Vector2d, 3>>;
+// The change of a spring's stiffness (N/m) and edge parameter.
+struct SeamSpringChange {
+  double stiffness = 0.0;
+  double s = 0.0;
+};
+// The change of every spring of seam_springs (in its order) when the
+// material coordinates move by `change`: exact, by dual numbers through the
+// same construction (tributary and total arc lengths, the automatic kappa,
+// the normalised arc lengths that place vertex-to-edge springs). Which
+// springs there are, and between which vertices, is held.
+std::vector<SeamSpringChange> seam_spring_changes(const TriangleMesh& mesh,
+                                                  const std::vector<Seam>& seams,
+                                                  const SeamStiffness& stiffness,
+                                                  const MaterialChange& change);
+
 // The vertex pairs of matched seams, (a[i], b[i or reversed]); throws
 // InputError naming the first seam that is not matched or is a T-seam (its
 // merged edges would join three triangles). Pairs of a vertex

@@ -696,8 +696,10 @@ PetscErrorCode ClothProblem::rest_derivative(Vec x, const RestChange& change, Ve
   for (const auto* form : forms)
     PetscCheck(form->has_rest_derivative(), comm_, PETSC_ERR_SUP,
                "the form '%s' has no rest derivative", form->name());
-  for (const auto* form : enabled(coupling_forms_))
-    SETERRQ(comm_, PETSC_ERR_SUP, "the form '%s' has no rest derivative", form->name());
+  const std::vector<fem::CouplingForm*> coupling_forms = enabled(coupling_forms_);
+  for (const auto* form : coupling_forms)
+    PetscCheck(form->has_rest_derivative(), comm_, PETSC_ERR_SUP,
+               "the form '%s' has no rest derivative", form->name());
   PetscCall(to_local(x));
   PetscCall(VecSet(local_f_, 0.0));
   PetscCall(VecGetArrayRead(local_x_, &values));
@@ -716,6 +718,8 @@ PetscErrorCode ClothProblem::rest_derivative(Vec x, const RestChange& change, Ve
   PetscCall(VecRestoreArrayRead(local_x_, &values));
   PetscCall(VecSet(derivative, 0.0));
   PetscCall(DMLocalToGlobal(dm_, local_f_, ADD_VALUES, derivative));
+  for (auto* form : coupling_forms)
+    PetscCall(form->add_rest_derivative(x, change, derivative));
   // The rows of pins that hold are x = place, whatever the pattern.
   std::vector<HeldRow> held;
   PetscInt start = 0;

@@ -48,6 +48,7 @@ namespace fem {
 struct BlockLayout;
 class ContactForm;
 class SeamForm;
+struct SeamDesign;
 } // namespace fem
 
 // Per-triangle results in mesh numbering.
@@ -154,6 +155,9 @@ public:
   // rank; call before create_jacobian. Energy, residual, Jacobian and pin
   // reaction include them.
   void set_seams(const std::vector<SeamSpring>& springs);
+  // The springs seam_springs builds from `seams`; these (unlike given
+  // springs) have an exact rest derivative once sewn.
+  void set_seams(const std::vector<Seam>& seams, const SeamStiffness& stiffness);
   const SeamCoupling* seam_coupling() const;
   // Collective: the largest gap of a seam spring at x, m (0 without seams).
   PetscErrorCode seam_gap(Vec x, double* gap);
@@ -260,6 +264,9 @@ public:
   PetscInt global_dof_count() const { return global_dofs_; }
 
 private:
+  // set_seams' work; `design`: where the springs came from, or null.
+  void set_up_seams(const std::vector<SeamSpring>& springs,
+                    std::unique_ptr<fem::SeamDesign> design);
   // The per-vertex triples of `local` (laid out as the local vector of
   // positions) in mesh numbering, on rank 0. Collective.
   PetscErrorCode gather_vertex_triples(const PetscScalar* local,

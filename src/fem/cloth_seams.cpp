@@ -10,7 +10,17 @@
 
 namespace sartor {
 
+void ClothProblem::set_seams(const std::vector<Seam>& seams, const SeamStiffness& stiffness) {
+  auto design = std::make_unique<fem::SeamDesign>(fem::SeamDesign{seams, stiffness});
+  set_up_seams(seam_springs(mesh_, seams, stiffness), std::move(design));
+}
+
 void ClothProblem::set_seams(const std::vector<SeamSpring>& springs) {
+  set_up_seams(springs, nullptr);
+}
+
+void ClothProblem::set_up_seams(const std::vector<SeamSpring>& springs,
+                                std::unique_ptr<fem::SeamDesign> design) {
   for (std::size_t i = 0; i < pinned_.size(); ++i) {
     if (releasable(i)) throw InputError("seams and pins with a release time cannot be combined");
   }
@@ -31,6 +41,7 @@ void ClothProblem::set_seams(const std::vector<SeamSpring>& springs) {
                                 MPIU_INT, MPI_MAX, comm_));
 
   std::vector<SeamSpring> assigned; // each spring on the rank owning its emitting vertex
+  std::vector<std::size_t> assigned_index;
   for (const SeamSpring& spring : springs) {
     for (int k = 0; k < spring.vertex_count(); ++k) {
       const int v = spring.vertices[std::size_t(k)];
@@ -38,7 +49,9 @@ void ClothProblem::set_seams(const std::vector<SeamSpring>& springs) {
         throw InputError("seam spring: vertex " + std::to_string(v) + " is not in the mesh");
       }
     }
-    if (vertex_owned_[std::size_t(spring.vertices[0])]) assigned.push_back(spring);
+    if (!vertex_owned_[std::size_t(spring.vertices[0])]) continue;
+    assigned_index.push_back(std::size_t(&spring - springs.data()));
+    assigned.push_back(spring);
   }
   Vec layout = nullptr;
   SartorPetscCall(DMGetGlobalVector(dm_, &layout));
@@ -51,7 +64,8 @@ void ClothProblem::set_seams(const std::vector<SeamSpring>& springs) {
     coupling_forms_.erase(std::find_if(coupling_forms_.begin(), coupling_forms_.end(),
                                        [&](const auto& form) { return form.get() == seam_form_; }));
   }
-  auto form = std::make_unique<fem::SeamForm>(*this, std::move(coupling));
+  auto form = std::make_unique<fem::SeamForm>(*this, std::move(coupling), std::move(assigned_index),
+                                              std::move(design));
   seam_form_ = form.get();
   coupling_forms_.push_back(std::move(form));
 }

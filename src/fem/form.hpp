@@ -181,6 +181,11 @@ public:
   virtual PetscErrorCode add_hessian(Mat J) = 0;
   // Records its couplings into `recording` (BlockPattern::recorder).
   virtual PetscErrorCode record_couplings(Mat recording) = 0;
+  // Collective: the change of the gradient when the material coordinates
+  // move by `change`, at fixed positions, added to the global vector f (see
+  // TriangleForm).
+  virtual bool has_rest_derivative() const { return false; }
+  virtual PetscErrorCode add_rest_derivative(Vec, const RestChange&, Vec) { return 0; }
 };
 
 } // namespace fem

@@ -12,6 +12,7 @@
 #include "fem/sensitivity.hpp"
 #include "fem/statics.hpp"
 #include "mesh/generators.hpp"
+#include "mesh/panels.hpp"
 #include "tests/fem/jacobian_check.hpp"
 #include "tests/fem/spring_to_point_form.hpp"
 
@@ -373,6 +374,72 @@ TEST(Forms, ContactRestDerivativeMatchesDifferencesOfRebuiltProblems) {
   EXPECT_GT(size, 0.0);
   EXPECT_LT(error, 1e-6 * size);
   for (Vec* w : {&x, &exact, &difference, &side, &shift})
+    VecDestroy(w);
+}
+
+// The seams' rest derivative (springs built from seam lines: their
+// stiffnesses and edge parameters follow the lines' material arc lengths)
+// against central differences of problems rebuilt on moved patterns: a tube
+// of two panels with unequal seam lines (vertex-to-edge springs), placed
+// apart so that the springs pull.
+TEST(Forms, SeamRestDerivativeMatchesDifferencesOfRebuiltProblems) {
+  mesh::PanelMesh tube = mesh::tube_panels(0.4, 0.3, 6, 5, 7, 4, 0.05);
+  std::mt19937_64 random(21);
+  std::uniform_real_distribution<double> jitter(-0.004, 0.004);
+  for (auto& p : tube.mesh.positions)
+    p += Eigen::Vector3d(jitter(random), jitter(random), jitter(random));
+  std::vector<Eigen::Vector2d> delta_uv(tube.mesh.vertex_count());
+  for (auto& d : delta_uv)
+    d = {2.5 * jitter(random), 2.5 * jitter(random)};
+  const RestChange change = rest_change_per_vertex(tube.mesh, delta_uv);
+  SeamStiffness stiffness;
+  stiffness.modulus = 65200.0;
+  const auto build = [&](const TriangleMesh& m) {
+    auto problem = std::make_unique<ClothProblem>(
+        PETSC_COMM_WORLD, m, cotton(element::BendingModel::discrete_shell), std::vector<int>{0});
+    problem->set_seams(tube.seams, stiffness);
+    for (const std::string& name : problem->form_names())
+      problem->enable_form(name, name == "seams");
+    return problem;
+  };
+  auto base = build(tube.mesh);
+  Vec x = nullptr, exact = nullptr, difference = nullptr, side = nullptr;
+  ASSERT_EQ(base->create_solution(&x), 0);
+  for (Vec* w : {&exact, &difference, &side})
+    VecDuplicate(x, w);
+  ASSERT_EQ(base->rest_derivative(x, change, exact), 0);
+  const double h = 1e-4; // times a change of up to 1 cm: 1 micrometre
+  VecSet(difference, 0.0);
+  for (const double s : {h, -h}) {
+    const TriangleMesh moved = moved_rest(tube.mesh, change, s); // the problem keeps a reference
+    auto other = build(moved);
+    Vec y = nullptr, f = nullptr;
+    ASSERT_EQ(other->create_solution(&y), 0);
+    VecDuplicate(y, &f);
+    ASSERT_EQ(transfer_vector(*base, x, *other, y), 0);
+    ASSERT_EQ(other->residual(y, f), 0);
+    ASSERT_EQ(transfer_vector(*other, f, *base, side), 0);
+    VecAXPY(difference, s > 0 ? 0.5 / h : -0.5 / h, side);
+    VecDestroy(&y);
+    VecDestroy(&f);
+  }
+  PetscReal size = 0.0, error = 0.0;
+  VecNorm(exact, NORM_2, &size);
+  VecAXPY(difference, -1.0, exact);
+  VecNorm(difference, NORM_2, &error);
+  EXPECT_GT(size, 0.0);
+  EXPECT_LT(error, 1e-6 * size);
+  // Given springs, and springs still being sewn, have none: refused.
+  ClothProblem given(PETSC_COMM_WORLD, tube.mesh, cotton(element::BendingModel::discrete_shell),
+                     std::vector<int>{0});
+  given.set_seams(seam_springs(tube.mesh, tube.seams, stiffness));
+  base->sewing_tension = 10.0;
+  base->sewing_stage = 0.5;
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  EXPECT_NE(given.rest_derivative(x, change, exact), 0);
+  EXPECT_NE(base->rest_derivative(x, change, exact), 0);
+  PetscPopErrorHandler();
+  for (Vec* w : {&x, &exact, &difference, &side})
     VecDestroy(w);
 }
 

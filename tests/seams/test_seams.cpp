@@ -11,6 +11,7 @@
 #include <cmath>
 #include <fstream>
 #include <numeric>
+#include <random>
 
 namespace sartor {
 namespace {
@@ -99,6 +100,59 @@ TEST(SeamLines, ReversedLinePairsStartWithEnd) {
   ASSERT_EQ(original.size(), same.size());
   EXPECT_NEAR(largest_seam_gap(same, tube.mesh.positions),
               largest_seam_gap(original, tube.mesh.positions), 1e-14);
+}
+
+// The springs' exact changes with the material coordinates (dual numbers
+// through the construction) against central differences of springs built
+// on moved coordinates: matched lines (stiffness only) and unequal ones
+// (vertex-to-edge springs: stiffness and edge parameter), with the
+// automatic kappa and with a given one.
+TEST(SeamLines, SpringChangesMatchDifferencesOfSpringsOnMovedPatterns) {
+  for (const int rows_b : {6, 4}) {
+    const mesh::PanelMesh tube = mesh::tube_panels(width, height, 8, 6, 10, rows_b, 0.1);
+    // One random (u, v) change per vertex, the same for all its corners.
+    std::mt19937_64 random(13);
+    std::uniform_real_distribution<double> jitter(-0.005, 0.005);
+    std::vector<Eigen::Vector2d> per_vertex(tube.mesh.vertex_count());
+    for (auto& d : per_vertex)
+      d = {jitter(random), jitter(random)};
+    MaterialChange change(tube.mesh.triangle_count());
+    for (std::size_t t = 0; t < change.size(); ++t) {
+      for (std::size_t c = 0; c < 3; ++c)
+        change[t][c] = per_vertex[std::size_t(tube.mesh.triangles[t][c])];
+    }
+    const auto moved = [&](double scale) {
+      TriangleMesh m = tube.mesh;
+      for (std::size_t t = 0; t < change.size(); ++t) {
+        for (std::size_t c = 0; c < 3; ++c)
+          m.material_uv[t][c] += scale * change[t][c];
+      }
+      return m;
+    };
+    for (const double per_length : {0.0, 2e6}) {
+      SeamStiffness stiffness;
+      stiffness.modulus = 30000.0;
+      stiffness.per_length = per_length;
+      const auto exact = seam_spring_changes(tube.mesh, tube.seams, stiffness, change);
+      const double h = 1e-5; // times up to 5 mm: 50 nm
+      const TriangleMesh up_mesh = moved(h), down_mesh = moved(-h);
+      const auto up = seam_springs(up_mesh, tube.seams, stiffness);
+      const auto down = seam_springs(down_mesh, tube.seams, stiffness);
+      ASSERT_EQ(exact.size(), up.size());
+      ASSERT_EQ(down.size(), up.size());
+      double largest_stiffness_change = 0.0, largest_s_change = 0.0;
+      for (std::size_t i = 0; i < exact.size(); ++i) {
+        const double d_stiffness = (up[i].stiffness - down[i].stiffness) / (2.0 * h);
+        const double d_s = (up[i].s - down[i].s) / (2.0 * h);
+        EXPECT_NEAR(exact[i].stiffness, d_stiffness, 1e-6 * std::abs(up[i].stiffness)) << i;
+        EXPECT_NEAR(exact[i].s, d_s, 1e-6) << i;
+        largest_stiffness_change = std::max(largest_stiffness_change, std::abs(exact[i].stiffness));
+        largest_s_change = std::max(largest_s_change, std::abs(exact[i].s));
+      }
+      EXPECT_GT(largest_stiffness_change, 0.0);
+      if (rows_b == 4) EXPECT_GT(largest_s_change, 0.0); // vertex-to-edge springs slide
+    }
+  }
 }
 
 std::string write_file(const std::string& name, const std::string& text) {

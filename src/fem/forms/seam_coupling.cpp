@@ -1,5 +1,6 @@
 #include "fem/forms/seam_coupling.hpp"
 
+#include "element/rest_derivative.hpp"
 #include "element/seam.hpp"
 #include "fem/petsc_call.hpp"
 
@@ -138,22 +139,56 @@ PetscErrorCode SeamCoupling::add_forces(Vec x, const std::vector<Eigen::Vector3d
   PetscFunctionBeginUser;
   PetscCall(for_each_spring(x, pin_places, element::Want::gradient,
                             [&](const SeamSpring& spring, const SpringState& state) {
-                              const Eigen::VectorXd& gradient = state.gradient;
-                              // Vectors, unlike matrices, do not skip negative (pinned) rows.
-                              std::vector<PetscInt> rows;
-                              std::vector<PetscScalar> values;
-                              for (int k = 0; k < spring.vertex_count(); ++k) {
-                                for (int d = 0; d < 3; ++d) {
-                                  const PetscInt row =
-                                      global_row(spring.vertices[std::size_t(k)], d);
-                                  if (row < 0) continue;
-                                  rows.push_back(row);
-                                  values.push_back(gradient[3 * k + d]);
-                                }
-                              }
-                              return VecSetValues(f, PetscInt(rows.size()), rows.data(),
-                                                  values.data(), ADD_VALUES);
+                              return add_to_rows(spring, state.gradient, f);
                             }));
+  PetscCall(VecAssemblyBegin(f));
+  PetscCall(VecAssemblyEnd(f));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SeamCoupling::add_to_rows(const SeamSpring& spring, const Eigen::VectorXd& values,
+                                         Vec f) const {
+  // Vectors, unlike matrices, do not skip negative (pinned) rows.
+  std::vector<PetscInt> rows;
+  std::vector<PetscScalar> free_values;
+  PetscFunctionBeginUser;
+  for (int k = 0; k < spring.vertex_count(); ++k) {
+    for (int d = 0; d < 3; ++d) {
+      const PetscInt row = global_row(spring.vertices[std::size_t(k)], d);
+      if (row < 0) continue;
+      rows.push_back(row);
+      free_values.push_back(values[3 * k + d]);
+    }
+  }
+  PetscCall(VecSetValues(f, PetscInt(rows.size()), rows.data(), free_values.data(), ADD_VALUES));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SeamCoupling::add_rest_derivative(Vec x,
+                                                 const std::vector<Eigen::Vector3d>& pin_places,
+                                                 const std::vector<SeamSpringChange>& changes,
+                                                 Vec f) {
+  std::vector<double> stacked;
+  PetscFunctionBeginUser;
+  PetscCheck(changes.size() == springs_.size(), comm_, PETSC_ERR_ARG_SIZ,
+             "%zu seam spring changes for %zu springs", changes.size(), springs_.size());
+  PetscCall(fetch(x, pin_places, &stacked));
+  std::size_t at = 0;
+  for (std::size_t index = 0; index < springs_.size(); ++index) {
+    const SeamSpring& spring = springs_[index];
+    Eigen::VectorXd change;
+    if (spring.to_edge) {
+      const Eigen::Map<const Eigen::Matrix<double, 9, 1>> xe(stacked.data() + at);
+      change = element::seam_vertex_edge_rest_derivative(
+          spring.stiffness, spring.s, changes[index].stiffness, changes[index].s, xe);
+      at += 9;
+    } else {
+      const Eigen::Map<const Eigen::Matrix<double, 6, 1>> xe(stacked.data() + at);
+      change = element::seam_vertex_vertex_rest_derivative(changes[index].stiffness, xe);
+      at += 6;
+    }
+    PetscCall(add_to_rows(spring, change, f));
+  }
   PetscCall(VecAssemblyBegin(f));
   PetscCall(VecAssemblyEnd(f));
   PetscFunctionReturn(0);

@@ -46,6 +46,11 @@ public:
   PetscErrorCode add_jacobian(Mat J) const;
   // The same nonzeros, into a MATPREALLOCATOR matrix before its assembly.
   PetscErrorCode add_pattern(Mat pattern) const;
+  // Collective: f += the change of the seam forces at x when each assigned
+  // spring's stiffness and edge parameter change by `changes` (one per
+  // assigned spring, in their order), the springs at their own stiffness.
+  PetscErrorCode add_rest_derivative(Vec x, const std::vector<Eigen::Vector3d>& pin_places,
+                                     const std::vector<SeamSpringChange>& changes, Vec f);
   // Collective: the largest seam gap over all springs, m.
   PetscErrorCode largest_gap(Vec x, const std::vector<Eigen::Vector3d>& pin_places, double* gap);
   // Collective: the sum of the seam forces on pinned vertices (their part of
@@ -77,6 +82,8 @@ private:
                        std::vector<double>* stacked);
   // The global row of dof d of vertex v, -1 when pinned (ignored by PETSc).
   PetscInt global_row(int v, int d) const;
+  // f += a vector on the spring's vertices (3 per vertex), its free rows.
+  PetscErrorCode add_to_rows(const SeamSpring& spring, const Eigen::VectorXd& values, Vec f) const;
   template <class Visit>
   PetscErrorCode for_each_spring(Vec x, const std::vector<Eigen::Vector3d>& pin_places,
                                  element::Want want, const Visit& visit);

@@ -38,6 +38,25 @@ PetscErrorCode SeamForm::record_couplings(Mat recording) {
   return coupling_->add_pattern(recording);
 }
 
+bool SeamForm::has_rest_derivative() const {
+  return design_ && problem_.sewing_progress() >= 1.0;
+}
+
+PetscErrorCode SeamForm::add_rest_derivative(Vec x, const RestChange& change, Vec f) {
+  std::vector<Eigen::Vector3d> places;
+  PetscFunctionBeginUser;
+  PetscCheck(has_rest_derivative(), problem_.comm(), PETSC_ERR_SUP,
+             "the seams have no rest derivative (given springs, or sewing)");
+  const std::vector<SeamSpringChange> all =
+      seam_spring_changes(problem_.mesh(), design_->seams, design_->stiffness, change);
+  std::vector<SeamSpringChange> mine;
+  for (std::size_t index : assigned_)
+    mine.push_back(all[index]);
+  PetscCall(prepare(&places));
+  PetscCall(coupling_->add_rest_derivative(x, places, mine, f));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SeamForm::largest_gap(Vec x, double* gap) {
   std::vector<Eigen::Vector3d> places;
   PetscFunctionBeginUser;
