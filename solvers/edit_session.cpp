@@ -199,7 +199,7 @@ ProblemFactory EditSession::factory(const ClothProblem& base,
     auto problem = std::make_unique<ClothProblem>(comm, mesh, floored, pinned);
     problem->sewing_tension = tension;
     if (!garment_.seams.empty())
-      problem->set_seams(case_seam_springs(options_, mesh, garment_.seams, stiffest));
+      problem->set_seams(garment_.seams, case_seam_stiffness(options_, stiffest));
     return problem;
   };
 }

@@ -74,9 +74,7 @@ std::vector<Seam> case_seams(const Options& options, const TriangleMesh& mesh, i
   return seams;
 }
 
-std::vector<SeamSpring> case_seam_springs(const Options& options, const TriangleMesh& mesh,
-                                          const std::vector<Seam>& seams,
-                                          const ClothMaterial& material) {
+SeamStiffness case_seam_stiffness(const Options& options, const ClothMaterial& material) {
   SeamStiffness stiffness;
   stiffness.modulus =
       std::max(material.membrane.warp.initial_modulus(), material.membrane.weft.initial_modulus());
@@ -84,7 +82,13 @@ std::vector<SeamSpring> case_seam_springs(const Options& options, const Triangle
   if (options.is_set("seam-stiffness")) {
     stiffness.per_length = options.positive_real("seam-stiffness");
   }
-  return seam_springs(mesh, seams, stiffness);
+  return stiffness;
+}
+
+std::vector<SeamSpring> case_seam_springs(const Options& options, const TriangleMesh& mesh,
+                                          const std::vector<Seam>& seams,
+                                          const ClothMaterial& material) {
+  return seam_springs(mesh, seams, case_seam_stiffness(options, material));
 }
 
 void attach_seams(const Options& options, const std::vector<Seam>& seams,
@@ -98,7 +102,8 @@ void attach_seams(const Options& options, const std::vector<Seam>& seams,
   const std::vector<SeamSpring> springs =
       case_seam_springs(options, problem.mesh(), seams, material);
   set_up_sewing(options, problem, report);
-  problem.set_seams(springs);
+  problem.set_seams(seams, case_seam_stiffness(options, material)); // the same springs
+
   report->seams = seams.size();
   report->springs = springs.size();
   report->vertex_to_edge_springs = std::size_t(std::count_if(

@@ -43,13 +43,16 @@ mesh::PanelMesh tube_panels_mesh(const Options& options);
 // would miss the new vertices).
 std::vector<Seam> case_seams(const Options& options, const TriangleMesh& mesh, int refinements);
 
-// The springs of `seams` (--seam-stiffness or --seam-penalty with the
-// material's largest initial modulus).
+// The seams' stiffness settings: --seam-stiffness, or --seam-penalty with the
+// material's largest initial modulus.
+SeamStiffness case_seam_stiffness(const Options& options, const ClothMaterial& material);
+// The springs of `seams` with those settings.
 std::vector<SeamSpring> case_seam_springs(const Options& options, const TriangleMesh& mesh,
                                           const std::vector<Seam>& seams,
                                           const ClothMaterial& material);
 
-// Adds the springs to `problem` and records their counts in `report`.
+// Adds the springs to `problem` (from the seam lines, so that they have a
+// rest derivative) and records their counts in `report`.
 void attach_seams(const Options& options, const std::vector<Seam>& seams,
                   const ClothMaterial& material, ClothProblem& problem, SeamReport* report);
 
