@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 #include "fem/incremental_system.hpp"
 #include "fem/progress_clock.hpp"
+#include "fem/statics.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -167,19 +168,27 @@ PetscErrorCode settle(DynamicState& s, DynamicReport* report) {
       SNESGetTolerances(system.snes(), &atol, &rtol, &stol, &max_iterations, &max_evaluations));
   PetscCall(SNESSetTolerances(system.snes(), atol, std::min(rtol, PetscReal(1e-10)), stol,
                               max_iterations, max_evaluations));
-  IncrementalSystem::Solve solve;
-  PetscCall(system.solve(s.x, &solve));
+  // Statics' own solve, so that the settle of a potential ends as a static
+  // drape does: contact rounds until the friction anchors' update leaves
+  // the state in equilibrium (fem/statics.hpp), the adaptive penalty off.
+  StaticOptions options;
+  options.start_load_factor = s.problem.load_factor;
+  options.minimise = system.minimise_statics;
+  options.max_offset_depth = 0.0;
+  options.max_cutbacks = 0; // the load is already whole: a retry would repeat the solve
+  StaticReport solve;
+  PetscCall(solve_static(system, s.x, options, &solve));
   PetscCall(SNESSetTolerances(system.snes(), atol, rtol, stol, max_iterations, max_evaluations));
   report->newton_iterations += solve.newton_iterations;
   report->linear_iterations += solve.linear_iterations;
   report->settle_newton_iterations = solve.newton_iterations;
   report->settle_reason = solve.reason;
+  report->settle_contact_rounds = solve.contact_rounds;
   report->settled = solve.converged;
   PetscCall(s.problem.residual(s.x, s.f));
   PetscCall(VecNorm(s.f, NORM_2, &report->settle_residual_norm));
   if (solve.converged) {
-    PetscCall(VecSet(s.v, 0.0));
-    PetscCall(s.problem.accept_step(s.x));
+    PetscCall(VecSet(s.v, 0.0)); // solve_static has accepted the state
   } else {
     PetscCall(VecCopy(system.previous(), s.x));
     report->completed = false;

@@ -18,11 +18,13 @@
 // once the static residual |grad E - f| falls below that fraction of its
 // value at the start.
 //
-// `settle` finishes a relaxation with one static Newton solve (no inertia,
-// the friction anchors of the last update held) from the last state, at rest
-// or at time_end: kinetic damping brings the cloth near its equilibrium
-// cheaply, and Newton's quadratic convergence closes the last gap, so that
-// the reactions balance the loads to solver tolerance.
+// `settle` finishes a relaxation with a static solve (no inertia; statics'
+// solve_static at the full load, with its contact rounds: re-solved with the
+// friction anchors updated until that update leaves the state in
+// equilibrium) from the last state, at rest or at time_end: kinetic damping
+// brings the cloth near its equilibrium cheaply, and Newton's quadratic
+// convergence closes the last gap, so that the reactions balance the loads
+// to solver tolerance.
 //
 // problem.time is the clock: prescribed pin motions and body motions are
 // evaluated at it (solve_dynamic sets pins_follow_time). Friction anchors are
@@ -79,8 +81,9 @@ struct DynamicReport {
   // also counted in newton_iterations and linear_iterations).
   bool settled = false;
   std::string settle_reason;
-  PetscInt settle_newton_iterations = 0;
-  double settle_residual_norm = 0.0; // N, |grad E - f| after the settle, before accept_step
+  PetscInt settle_newton_iterations = 0; // contact rounds included
+  int settle_contact_rounds = 0;         // re-solves with the friction anchors updated
+  double settle_residual_norm = 0.0;     // N, |grad E - f| after the settle (anchors updated)
 };
 
 // Called collectively with the state after every accepted step (and with the
