@@ -1173,6 +1173,7 @@ void add_dynamics_summary(const CaseResult& result, nlohmann::json& summary) {
                      : nlohmann::json{{"converged", report.settled},
                                       {"reason", report.settle_reason},
                                       {"newton_iterations", report.settle_newton_iterations},
+                                      {"contact_rounds", report.settle_contact_rounds},
                                       {"residual_norm", report.settle_residual_norm}}},
       {"steps_per_second",
        report.solve_seconds > 0 ? double(accepted) / report.solve_seconds : 0.0},
