@@ -206,7 +206,8 @@ const std::vector<OptionSpec>& time_option_specs() {
       {"rest-tolerance", "R", "0",
        "dynamic: stop once the static residual is below R times its initial value (0: never)"},
       {"settle", "", "",
-       "dynamic: finish (at rest or at --time-end) with a static Newton solve from the last state"},
+       "dynamic: finish (at rest or at --time-end) with a static solve from the last state, with "
+       "the static solve's contact rounds (friction made consistent)"},
       {"output-interval", "S", "0",
        "dynamic, creep: time between the states written to series.h5, s (0: every step)"},
   };

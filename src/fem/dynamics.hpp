@@ -48,7 +48,7 @@ struct DynamicOptions {
   double output_interval = 0.0; // s; 0: every step
   double rest_tolerance = 0.0;  // 0: run to time_end
   bool print_progress = false;  // a line on rank 0 every 10 s of wall time (ProgressClock)
-  bool settle = false;          // finish with a static Newton solve
+  bool settle = false;          // finish with a static solve (solve_static)
 };
 
 struct DynamicStepReport {
