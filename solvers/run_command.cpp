@@ -1175,6 +1175,7 @@ void add_dynamics_summary(const CaseResult& result, nlohmann::json& summary) {
                                       {"reason", report.settle_reason},
                                       {"newton_iterations", report.settle_newton_iterations},
                                       {"contact_rounds", report.settle_contact_rounds},
+                                      {"contact_round_failed", report.settle_contact_round_failed},
                                       {"residual_norm", report.settle_residual_norm}}},
       {"steps_per_second",
        report.solve_seconds > 0 ? double(accepted) / report.solve_seconds : 0.0},

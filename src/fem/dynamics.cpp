@@ -182,11 +182,23 @@ PetscErrorCode settle(DynamicState& s, DynamicReport* report) {
   report->newton_iterations += solve.newton_iterations;
   report->linear_iterations += solve.linear_iterations;
   report->settle_newton_iterations = solve.newton_iterations;
-  report->settle_reason = solve.reason;
   report->settle_contact_rounds = solve.contact_rounds;
+  report->settle_contact_round_failed = solve.contact_round_failed;
   report->settled = solve.converged;
-  PetscCall(s.problem.residual(s.x, s.f));
-  PetscCall(VecNorm(s.f, NORM_2, &report->settle_residual_norm));
+  // The settled state is the last converged solve's (a contact round that
+  // fails keeps the state before it): its reason and residual, with the
+  // friction anchors it was solved with. Whether friction is consistent
+  // after their update is the certificate's to say.
+  const LoadStepReport* settled = nullptr;
+  for (const LoadStepReport& step : solve.steps)
+    if (step.converged) settled = &step;
+  report->settle_reason = settled ? settled->reason : solve.reason;
+  if (settled) {
+    report->settle_residual_norm = settled->residual_norm;
+  } else {
+    PetscCall(s.problem.residual(s.x, s.f));
+    PetscCall(VecNorm(s.f, NORM_2, &report->settle_residual_norm));
+  }
   if (solve.converged) {
     PetscCall(VecSet(s.v, 0.0)); // solve_static has accepted the state
   } else {

@@ -83,7 +83,10 @@ struct DynamicReport {
   std::string settle_reason;
   PetscInt settle_newton_iterations = 0; // contact rounds included
   int settle_contact_rounds = 0;         // re-solves with the friction anchors updated
-  double settle_residual_norm = 0.0;     // N, |grad E - f| after the settle (anchors updated)
+  // The last contact round did not converge (the state before it is kept).
+  bool settle_contact_round_failed = false;
+  // N, |grad E - f| of the settled state, with the anchors it was solved with.
+  double settle_residual_norm = 0.0;
 };
 
 // Called collectively with the state after every accepted step (and with the
