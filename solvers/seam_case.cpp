@@ -99,11 +99,9 @@ void attach_seams(const Options& options, const std::vector<Seam>& seams,
   // cases converge on the absolute tolerance instead (round-off of the
   // membrane forces, IncrementalSystem); -snes_rtol still overrides.
   SartorPetscCall(set_default_option("-snes_rtol", "0"));
-  const std::vector<SeamSpring> springs =
-      case_seam_springs(options, problem.mesh(), seams, material);
   set_up_sewing(options, problem, report);
-  problem.set_seams(seams, case_seam_stiffness(options, material)); // the same springs
-
+  const std::vector<SeamSpring> springs =
+      problem.set_seams(seams, case_seam_stiffness(options, material));
   report->seams = seams.size();
   report->springs = springs.size();
   report->vertex_to_edge_springs = std::size_t(std::count_if(

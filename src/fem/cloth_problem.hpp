@@ -155,9 +155,9 @@ public:
   // rank; call before create_jacobian. Energy, residual, Jacobian and pin
   // reaction include them.
   void set_seams(const std::vector<SeamSpring>& springs);
-  // The springs seam_springs builds from `seams`; these (unlike given
-  // springs) have an exact rest derivative once sewn.
-  void set_seams(const std::vector<Seam>& seams, const SeamStiffness& stiffness);
+  // The springs seam_springs builds from `seams` (returned); these (unlike
+  // given springs) have an exact rest derivative once sewn.
+  std::vector<SeamSpring> set_seams(const std::vector<Seam>& seams, const SeamStiffness& stiffness);
   const SeamCoupling* seam_coupling() const;
   // Collective: the largest gap of a seam spring at x, m (0 without seams).
   PetscErrorCode seam_gap(Vec x, double* gap);

@@ -10,9 +10,11 @@
 
 namespace sartor {
 
-void ClothProblem::set_seams(const std::vector<Seam>& seams, const SeamStiffness& stiffness) {
-  auto design = std::make_unique<fem::SeamDesign>(fem::SeamDesign{seams, stiffness});
-  set_up_seams(seam_springs(mesh_, seams, stiffness), std::move(design));
+std::vector<SeamSpring> ClothProblem::set_seams(const std::vector<Seam>& seams,
+                                                const SeamStiffness& stiffness) {
+  std::vector<SeamSpring> springs = seam_springs(mesh_, seams, stiffness);
+  set_up_seams(springs, std::make_unique<fem::SeamDesign>(fem::SeamDesign{seams, stiffness}));
+  return springs;
 }
 
 void ClothProblem::set_seams(const std::vector<SeamSpring>& springs) {

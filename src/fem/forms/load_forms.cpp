@@ -17,13 +17,14 @@ SurfaceLoadForm::SurfaceLoadForm(const ClothLoads& loads, const TriangleMesh& me
 void SurfaceLoadForm::add_energy(const TriangleView& t, const FormPoint& at, double* sum) const {
   const double mass = t.material.areal_density * t.rest.area / 3.0;
   const auto& corners = mesh_.triangles[std::size_t(t.index)];
-  element::Vector9 start;
   for (int k = 0; k < 3; ++k) {
-    start.segment<3>(3 * k) = mesh_.positions[std::size_t(corners[std::size_t(k)])];
-    *sum -=
-        at.load_factor * mass * loads_.gravity.dot(t.x.segment<3>(3 * k) - start.segment<3>(3 * k));
+    const Eigen::Vector3d& start = mesh_.positions[std::size_t(corners[std::size_t(k)])];
+    *sum -= at.load_factor * mass * loads_.gravity.dot(t.x.segment<3>(3 * k) - start);
   }
   if (loads_.pressure == 0.0 || !boundary_held_) return;
+  element::Vector9 start;
+  for (int k = 0; k < 3; ++k)
+    start.segment<3>(3 * k) = mesh_.positions[std::size_t(corners[std::size_t(k)])];
   *sum -= at.load_factor * loads_.pressure *
           (element::spanned_volume(t.x, volume_centre_) -
            element::spanned_volume(start, volume_centre_));

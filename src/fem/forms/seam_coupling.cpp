@@ -92,33 +92,40 @@ double SeamCoupling::stiffness(std::size_t index) const {
   return k * std::pow(start_fraction_[index], 1.0 - progress_);
 }
 
+template <class Visit>
+PetscErrorCode SeamCoupling::for_each_placed(Vec x, const std::vector<Eigen::Vector3d>& pin_places,
+                                             const Visit& visit) {
+  std::vector<double> stacked;
+  PetscFunctionBeginUser;
+  PetscCall(fetch(x, pin_places, &stacked));
+  std::size_t at = 0;
+  for (std::size_t index = 0; index < springs_.size(); ++index) {
+    PetscCall(visit(index, springs_[index], stacked.data() + at));
+    at += std::size_t(3 * springs_[index].vertex_count());
+  }
+  PetscFunctionReturn(0);
+}
+
 // Calls visit(spring, state) for every assigned spring with its stiffness of
 // the moment and the kernel's energy and (when `want` asks) gradient.
 template <class Visit>
 PetscErrorCode SeamCoupling::for_each_spring(Vec x, const std::vector<Eigen::Vector3d>& pin_places,
                                              element::Want want, const Visit& visit) {
-  std::vector<double> stacked;
-  PetscFunctionBeginUser;
-  PetscCall(fetch(x, pin_places, &stacked));
-  std::size_t at = 0;
-  SpringState state;
-  for (std::size_t index = 0; index < springs_.size(); ++index) {
-    const SeamSpring& spring = springs_[index];
-    const double k = stiffness(index);
-    if (spring.to_edge) {
-      const Eigen::Map<const Eigen::Matrix<double, 9, 1>> xe(stacked.data() + at);
-      const auto result = element::seam_vertex_edge(k, spring.s, xe, want);
-      state = {k, result.energy, result.gradient};
-      at += 9;
-    } else {
-      const Eigen::Map<const Eigen::Matrix<double, 6, 1>> xe(stacked.data() + at);
-      const auto result = element::seam_vertex_vertex(k, xe, want);
-      state = {k, result.energy, result.gradient};
-      at += 6;
-    }
-    PetscCall(visit(spring, state));
-  }
-  PetscFunctionReturn(0);
+  return for_each_placed(x, pin_places,
+                         [&](std::size_t index, const SeamSpring& spring, const double* positions) {
+                           const double k = stiffness(index);
+                           SpringState state;
+                           if (spring.to_edge) {
+                             const Eigen::Map<const Eigen::Matrix<double, 9, 1>> xe(positions);
+                             const auto result = element::seam_vertex_edge(k, spring.s, xe, want);
+                             state = {k, result.energy, result.gradient};
+                           } else {
+                             const Eigen::Map<const Eigen::Matrix<double, 6, 1>> xe(positions);
+                             const auto result = element::seam_vertex_vertex(k, xe, want);
+                             state = {k, result.energy, result.gradient};
+                           }
+                           return visit(spring, state);
+                         });
 }
 
 PetscErrorCode SeamCoupling::energy(Vec x, const std::vector<Eigen::Vector3d>& pin_places,
@@ -168,27 +175,22 @@ PetscErrorCode SeamCoupling::add_rest_derivative(Vec x,
                                                  const std::vector<Eigen::Vector3d>& pin_places,
                                                  const std::vector<SeamSpringChange>& changes,
                                                  Vec f) {
-  std::vector<double> stacked;
   PetscFunctionBeginUser;
   PetscCheck(changes.size() == springs_.size(), comm_, PETSC_ERR_ARG_SIZ,
              "%zu seam spring changes for %zu springs", changes.size(), springs_.size());
-  PetscCall(fetch(x, pin_places, &stacked));
-  std::size_t at = 0;
-  for (std::size_t index = 0; index < springs_.size(); ++index) {
-    const SeamSpring& spring = springs_[index];
-    Eigen::VectorXd change;
-    if (spring.to_edge) {
-      const Eigen::Map<const Eigen::Matrix<double, 9, 1>> xe(stacked.data() + at);
-      change = element::seam_vertex_edge_rest_derivative(
-          spring.stiffness, spring.s, changes[index].stiffness, changes[index].s, xe);
-      at += 9;
-    } else {
-      const Eigen::Map<const Eigen::Matrix<double, 6, 1>> xe(stacked.data() + at);
-      change = element::seam_vertex_vertex_rest_derivative(changes[index].stiffness, xe);
-      at += 6;
-    }
-    PetscCall(add_to_rows(spring, change, f));
-  }
+  PetscCall(for_each_placed(
+      x, pin_places, [&](std::size_t index, const SeamSpring& spring, const double* positions) {
+        Eigen::VectorXd change;
+        if (spring.to_edge) {
+          const Eigen::Map<const Eigen::Matrix<double, 9, 1>> xe(positions);
+          change = element::seam_vertex_edge_rest_derivative(
+              spring.stiffness, spring.s, changes[index].stiffness, changes[index].s, xe);
+        } else {
+          const Eigen::Map<const Eigen::Matrix<double, 6, 1>> xe(positions);
+          change = element::seam_vertex_vertex_rest_derivative(changes[index].stiffness, xe);
+        }
+        return add_to_rows(spring, change, f);
+      }));
   PetscCall(VecAssemblyBegin(f));
   PetscCall(VecAssemblyEnd(f));
   PetscFunctionReturn(0);

@@ -84,6 +84,11 @@ private:
   PetscInt global_row(int v, int d) const;
   // f += a vector on the spring's vertices (3 per vertex), its free rows.
   PetscErrorCode add_to_rows(const SeamSpring& spring, const Eigen::VectorXd& values, Vec f) const;
+  // Calls visit(index, spring, positions) for each assigned spring, its
+  // vertices' positions stacked (3 per vertex) at x.
+  template <class Visit>
+  PetscErrorCode for_each_placed(Vec x, const std::vector<Eigen::Vector3d>& pin_places,
+                                 const Visit& visit);
   template <class Visit>
   PetscErrorCode for_each_spring(Vec x, const std::vector<Eigen::Vector3d>& pin_places,
                                  element::Want want, const Visit& visit);
