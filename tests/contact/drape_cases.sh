@@ -39,9 +39,9 @@ def check(name, side):
     cert = s["certificate"]
     if name.startswith("sphere") and cert["verdict"] != "certified":
         failures.append(f"{name}: certificate: {cert['verdict']}")
-    for check in ("equilibrium", "coulomb", "edges", "depth"):
-        if not cert[check]["passed"]:
-            failures.append(f"{name}: certificate: {check} failed: {cert[check]}")
+    for part in ("equilibrium", "coulomb", "edges", "depth"):
+        if not cert[part]["passed"]:
+            failures.append(f"{name}: certificate: {part} failed: {cert[part]}")
     if abs(rz - weight) > 1e-6 * weight:
         failures.append(f"{name}: reaction {rz} N against weight {weight} N")
     if max(abs(body["reaction_N"][0]), abs(body["reaction_N"][1])) > 1e-6 * weight:
