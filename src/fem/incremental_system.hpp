@@ -72,7 +72,7 @@ public:
   struct MinimiserStatistics {
     PetscInt step_bound_cuts = 0;      // Newton steps shortened by the contact step bound
     PetscInt regularised_steps = 0;    // steps with mu > 0
-    PetscInt residual_rule_trials = 0; // line-search trials decided on |F| (Phi in round-off)
+    PetscInt residual_rule_trials = 0; // line-search trials decided on slopes (Phi in round-off)
     PetscInt failed_factorisations = 0;
     PetscInt exact_steps = 0; // with the unprojected Hessian
   };

@@ -42,7 +42,7 @@ struct IncrementalSystem::Trial {
   double potential = 0.0;
   double potential_scale = 0.0;
   PetscReal residual_norm = 0.0;
-  bool by_residual = false; // decided on |F|
+  bool by_residual = false; // decided on the slopes (Phi in round-off)
 };
 
 bool IncrementalSystem::minimises() const {
@@ -98,15 +98,21 @@ PetscErrorCode IncrementalSystem::newton_direction(Vec x, Vec gradient, double m
 }
 
 // Backtracks from `first_length` along `direction` until Phi falls by
-// Armijo's fraction of its predicted decrease, or, while that decrease is
-// within Phi's round-off, until |F| falls. Leaves F at the accepted point in
-// trial_f_ and the point in trial_x_.
+// Armijo's fraction of its predicted decrease. While that decrease is within
+// Phi's round-off, Phi's change is measured by the trapezoidal rule on its
+// slope along the step, (F(x)·d + F(x + a d)·d) a/2: the slopes' round-off
+// scales with the element forces times |d|, not with Phi, and the rule is
+// exact on a quadratic, so Newton's full step is taken whole and a step past
+// a kink of the force (a contact switching on, a friction anchor reaching
+// its bound) is judged on Phi, not on |F| (which Newton's step need not lower
+// there). PETSc's critical-point line search (-snes_linesearch_type cp)
+// works on the same slope. Leaves F at the accepted point in trial_f_ and the
+// point in trial_x_.
 PetscErrorCode IncrementalSystem::line_search(Vec x, Vec gradient, Vec direction,
                                               double first_length, Trial* trial) {
-  PetscReal slope = 0.0, residual_norm = 0.0;
+  PetscReal slope = 0.0;
   PetscFunctionBeginUser;
   PetscCall(VecDot(gradient, direction, &slope));
-  PetscCall(VecNorm(gradient, NORM_2, &residual_norm));
   const double potential = trial->potential, scale = trial->potential_scale;
   double length = first_length;
   for (int k = 0; k <= max_halvings; ++k, length *= 0.5) {
@@ -125,9 +131,10 @@ PetscErrorCode IncrementalSystem::line_search(Vec x, Vec gradient, Vec direction
       if (accept) PetscCall(residual(trial_x_, trial_f_));
     } else {
       PetscCall(residual(trial_x_, trial_f_));
-      PetscReal norm = 0.0;
-      PetscCall(VecNorm(trial_f_, NORM_2, &norm));
-      accept = norm <= (1.0 - armijo_fraction * length) * residual_norm;
+      PetscReal end_slope = 0.0;
+      PetscCall(VecDot(trial_f_, direction, &end_slope));
+      const double change = 0.5 * length * (slope + end_slope);
+      accept = std::isfinite(change) && change <= armijo_fraction * predicted;
       ++minimiser_statistics.residual_rule_trials;
       trial->by_residual = true;
     }
