@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 namespace sartor::element {
@@ -122,6 +123,7 @@ Vector2d outward_normal(const std::array<Vector2d, 3>& triangle, int k) {
 }
 
 constexpr int nodes = 12;
+const Vector3d voigt_scale(1.0, 1.0, 2.0); // engineering shear: k = (k_uu, k_vv, 2 k_uv)
 
 } // namespace
 
@@ -272,29 +274,53 @@ PatchResponse patch_response(const PatchRest& rest, const Vector3d& strain) {
   return r;
 }
 
+namespace {
+
+// The deformed triangle's frame and the patch's bending strain and moments.
+struct PatchState {
+  Vector3d e1, e2; // corners 1 and 2 relative to corner 0
+  double length;   // |e1 x e2|
+  Vector3d n;      // unit normal
+  Matrix3d h;      // column r: H_r, relative to x0
+  PatchResponse response;
+};
+
+// Absent for a triangle collapsed to zero area (no normal).
+std::optional<PatchState> patch_state(const PatchRest& rest, const Vector36& x) {
+  PatchState state;
+  const Vector3d x0 = x.segment<3>(0);
+  state.e1 = x.segment<3>(3) - x0;
+  state.e2 = x.segment<3>(6) - x0;
+  const Vector3d m = state.e1.cross(state.e2);
+  state.length = m.norm();
+  const double longest = std::max(
+      {state.e1.squaredNorm(), state.e2.squaredNorm(), (state.e2 - state.e1).squaredNorm()});
+  if (!(state.length > degenerate_ratio * longest)) return std::nullopt;
+  state.n = m / state.length;
+  // Second derivatives (rows uu, vv, uv), relative to x0: the weights of each
+  // row sum to zero, and differences keep large coordinates out of round-off.
+  state.h.setZero();
+  for (int i = 1; i < nodes; ++i)
+    state.h += (x.segment<3>(3 * i) - x0) * rest.weights.col(i).transpose();
+  const Vector3d strain =
+      voigt_scale.cwiseProduct(state.h.transpose() * state.n) - rest.rest_curvature;
+  state.response = patch_response(rest, strain);
+  return state;
+}
+
+} // namespace
+
 Result<36> patch_bending(const PatchRest& rest, const Vector36& x, Want want) {
   Result<36> result;
   result.energy = 0.0;
   result.gradient.setZero();
   result.hessian.setZero();
-  const Vector3d x0 = x.segment<3>(0);
-  const Vector3d e1 = x.segment<3>(3) - x0;
-  const Vector3d e2 = x.segment<3>(6) - x0;
-  const Vector3d m = e1.cross(e2);
-  const double length = m.norm();
-  const double longest = std::max({e1.squaredNorm(), e2.squaredNorm(), (e2 - e1).squaredNorm()});
-  if (!(length > degenerate_ratio * longest)) return result;
-  const Vector3d n = m / length;
-
-  // Second derivatives (rows uu, vv, uv), relative to x0: the weights of each
-  // row sum to zero, and differences keep large coordinates out of round-off.
-  const Eigen::Vector3d voigt(1.0, 1.0, 2.0);
-  Eigen::Matrix<double, 3, 3> h; // column r: H_r
-  h.setZero();
-  for (int i = 1; i < nodes; ++i)
-    h += (x.segment<3>(3 * i) - x0) * rest.weights.col(i).transpose();
-  const Vector3d strain = voigt.cwiseProduct(h.transpose() * n) - rest.rest_curvature;
-  const PatchResponse response = patch_response(rest, strain);
+  const std::optional<PatchState> state = patch_state(rest, x);
+  if (!state) return result;
+  const Vector3d &e1 = state->e1, &e2 = state->e2, &n = state->n;
+  const double length = state->length;
+  const Matrix3d& h = state->h;
+  const PatchResponse& response = state->response;
   const Vector3d& moment = response.moment;
   result.energy = rest.area * response.energy_density;
   if (want == Want::energy) return result;
@@ -311,14 +337,14 @@ Result<36> patch_bending(const PatchRest& rest, const Vector36& x, Want want) {
   // triangle's corners also f_r H_r^T dn.
   Eigen::Matrix<double, 3, 36> b;
   for (int i = 0; i < nodes; ++i)
-    b.block<3, 3>(0, 3 * i) = voigt.cwiseProduct(rest.weights.col(i)) * n.transpose();
-  b.block<3, 9>(0, 0) += voigt.asDiagonal() * h.transpose() * dn;
+    b.block<3, 3>(0, 3 * i) = voigt_scale.cwiseProduct(rest.weights.col(i)) * n.transpose();
+  b.block<3, 9>(0, 0) += voigt_scale.asDiagonal() * h.transpose() * dn;
   result.gradient = rest.area * b.transpose() * moment;
   if (want == Want::gradient) return result;
 
   // sum_r M_r d^2 e_r: linear in (w, H), so with the moment-weighted sums:
   // node i's w n differentiated through n, its transpose, and h . n's Hessian.
-  const Vector3d weighted = voigt.cwiseProduct(moment);
+  const Vector3d weighted = voigt_scale.cwiseProduct(moment);
   const Eigen::Matrix<double, 1, nodes> w_sum = weighted.transpose() * rest.weights;
   const Vector3d h_sum = h * weighted;
   Matrix36 second = Matrix36::Zero();
@@ -341,34 +367,109 @@ Result<36> patch_bending(const PatchRest& rest, const Vector36& x, Want want) {
   triple.block<3, 3>(3, 0) = -bilinear;
   triple.block<3, 3>(0, 6) = -bilinear;
   triple.block<3, 3>(6, 0) = -bilinear.transpose();
-  cross_terms.topLeftCorner<9, 9>() += dm.transpose() * g_mm * dm + triple;
-  result.hessian = rest.area * (b.transpose() * response.tangent * b + cross_terms);
+  cross_terms.topLeftCorner<9, 9>() += (dm.transpose() * g_mm).lazyProduct(dm) + triple;
+  result.hessian = rest.area * ((b.transpose() * response.tangent).lazyProduct(b) + cross_terms);
   result.hessian = 0.5 * (result.hessian + result.hessian.transpose()).eval();
   return result;
 }
 
-void project_patch_hessian_to_psd(const PatchRest& rest, Eigen::Matrix<double, 36, 36>& hessian) {
-  // An orthonormal basis of the subspace: the corners' dofs, and Q (x) I3 on
-  // the other nodes, with Q R = W^T the weights over those nodes (Householder:
-  // span(Q) holds span(W^T) whatever its rank, with no rank decided).
+namespace {
+
+// Columns u_c (x) v_c of a basis of the Hessian's range on the nine other
+// nodes (u over the nodes, v in space).
+struct OtherNodesBasis {
+  static constexpr int size = 5;
+  Eigen::Matrix<double, 9, size> u;
+  Eigen::Matrix<double, 3, size> v;
+};
+
+// B^T H B for B = diag(I9, the other nodes' basis), by the Kronecker columns:
+// a tenth of a dense product's cost.
+template <int M>
+Eigen::Matrix<double, 9 + M, 9 + M> reduce(const Matrix36& hessian,
+                                           const Eigen::Matrix<double, 9, M>& u,
+                                           const Eigen::Matrix<double, 3, M>& v) {
+  Eigen::Matrix<double, 36, M> right; // H B's last M columns
+  for (int c = 0; c < M; ++c) {
+    Eigen::Matrix<double, 36, 1> column = Eigen::Matrix<double, 36, 1>::Zero();
+    for (int i = 0; i < 9; ++i)
+      column += hessian.middleCols<3>(9 + 3 * i) * (u(i, c) * v.col(c));
+    right.col(c) = column;
+  }
+  Eigen::Matrix<double, 9 + M, 9 + M> reduced;
+  reduced.template topLeftCorner<9, 9>() = hessian.topLeftCorner<9, 9>();
+  reduced.template topRightCorner<9, M>() = right.template topRows<9>();
+  reduced.template bottomLeftCorner<M, 9>() = right.template topRows<9>().transpose();
+  for (int c = 0; c < M; ++c) {
+    Eigen::Matrix<double, 1, M> row = Eigen::Matrix<double, 1, M>::Zero();
+    for (int i = 0; i < 9; ++i)
+      row += u(i, c) * v.col(c).transpose() * right.template middleRows<3>(9 + 3 * i);
+    reduced.template block<1, M>(9 + c, 9) = row;
+  }
+  return reduced;
+}
+
+// B P B^T, the full matrix of a symmetric P given in the basis.
+template <int M>
+Matrix36 expand(const Eigen::Matrix<double, 9 + M, 9 + M>& p, const Eigen::Matrix<double, 9, M>& u,
+                const Eigen::Matrix<double, 3, M>& v) {
+  Eigen::Matrix<double, 9 + M, 36> left; // P B^T
+  left.template leftCols<9>() = p.template leftCols<9>();
+  for (int i = 0; i < 9; ++i) {
+    left.template middleCols<3>(9 + 3 * i) =
+        p.template rightCols<M>() * (u.row(i).asDiagonal() * v.transpose());
+  }
+  Matrix36 full;
+  full.topRows<9>() = left.template topRows<9>();
+  for (int i = 0; i < 9; ++i) {
+    full.middleRows<3>(9 + 3 * i) = (v * u.row(i).asDiagonal()) * left.template bottomRows<M>();
+  }
+  return full;
+}
+
+// The Hessian's range on the nine other nodes: they enter the strains only as
+// sum_i w_ri x_i . n, so through Q (x) n with Q R = W^T (Householder: span(Q)
+// holds span(W^T) whatever its rank, with no rank decided), and the moments'
+// turning of n only along s (x) t, s = Q^T (moment-weighted weights), t in
+// the tangent plane.
+OtherNodesBasis other_nodes_basis(const PatchRest& rest, const PatchState& state) {
   const Eigen::Matrix<double, 9, 3> others = rest.weights.rightCols<9>().transpose();
   const Eigen::Matrix<double, 9, 3> q =
       Eigen::HouseholderQR<Eigen::Matrix<double, 9, 3>>(others).householderQ() *
       Eigen::Matrix<double, 9, 3>::Identity();
-  Eigen::Matrix<double, 36, 18> basis = Eigen::Matrix<double, 36, 18>::Zero();
-  basis.topLeftCorner<9, 9>().setIdentity();
-  for (int i = 0; i < 9; ++i) {
-    for (int c = 0; c < 3; ++c)
-      basis.block<3, 3>(9 + 3 * i, 9 + 3 * c) = q(i, c) * Matrix3d::Identity();
+  OtherNodesBasis basis;
+  for (int j = 0; j < 3; ++j) {
+    basis.u.col(j) = q.col(j);
+    basis.v.col(j) = state.n;
   }
-  Eigen::Matrix<double, 18, 18> reduced = basis.transpose() * hessian * basis;
+  const Vector3d weighted = voigt_scale.cwiseProduct(state.response.moment);
+  const Vector3d s = q.transpose() * (rest.weights.rightCols<9>().transpose() * weighted);
+  // Without moments the tangent directions have no coupling: any unit s will do.
+  const Vector3d unit_s = s.squaredNorm() > 0.0 ? Vector3d(s.normalized()) : Vector3d::UnitX();
+  const Vector3d t1 = state.n.unitOrthogonal();
+  basis.u.col(3) = basis.u.col(4) = q * unit_s;
+  basis.v.col(3) = t1;
+  basis.v.col(4) = state.n.cross(t1);
+  return basis;
+}
+
+} // namespace
+
+void project_patch_hessian_to_psd(const PatchRest& rest, const Vector36& x, Matrix36& hessian) {
+  const std::optional<PatchState> state = patch_state(rest, x);
+  if (!state) return; // no normal: the Hessian is zero
+  constexpr int size = 9 + OtherNodesBasis::size;
+  using Reduced = Eigen::Matrix<double, size, size>;
+  const OtherNodesBasis basis = other_nodes_basis(rest, *state);
+  Reduced reduced = reduce<OtherNodesBasis::size>(hessian, basis.u, basis.v);
   reduced = (0.5 * (reduced + reduced.transpose())).eval();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 18, 18>> eigen(reduced);
+  const Eigen::SelfAdjointEigenSolver<Reduced> eigen(reduced);
   if (eigen.eigenvalues().minCoeff() >= 0.0) return;
-  const Eigen::Matrix<double, 36, 18> vectors = basis * eigen.eigenvectors();
-  const Eigen::Matrix<double, 36, 36> projected =
-      vectors * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() * vectors.transpose();
-  hessian = 0.5 * (projected + projected.transpose());
+  const Reduced scaled =
+      eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
+  const Reduced projected = scaled.lazyProduct(scaled.transpose());
+  hessian =
+      expand<OtherNodesBasis::size>(0.5 * (projected + projected.transpose()), basis.u, basis.v);
 }
 
 } // namespace sartor::element

@@ -144,12 +144,15 @@ PatchResponse patch_response(const PatchRest& rest, const Eigen::Vector3d& strai
 // collapsed to zero area (no normal) contributes nothing.
 Result<36> patch_bending(const PatchRest& rest, const Vector36& x, Want want);
 
-// project_to_psd<36> of a patch's Hessian, by an eigenproblem of 18 rather
-// than 36. The Hessian's range lies in the corners' nine dofs and, on the
-// nine other nodes, in span(rows of rest.weights) x R^3: the curvatures see
-// those nodes only through sum_i w_ri x_i. Projected in that subspace it is
-// the same matrix (to round-off), at about a quarter of the cost; the full
-// eigenproblem took a quarter of a static drape's time.
-void project_patch_hessian_to_psd(const PatchRest& rest, Eigen::Matrix<double, 36, 36>& hessian);
+// project_to_psd<36> of the patch's Hessian at x, by an eigenproblem of 14
+// rather than 36. The Hessian's range lies in the corners' nine dofs and in
+// five directions of the nine other nodes: the curvatures see those nodes
+// only through sum_i w_ri x_i . n (three directions, along n), and the
+// moments turn n only along one combination of them in the tangent plane
+// (two). Projected in that subspace it is the same matrix (to round-off), at
+// about a fifth of the cost; the full eigenproblem took a quarter of a static
+// drape's time.
+void project_patch_hessian_to_psd(const PatchRest& rest, const Vector36& x,
+                                  Eigen::Matrix<double, 36, 36>& hessian);
 
 } // namespace sartor::element

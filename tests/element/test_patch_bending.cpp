@@ -84,7 +84,7 @@ TEST(PatchBending, DerivativesMatchFiniteDifferences) {
   }
 }
 
-// The projection in the Hessian's 18-dimensional range is the full 36 x 36
+// The projection in the Hessian's 14-dimensional range is the full 36 x 36
 // projection: on bent, twisted and stretched patches whose Hessians are
 // indefinite (so that the projection changes them), with and without a
 // boundary edge.
@@ -104,7 +104,7 @@ TEST(PatchBending, ProjectionInTheHessiansRangeIsTheFullProjection) {
       const Eigen::Matrix<double, 36, 36> hessian = patch_bending(rest, x, Want::hessian).hessian;
       Eigen::Matrix<double, 36, 36> full = hessian, reduced = hessian;
       project_to_psd<36>(full);
-      project_patch_hessian_to_psd(rest, reduced);
+      project_patch_hessian_to_psd(rest, x, reduced);
       if ((full - hessian).norm() > 1e-3 * hessian.norm()) ++projected;
       EXPECT_LT((reduced - full).norm(), 1e-10 * hessian.norm()) << bend << " " << boundary;
     }

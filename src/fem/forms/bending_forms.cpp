@@ -91,9 +91,10 @@ PetscErrorCode PatchBendingForm::add_element_hessians(const FormPoint& at,
                                                       ElementHessians& out) const {
   PetscFunctionBeginUser;
   for (const LocalPatch& p : patches_) {
-    auto result = element::patch_bending(p.rest, gather<36>(at.x, p.dofs), element::Want::hessian);
+    const element::Vector36 x = gather<36>(at.x, p.dofs);
+    auto result = element::patch_bending(p.rest, x, element::Want::hessian);
     if (p.project && !at.exact_hessian)
-      element::project_patch_hessian_to_psd(p.rest, result.hessian);
+      element::project_patch_hessian_to_psd(p.rest, x, result.hessian);
     PetscCall(out.add<36>(p.dofs, result.hessian));
   }
   PetscFunctionReturn(0);
