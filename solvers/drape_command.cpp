@@ -44,10 +44,6 @@ const std::map<std::string, std::string>& drape_defaults() {
       {"body", "mannequin mu=0.3 name=mannequin"},
       {"density", "0.25"},
       {"bending-stiffness", "1.5e-5"},
-      // The hinges: with the patch model the dynamic sewing of the coarse
-      // skirt took 10 s CPU for its first 0.02 s against 10 s for 0.3 s
-      // (docs/finite-elements.md#bending); --bending-model patch asks for it.
-      {"bending-model", "discrete_shell"},
       // Tight garments press on the body (~100 N on the skirt): a stiffer
       // penalty keeps the vertices within the contact offset.
       {"contact-stiffness-factor", "5"},
@@ -64,10 +60,15 @@ const std::map<std::string, std::string>& drape_static_defaults() {
   return defaults;
 }
 
-// With --analysis dynamic (the fall in time, on request): the time grid.
+// With --analysis dynamic (the fall in time, on request): the time grid,
+// and the hinges: with the patch model the dynamic sewing of the coarse
+// skirt took 10 s CPU for its first 0.02 s against 10 s for 0.3 s
+// (docs/finite-elements.md#bending); --bending-model patch asks for it.
 const std::map<std::string, std::string>& drape_dynamic_defaults() {
-  static const std::map<std::string, std::string> defaults{
-      {"time-step", "0.01"}, {"time-end", "1.5"}, {"output-interval", "0.1"}};
+  static const std::map<std::string, std::string> defaults{{"time-step", "0.01"},
+                                                           {"time-end", "1.5"},
+                                                           {"output-interval", "0.1"},
+                                                           {"bending-model", "discrete_shell"}};
   return defaults;
 }
 
@@ -302,6 +303,10 @@ const CommandSpec& drape_command() {
             if (changed != defaults->end()) option.fallback = changed->second;
           }
           if (option.name == "sewing-time") option.help = "dynamic: the end of the sewing stage, s";
+          if (option.name == "bending-model") {
+            option.fallback = "patch";
+            option.help += "; drape's dynamics: discrete_shell";
+          }
           const auto& flags = drape_flags(true);
           if (std::count(flags.begin(), flags.end(), option.name)) {
             const bool always =
@@ -443,7 +448,7 @@ void set_drape_default(const std::string& name, const std::string& value) {
 }
 
 // Drape's defaults over those of `sartor run`; whether the drape is dynamic.
-bool set_drape_defaults(const Options& options, bool sewn) {
+bool set_drape_defaults(const Options& options, bool sewn, bool creased) {
   for (const auto& [name, value] : drape_defaults())
     set_drape_default(name, value);
   // --analysis creep: the static drape, then wear (docs/wear.md).
@@ -461,6 +466,10 @@ bool set_drape_defaults(const Options& options, bool sewn) {
   const bool dynamic = options.text("analysis") == "dynamic";
   for (const auto& [name, value] : dynamic ? drape_dynamic_defaults() : drape_static_defaults())
     set_drape_default(name, value);
+  // Statics: the bending patches, which converge to plate theory (the hinges
+  // are 5 to 31 % too soft; docs/finite-elements.md#bending). A mesh with
+  // creases is left to `sartor run`'s rule: the hinges, which carry them.
+  if (!dynamic && !creased) set_drape_default("bending-model", "patch");
   if (sewn) {
     for (const auto& [name, value] : drape_sewing_defaults(dynamic))
       set_drape_default(name, value);
@@ -702,7 +711,8 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
 
   // 3. Sew and drape: the options of `sartor run` with drape's defaults.
   SartorPetscCall(PetscOptionsSetValue(nullptr, "-seams_file", seams_file.c_str()));
-  const bool dynamic = set_drape_defaults(options, !sewable.seams.empty());
+  const bool dynamic =
+      set_drape_defaults(options, !sewable.seams.empty(), !sewable.mesh.creases.empty());
   const GarmentWeight garment = garment_weight(options, cloth.mesh);
   const Eigen::Vector3d& weight = garment.weight;
   set_drape_tolerances(dynamic, weight);

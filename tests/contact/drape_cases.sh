@@ -34,8 +34,8 @@ def check(name, side):
         failures.append(f"{name}: not converged: {d['reason']}, settle {d['settle']}")
     # The settle's contact rounds leave friction consistent, and the edge
     # samples keep the chords out of the body. The sphere drape is certified;
-    # the tablecloth settles on a saddle (1 negative direction) under another
-    # CPU's rounding (OPENBLAS_CORETYPE=Prescott), so its stability is left out.
+    # whether the tablecloth settles on a saddle (1 negative direction) turns
+    # on the CPU's rounding (docs/contact.md), so its stability is left out.
     cert = s["certificate"]
     if name.startswith("sphere") and cert["verdict"] != "certified":
         failures.append(f"{name}: certificate: {cert['verdict']}")
