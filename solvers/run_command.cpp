@@ -5,6 +5,7 @@
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
+#include "fem/bending_models.hpp"
 #include "fem/cloth_output.hpp"
 #include "fem/petsc_call.hpp"
 #include "fem/statics.hpp"
@@ -80,8 +81,18 @@ std::string alternatives(const std::vector<std::string>& names) {
   return text;
 }
 
-// The cloth's material: fabric, membrane and bending models (the membrane
-// models as registered, element/membrane_models.hpp).
+// The registered bending models (fem/bending_models.hpp), each with its summary.
+std::string bending_model_help() {
+  std::vector<std::string> described;
+  for (const std::string& name : fem::bending_model_names()) {
+    const auto& entry = fem::bending_model_entry(fem::bending_model_named(name, "bending model"));
+    described.push_back(name + " (" + entry.summary + ")");
+  }
+  return alternatives(described);
+}
+
+// The cloth's material: fabric, membrane and bending models (as registered:
+// element/membrane_models.hpp, fem/bending_models.hpp).
 const std::vector<OptionSpec>& material_option_specs() {
   static const std::vector<OptionSpec> specs{
       {"fabric", "SPEC", "cotton_twill",
@@ -97,8 +108,7 @@ const std::vector<OptionSpec>& material_option_specs() {
       {"membrane-psd", "", "",
        "project membrane (and contact) Hessians to PSD (compression stabilisation)"},
       {"bending-model", "M", "patch",
-       "patch (converges to plate theory), discrete_shell or quadratic (hinges) [discrete_shell "
-       "for a mesh with creases]"},
+       bending_model_help() + " [discrete_shell for a mesh with creases]"},
       {"bending-stiffness", "N*M", "1e-6",
        "bending stiffness (warp, patch), N m (0: no bending) [the fabric's curves if any]"},
       {"bending-weft", "N*M", "", "patch model: weft rigidity, N m [--bending-stiffness]"},
@@ -412,12 +422,7 @@ element::MembraneModel membrane_model(const Options& options, const Fabric& fabr
 element::BendingModel bending_model(const Options& options, bool mesh_has_creases) {
   if (mesh_has_creases && !options.is_set("bending-model"))
     return element::BendingModel::discrete_shell;
-  const std::string bending = options.text("bending-model");
-  if (bending == "discrete_shell") return element::BendingModel::discrete_shell;
-  if (bending == "quadratic") return element::BendingModel::quadratic;
-  if (bending == "patch") return element::BendingModel::patch;
-  throw InputError("option --bending-model: unknown model '" + bending +
-                   "' (patch, discrete_shell, quadratic)");
+  return fem::bending_model_named(options.text("bending-model"), "option --bending-model");
 }
 
 // Bending from the options, or the fabric's curves when it has them and no

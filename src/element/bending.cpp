@@ -174,8 +174,8 @@ Result<12> bending(BendingModel model, double stiffness, const HingeRest& rest, 
   Result<12> result;
   result.gradient.setZero();
   result.hessian.setZero();
-  switch (model) {
-  case BendingModel::discrete_shell: {
+  switch (model.index()) {
+  case BendingModel::discrete_shell.index(): {
     const Dihedral d = dihedral(x, want);
     if (d.degenerate) return result;
     const double scale = stiffness * rest.weight;
@@ -187,7 +187,7 @@ Result<12> bending(BendingModel model, double stiffness, const HingeRest& rest, 
     result.hessian = scale * (d.gradient * d.gradient.transpose() + excess * d.hessian);
     return result;
   }
-  case BendingModel::quadratic: {
+  case BendingModel::quadratic.index(): {
     // Q annihilates translations: positions relative to x0 give the same
     // values without the round-off of large coordinates.
     const Vector12 y = x - x.segment<3>(0).replicate<4, 1>();
@@ -199,8 +199,9 @@ Result<12> bending(BendingModel model, double stiffness, const HingeRest& rest, 
     result.hessian = stiffness * rest.quadratic;
     return result;
   }
-  case BendingModel::patch:
-    throw std::logic_error("bending: the patch model has no hinges (element/patch_bending.hpp)");
+  default:
+    throw std::logic_error("bending: only the hinge models have hinges (the patch model: "
+                           "element/patch_bending.hpp)");
   }
   return result;
 }

@@ -53,7 +53,28 @@ using Vector12 = Eigen::Matrix<double, 12, 1>;
 
 // patch: the rotation-free Kirchhoff triangle of element/patch_bending.hpp (the
 // default), assembled per triangle instead of per hinge.
-enum class BendingModel { discrete_shell, quadratic, patch };
+// A bending model: its place in the registry of bending models
+// (fem/bending_models.hpp), where each is one file and one registration
+// line. The built-in ones by name: the discrete shell and the quadratic
+// (IBM) hinges (this file), and the patch triangles (patch_bending.hpp).
+class BendingModel {
+public:
+  constexpr BendingModel() = default;
+  constexpr explicit BendingModel(int index) : index_(index) {}
+  constexpr int index() const { return index_; }
+  friend constexpr bool operator==(BendingModel a, BendingModel b) { return a.index_ == b.index_; }
+  friend constexpr bool operator!=(BendingModel a, BendingModel b) { return !(a == b); }
+  static const BendingModel discrete_shell;
+  static const BendingModel quadratic;
+  static const BendingModel patch;
+
+private:
+  int index_ = 0;
+};
+// In the registry's order (register_bending_models).
+inline constexpr BendingModel BendingModel::discrete_shell{0};
+inline constexpr BendingModel BendingModel::quadratic{1};
+inline constexpr BendingModel BendingModel::patch{2};
 
 struct HingeRest {
   double weight = 0.0;     // discrete shell: scaled 3|e|^2/(A1 + A2), dimensionless

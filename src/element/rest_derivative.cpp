@@ -109,20 +109,20 @@ HingeRest hinge_rest_derivative(const std::array<Eigen::Vector2d, 3>& first,
 
 Vector12 bending_rest_derivative(BendingModel model, double stiffness, const HingeRest& rest,
                                  const HingeRest& delta, const Vector12& x) {
-  switch (model) {
-  case BendingModel::discrete_shell: {
+  switch (model.index()) {
+  case BendingModel::discrete_shell.index(): {
     // The force k w (theta - theta_rest) grad theta is linear in the weight w > 0.
     const Result<12> force = bending(model, stiffness, rest, x, Want::gradient);
     return (delta.weight / rest.weight) * force.gradient;
   }
-  case BendingModel::quadratic: {
+  case BendingModel::quadratic.index(): {
     const Vector12 y = x - x.segment<3>(0).replicate<4, 1>();
     return stiffness * delta.quadratic * y;
   }
-  case BendingModel::patch:
+  default:
     break;
   }
-  return bending(model, stiffness, rest, x, Want::gradient).gradient; // throws for the patch
+  return bending(model, stiffness, rest, x, Want::gradient).gradient; // throws: not a hinge model
 }
 
 Vector36 patch_bending_rest_derivative(const PatchRest& rest, const PatchRestChange& delta,

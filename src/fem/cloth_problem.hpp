@@ -282,9 +282,6 @@ private:
   std::vector<bool> set_up_triangles(const std::vector<PetscInt>& original,
                                      const std::vector<bool>& foreign);
   void set_up_bending(const std::vector<bool>& triangle_owned, const std::vector<bool>& is_pinned);
-  void set_up_patches(const std::vector<bool>& triangle_owned, const std::vector<bool>& is_pinned);
-  template <std::size_t N>
-  std::array<PetscInt, N> vertex_dofs(const std::array<int, N / 3>& vertices) const;
   const ClothMaterial& triangle_material(std::size_t triangle) const;
   // The forms at the local positions `x` (fem/form.hpp).
   fem::FormPoint form_point(const PetscScalar* x) const { return {x, load_factor, exact_hessian}; }

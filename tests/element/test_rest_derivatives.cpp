@@ -114,7 +114,7 @@ TEST(RestDerivative, HingeForces) {
     const auto force = [&](double h) {
       return bending(model, 2e-3, c.rest(h), c.x(), Want::gradient).gradient;
     };
-    EXPECT_LT(relative_error(central(force, 1e-6), exact), 1e-7) << int(model);
+    EXPECT_LT(relative_error(central(force, 1e-6), exact), 1e-7) << model.index();
   }
 }
 

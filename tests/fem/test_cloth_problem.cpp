@@ -105,7 +105,7 @@ TEST(ClothJacobian, MatchesFiniteDifferencesOfTheResidual) {
     PetscRandomDestroy(&generator);
     const double error = testing::directional_jacobian_error(problem, x, v, 1e-6, NORM_2);
     EXPECT_GE(error, 0.0) << "assembly failed";
-    EXPECT_LT(error, 1e-6) << "bending model " << int(model);
+    EXPECT_LT(error, 1e-6) << "bending model " << model.index();
     VecDestroy(&x);
     VecDestroy(&v);
   }

@@ -2,7 +2,7 @@
 // The bending energy: hinges between neighbouring triangles (discrete shell
 // or quadratic, element/bending.hpp) or the patch triangles of the model
 // that converges to plate theory (element/patch_bending.hpp). The problem
-// builds the elements this rank assembles (fem/cloth_bending.cpp).
+// builds the elements this rank assembles (fem/bending_models/).
 
 #include "element/bending.hpp"
 #include "element/patch_bending.hpp"
