@@ -51,12 +51,12 @@ namespace sartor::element {
 
 using Vector12 = Eigen::Matrix<double, 12, 1>;
 
-// patch: the rotation-free Kirchhoff triangle of element/patch_bending.hpp (the
-// default), assembled per triangle instead of per hinge.
 // A bending model: its place in the registry of bending models
 // (fem/bending_models.hpp), where each is one file and one registration
 // line. The built-in ones by name: the discrete shell and the quadratic
-// (IBM) hinges (this file), and the patch triangles (patch_bending.hpp).
+// (IBM) hinges (this file), and the patch triangles, the rotation-free
+// Kirchhoff triangle of element/patch_bending.hpp (the default), assembled
+// per triangle instead of per hinge.
 class BendingModel {
 public:
   constexpr BendingModel() = default;

@@ -42,7 +42,6 @@ struct IncrementalSystem::Trial {
   double potential = 0.0;
   double potential_scale = 0.0;
   PetscReal residual_norm = 0.0;
-  bool by_residual = false; // decided on the slopes (Phi in round-off)
 };
 
 bool IncrementalSystem::minimises() const {
@@ -136,7 +135,6 @@ PetscErrorCode IncrementalSystem::line_search(Vec x, Vec gradient, Vec direction
       const double change = 0.5 * length * (slope + end_slope);
       accept = std::isfinite(change) && change <= armijo_fraction * predicted;
       ++minimiser_statistics.residual_rule_trials;
-      trial->by_residual = true;
     }
     if (!accept) continue;
     trial->length = length;
