@@ -84,9 +84,10 @@ std::string alternatives(const std::vector<std::string>& names) {
 // The registered bending models (fem/bending_models.hpp), each with its summary.
 std::string bending_model_help() {
   std::vector<std::string> described;
-  for (const std::string& name : fem::bending_model_names()) {
-    const auto& entry = fem::bending_model_entry(fem::bending_model_named(name, "bending model"));
-    described.push_back(name + " (" + entry.summary + ")");
+  const std::size_t models = fem::bending_model_names().size();
+  for (std::size_t i = 0; i < models; ++i) {
+    const auto& entry = fem::bending_model_entry(element::BendingModel(int(i)));
+    described.push_back(entry.name + " (" + entry.summary + ")");
   }
   return alternatives(described);
 }
@@ -266,7 +267,8 @@ const CommandSpec& run_command() {
       "scaled by --load-history and steps sized by --creep-tolerance) and writes\n"
       "series.h5 + series.xmf (with per-triangle creep strains) and creep.csv (one\n"
       "row per step).\n\n"
-      "Dynamic and creep runs write checkpoints with --checkpoint-interval, and\n"
+      "Runs write checkpoints with --checkpoint-interval (statics after every\n"
+      "load step, sewing stage and contact round, whatever its value), and\n"
       "--restart resumes one where it stood (docs/reliability.md).\n\n"
       "examples:\n"
       "  sartor run cases/fe/hanging_sheet.yaml\n"
@@ -280,10 +282,10 @@ const CommandSpec& run_command() {
         options.push_back(
             {"output", "DIR", "out/run", "output folder (created; files in it are replaced)"});
         options.push_back({"checkpoint-interval", "S", "0",
-                           "dynamic, creep: write a checkpoint every S seconds of simulated time"});
-        options.push_back({"checkpoint", "FILE", "",
-                           "dynamic, creep: the checkpoint file [OUTPUT/checkpoint.h5]"});
-        options.push_back({"restart", "FILE", "", "dynamic, creep: resume from this checkpoint"});
+                           "write a checkpoint every S seconds of simulated time (dynamic, "
+                           "creep); statics: after every load step, stage and round if S > 0"});
+        options.push_back({"checkpoint", "FILE", "", "the checkpoint file [OUTPUT/checkpoint.h5]"});
+        options.push_back({"restart", "FILE", "", "resume from this checkpoint"});
         options.push_back({"no-plot", "", "", "write data only, no result.png"});
         return options;
       }(),
@@ -860,10 +862,16 @@ void solve_static_case(ClothProblem& problem, Vec x, const StaticOptions& solve,
     SartorPetscCall(resume->restore(problem, x));
     checkpointed.resume = &resume->report;
     result->resumed_time = 0.0;
-    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD,
-                                "sartor: resuming from %s after %d stage(s), %d contact round(s)\n",
-                                checkpointing.restart_file.c_str(), resume->report.sewing_stages,
-                                resume->report.contact_rounds));
+    const StaticReport& resumed = resume->report;
+    const std::string ramp =
+        resumed.ramp.under_way
+            ? " (load factor " + format_number(resume->checkpoint.load_factor) + ")"
+            : "";
+    SartorPetscCall(
+        PetscPrintf(PETSC_COMM_WORLD,
+                    "sartor: resuming from %s after %zu load step(s)%s, %d contact round(s)\n",
+                    checkpointing.restart_file.c_str(), resumed.steps.size(), ramp.c_str(),
+                    resumed.contact_rounds));
   }
   if (checkpointing.interval > 0.0)
     checkpointed.checkpoint =
@@ -1422,9 +1430,15 @@ int run_run(const Invocation& invocation) {
                        " holds it. Try --escape-saddles N or another start");
   }
   if (!result.converged) {
+    // The minimiser is globalised: smaller load steps rarely help it, a
+    // larger iteration budget does (a flat start far from equilibrium).
+    const std::string hint = result.report.minimised
+                                 ? "Try a larger -snes_max_it (Newton iterations per load step) "
+                                   "or -snes_monitor"
+                                 : "Try more --load-steps or -snes_monitor";
     throw SolveFailure("the static solve did not converge (" + result.report.reason +
                        " at load factor " + format_number(result.load_factor) + "); " + directory +
-                       " holds the last converged state. Try more --load-steps or -snes_monitor");
+                       " holds the last converged state. " + hint);
   }
   return 0;
 }

@@ -25,28 +25,30 @@ std::string state_text(const StaticReport& r) {
         {c.newton_iterations, c.residual_norm, c.sliding_vertices, c.contact_stiffness_scale});
   }
   const auto& m = r.minimiser;
-  return nlohmann::json{{"kind", static_kind},
-                        {"report",
-                         {{"converged", r.converged},
-                          {"reason", r.reason},
-                          {"steps", steps},
-                          {"newton_iterations", r.newton_iterations},
-                          {"linear_iterations", r.linear_iterations},
-                          {"pseudo_steps", r.pseudo_steps},
-                          {"initial_residual_norm", r.initial_residual_norm},
-                          {"minimised", r.minimised},
-                          {"minimiser",
-                           {m.step_bound_cuts, m.regularised_steps, m.residual_rule_trials,
-                            m.failed_factorisations, m.exact_steps}},
-                          {"sewing_stages", r.sewing_stages},
-                          {"contact_rounds", r.contact_rounds},
-                          {"contact_stiffness_scale", r.contact_stiffness_scale},
-                          {"sliding_vertices", r.sliding_vertices},
-                          {"contact_round_failed", r.contact_round_failed},
-                          {"friction_consistent", r.friction_consistent},
-                          {"anchored_residual_norm", r.anchored_residual_norm},
-                          {"consistency_tolerance", r.consistency_tolerance},
-                          {"rounds", rounds}}}}
+  return nlohmann::json{
+      {"kind", static_kind},
+      {"report",
+       {{"converged", r.converged},
+        {"reason", r.reason},
+        {"steps", steps},
+        {"newton_iterations", r.newton_iterations},
+        {"linear_iterations", r.linear_iterations},
+        {"pseudo_steps", r.pseudo_steps},
+        {"initial_residual_norm", r.initial_residual_norm},
+        {"minimised", r.minimised},
+        {"minimiser",
+         {m.step_bound_cuts, m.regularised_steps, m.residual_rule_trials, m.failed_factorisations,
+          m.exact_steps}},
+        {"sewing_stages", r.sewing_stages},
+        {"contact_rounds", r.contact_rounds},
+        {"contact_stiffness_scale", r.contact_stiffness_scale},
+        {"sliding_vertices", r.sliding_vertices},
+        {"contact_round_failed", r.contact_round_failed},
+        {"friction_consistent", r.friction_consistent},
+        {"anchored_residual_norm", r.anchored_residual_norm},
+        {"consistency_tolerance", r.consistency_tolerance},
+        {"rounds", rounds},
+        {"ramp", {r.ramp.under_way, r.ramp.reached, r.ramp.increment, r.ramp.cutbacks}}}}}
       .dump();
 }
 
@@ -82,8 +84,18 @@ StaticReport report_from(const std::string& text) {
     r.rounds.push_back({c.at(0).get<PetscInt>(), c.at(1).get<double>(), c.at(2).get<long>(),
                         c.at(3).get<double>()});
   }
+  // Checkpoints written before load steps were checkpointed have no ramp.
+  if (j.contains("ramp")) {
+    const nlohmann::json& ramp = j.at("ramp");
+    r.ramp = {ramp.at(0).get<bool>(), ramp.at(1).get<double>(), ramp.at(2).get<double>(),
+              ramp.at(3).get<int>()};
+  }
   if (r.sewing_stages < 1 || r.contact_rounds < 0 || !(r.contact_stiffness_scale > 0.0)) {
     throw std::invalid_argument("its stage, round or penalty counts are not valid");
+  }
+  if (r.ramp.under_way && !(r.ramp.reached >= 0.0 && r.ramp.reached < 1.0 &&
+                            r.ramp.increment > 0.0 && r.ramp.increment <= 1.0)) {
+    throw std::invalid_argument("its load ramp is not valid");
   }
   return r;
 }
@@ -127,9 +139,10 @@ static_checkpoint_writer(ClothProblem& problem, const CaseCheckpointing& checkpo
   return [&problem, checkpointing, written](Vec x, const StaticReport& report) -> PetscErrorCode {
     RunCheckpoint checkpoint;
     PetscFunctionBeginUser;
-    // A static solve has no clock: the stage and round counts say where it stands.
+    // A static solve has no clock: its load steps (those of the stages and
+    // rounds included) say where it stands.
     checkpoint.next_step = 1.0;
-    checkpoint.step = report.sewing_stages + report.contact_rounds;
+    checkpoint.step = long(report.steps.size());
     checkpoint.load_factor = problem.load_factor;
     PetscCall(problem.gather_positions(x, &checkpoint.positions));
     PetscCall(problem.gather_anchors(&checkpoint.anchors));

@@ -66,19 +66,30 @@ PetscErrorCode continuation(IncrementalSystem& system, Vec x, const StaticOption
   PetscFunctionReturn(0);
 }
 
+// StaticOptions::checkpoint of the state after a load step, stage or round.
+PetscErrorCode checkpoint(IncrementalSystem& system, Vec x, const StaticOptions& options,
+                          StaticReport* report) {
+  PetscFunctionBeginUser;
+  if (!options.checkpoint) PetscFunctionReturn(0);
+  report->minimiser = system.minimiser_statistics;
+  report->contact_stiffness_scale = system.problem().contact.stiffness_scale;
+  PetscCall(options.checkpoint(x, *report));
+  PetscFunctionReturn(0);
+}
+
 // Ramps the load from options.start_load_factor to `target` in load steps,
-// halving an increment that fails, as the header says.
+// halving an increment that fails, as the header says; from where
+// report->ramp stands when it is under way (a resumed checkpoint).
 PetscErrorCode ramp_load(IncrementalSystem& system, Vec x, const StaticOptions& options,
                          double target, Vec last, StaticReport* report, bool* converged) {
   ClothProblem& problem = system.problem();
   PetscFunctionBeginUser;
   const double start = options.start_load_factor;
   const auto load_at = [&](double fraction) { return start + fraction * (target - start); };
-  double reached = 0.0;
-  double increment = 1.0 / std::max(1, options.load_steps);
-  int cutbacks = 0;
-  while (reached < 1.0) {
-    const double next = std::min(1.0, reached + increment);
+  LoadRamp& ramp = report->ramp;
+  if (!ramp.under_way) ramp = {true, 0.0, 1.0 / std::max(1, options.load_steps), 0};
+  while (ramp.reached < 1.0) {
+    const double next = std::min(1.0, ramp.reached + ramp.increment);
     problem.load_factor = next < 1.0 ? load_at(next) : target;
     PetscCall(VecCopy(x, last));
     LoadStepReport step;
@@ -94,20 +105,23 @@ PetscErrorCode ramp_load(IncrementalSystem& system, Vec x, const StaticOptions& 
     report->pseudo_steps += step.pseudo_steps;
     report->reason = step.reason;
     if (step.converged) {
-      reached = next;
+      ramp.reached = next;
       PetscCall(problem.accept_step(x));
+      if (ramp.reached < 1.0) PetscCall(checkpoint(system, x, options, report));
       continue;
     }
     PetscCall(VecCopy(last, x));
-    if (++cutbacks > options.max_cutbacks) {
-      problem.load_factor = load_at(reached);
+    if (++ramp.cutbacks > options.max_cutbacks) {
+      problem.load_factor = load_at(ramp.reached);
       break;
     }
-    increment *= 0.5;
+    ramp.increment *= 0.5;
     PetscCall(PetscInfo(system.snes(), "load step to %g failed (%s); retrying with increment %g\n",
-                        problem.load_factor, step.reason.c_str(), increment * (target - start)));
+                        problem.load_factor, step.reason.c_str(),
+                        ramp.increment * (target - start)));
   }
-  *converged = reached >= 1.0;
+  *converged = ramp.reached >= 1.0;
+  ramp.under_way = false;
   PetscFunctionReturn(0);
 }
 
@@ -184,17 +198,6 @@ bool stiffen_contact(ClothProblem& problem, const StaticOptions& options,
   const double allowed = options.max_offset_depth * problem.contact.offset;
   problem.contact.stiffness_scale *= std::min(10.0, 2.0 * report.deepest_offset_depth / allowed);
   return true;
-}
-
-// StaticOptions::checkpoint of the state after a stage or round.
-PetscErrorCode checkpoint(IncrementalSystem& system, Vec x, const StaticOptions& options,
-                          StaticReport* report) {
-  PetscFunctionBeginUser;
-  if (!options.checkpoint) PetscFunctionReturn(0);
-  report->minimiser = system.minimiser_statistics;
-  report->contact_stiffness_scale = system.problem().contact.stiffness_scale;
-  PetscCall(options.checkpoint(x, *report));
-  PetscFunctionReturn(0);
 }
 
 // Solves the last stage again while the contact rounds of the header ask
@@ -281,7 +284,10 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
   const double target = problem.load_factor;
   const bool sews = problem.sewing_tension > 0.0 && problem.seam_coupling();
   const int stages = sews ? std::max(1, options.sewing_stages) : 1;
-  for (int stage = options.resume ? options.resume->sewing_stages : 0; stage < stages; ++stage) {
+  // A resumed ramp goes on within its stage, with the anchors it had.
+  const bool resumes_ramp = options.resume && options.resume->ramp.under_way;
+  const int first_stage = !options.resume ? 0 : options.resume->sewing_stages - resumes_ramp;
+  for (int stage = first_stage; stage < stages; ++stage) {
     problem.sewing_stage = stages == 1 ? 1.0 : double(stage) / double(stages - 1);
     // The loads grow with the seams' stiffness: the first stage sews the
     // panels round the body unloaded, so that they are closed before their
@@ -297,11 +303,13 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
     // CPU's BLAS kernels); Newton's convergence removes that difference.
     system.loose_rtol = stage + 2 >= stages ? 0.0 : options.stage_rtol;
     system.loose_max_iterations = options.stage_max_iterations;
-    // Friction anchors for what touches a body now (none while sewing).
-    PetscCall(problem.update_contact(x));
-    if (stage == 0) {
-      PetscCall(problem.residual(x, f));
-      PetscCall(VecNorm(f, NORM_2, &report->initial_residual_norm));
+    if (!(resumes_ramp && stage == first_stage)) {
+      // Friction anchors for what touches a body now (none while sewing).
+      PetscCall(problem.update_contact(x));
+      if (stage == 0) {
+        PetscCall(problem.residual(x, f));
+        PetscCall(VecNorm(f, NORM_2, &report->initial_residual_norm));
+      }
     }
     report->sewing_stages = stage + 1;
     system.progress_label = "stage " + std::to_string(stage + 1) + " of " + std::to_string(stages);

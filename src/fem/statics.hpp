@@ -74,10 +74,11 @@ struct StaticOptions {
   // wall time), one every this many seconds; 0: none.
   double progress_interval = 0.0;
   // Checkpoints (docs/reliability.md#checkpoints-and-restart): called
-  // collectively after every sewing stage and contact round with the state
-  // and the report so far. With `resume` the solve continues after the
-  // stages and rounds that report counts, from x; the caller has restored
-  // x, the friction anchors and the contact stiffness scale it reports.
+  // collectively after every load step short of the full load, every sewing
+  // stage and every contact round with the state and the report so far.
+  // With `resume` the solve continues after the load steps, stages and
+  // rounds that report counts, from x; the caller has restored x, the
+  // friction anchors and the contact stiffness scale it reports.
   std::function<PetscErrorCode(Vec x, const StaticReport& report)> checkpoint;
   const StaticReport* resume = nullptr;
 };
@@ -101,10 +102,19 @@ struct ContactRound {
   double contact_stiffness_scale = 1.0; // the penalty the round was solved with
 };
 
+// Where the load ramp of the first stage stands between its load steps.
+struct LoadRamp {
+  bool under_way = false; // a step short of the full load was the last solved
+  double reached = 0.0;   // fraction of the ramp
+  double increment = 0.0; // the next step's, as a fraction of the ramp
+  int cutbacks = 0;       // increments halved so far
+};
+
 struct StaticReport {
   bool converged = false;
   std::string reason; // of the last attempt
   std::vector<LoadStepReport> steps;
+  LoadRamp ramp;
   PetscInt newton_iterations = 0;
   PetscInt linear_iterations = 0;
   PetscInt pseudo_steps = 0;

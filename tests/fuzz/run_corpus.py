@@ -292,7 +292,7 @@ def option_cases(src, work):
                ("pin-box", "1,2,3"), ("point-force", "99999,0,0,1"), ("analysis", "foo"),
                ("membrane-model", "foo"), ("bending-model", "foo"), ("mesh", "hexagon"),
                ("load-steps", "0"), ("load-steps", "99999999999"), ("density", "-1"),
-               ("time-end", "3"), ("checkpoint-interval", "10"), ("restart", "x.h5"),
+               ("time-end", "3"), ("checkpoint-interval", "-1"), ("restart", "x.h5"),
                ("pin-motion", "0:0,0,0; -1:1,1,1"), ("body", "sphere radius=-1"),
                ("body", "teapot"), ("mesh-translate", "1,2"), ("fabric", "nosuch"),
                ("pin-vertices", "1,abc"), ("pin-vertices", "99999999"),

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # kill -9 at pseudo-random moments and resume (docs/reliability.md#checkpoints-and-restart):
-# a dynamic run (the swinging sheet), a static drape (the skirt: sewing
+# a static run in 40 load steps (the slit annular plate), a dynamic run (the
+# swinging sheet), a static drape (the skirt: sewing
 # stages and contact rounds), the same on two refinement levels, and a
 # dynamic drape (the skirt sewn in time) are
 # each run once uninterrupted, then again with checkpoints, killed with
@@ -9,7 +10,9 @@
 # folder each time, and finally let finish. The final positions, and the
 # states of series.h5 and dynamics.csv, must equal the uninterrupted run's
 # within 1e-6 m (the drapes' solver tolerance is 1e-6 of the weight in
-# force; the displacements are 0.05 to 1 m). The differences are printed.
+# force; the displacements are 0.05 to 1 m), and the static run's load steps
+# (load factors, Newton iterations) must be the uninterrupted run's. The
+# differences are printed.
 #   kill_resume.sh SARTOR PROJECT_DIR WORKDIR
 set -euo pipefail
 sartor=$1 project=$2 work=$3
@@ -59,12 +62,16 @@ interrupted() {
 # The patch model on 12 x 12 cells: its swing lasts long enough (about 4 s
 # of wall time here) for the kills; on 8 x 8 it took 2 s once the patch
 # Hessian's projection became cheaper, and ended before its first kill.
+# About 7 s of wall time in 40 load steps, a checkpoint after each.
+plate=("$project/cases/fe/slit_annular_plate.yaml" --no-plot)
 sheet=("$project/cases/fe/hanging_sheet_dynamic.yaml" --mesh-nx 12 --mesh-ny 12 --time-end 1.5
   --bending-model patch --output-interval 0.1 --no-plot)
 skirt=("$project/cases/patterns/skirt.json" --edge-length 0.08 --no-plot)
 skirt_levels=("${skirt[@]}" --levels 2)
 skirt_dynamic=("${skirt[@]}" --analysis dynamic --time-end 0.2 --sewing-time 0.1 -settle false)
 
+"$sartor" run "${plate[@]}" --output "$work/plate_whole" > "$work/plate_whole.log"
+interrupted plate 3 run "${plate[@]}" --checkpoint-interval 1
 "$sartor" run "${sheet[@]}" --output "$work/sheet_whole" > "$work/sheet_whole.log"
 interrupted sheet 3 run "${sheet[@]}" --checkpoint-interval 0.05
 "$sartor" drape "${skirt[@]}" --output "$work/skirt_whole" > "$work/skirt_whole.log"
@@ -85,7 +92,7 @@ grep -q "skirt/checkpoint.h5: the checkpoint is not of an --analysis dynamic run
   { cat "$work/wrong.log" >&2; exit 1; }
 
 "$python" - "$work" <<'PY'
-import csv, sys
+import csv, json, sys
 import h5py, numpy as np
 work = sys.argv[1]
 tolerance = 1e-6  # m
@@ -97,12 +104,18 @@ def largest_difference(name):
         moved = np.abs(x - a["mesh/initial_position"][()]).max() if "mesh/initial_position" in a else None
         return np.abs(x - y).max(), moved
 
-for name in ("sheet", "skirt", "skirt_levels", "skirt_dynamic"):
+for name in ("plate", "sheet", "skirt", "skirt_levels", "skirt_dynamic"):
     diff, moved = largest_difference(name)
     print(f"{name}: resumed final positions differ by {diff:.3g} m from the uninterrupted run's"
           + (f" (largest displacement {moved:.3g} m)" if moved is not None else ""))
     if not diff <= tolerance:
         failures.append(f"{name}: final positions differ by {diff:.3g} m")
+
+steps = [[(s["load_factor"], s["newton_iterations"]) for s in json.load(open(f"{work}/{n}/summary.json"))["load_steps"]]
+         for n in ("plate_whole", "plate")]
+print(f"plate: {len(steps[1])} load steps resumed, {len(steps[0])} uninterrupted")
+if steps[0] != steps[1]:
+    failures.append(f"plate: load steps {steps[1]} differ from the uninterrupted run's {steps[0]}")
 
 for name in ("sheet", "skirt_dynamic"):
     with h5py.File(f"{work}/{name}_whole/series.h5") as a, h5py.File(f"{work}/{name}/series.h5") as b:
