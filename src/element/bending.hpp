@@ -41,6 +41,7 @@
 // the discrete-shell energy to second order about a flat rest shape, so both
 // models carry the same normalisation.
 
+#include "common/registry_index.hpp"
 #include "element/element.hpp"
 
 #include <Eigen/Core>
@@ -57,19 +58,12 @@ using Vector12 = Eigen::Matrix<double, 12, 1>;
 // (IBM) hinges (this file), and the patch triangles, the rotation-free
 // Kirchhoff triangle of element/patch_bending.hpp (the default), assembled
 // per triangle instead of per hinge.
-class BendingModel {
+class BendingModel : public RegistryIndex<BendingModel> {
 public:
-  constexpr BendingModel() = default;
-  constexpr explicit BendingModel(int index) : index_(index) {}
-  constexpr int index() const { return index_; }
-  friend constexpr bool operator==(BendingModel a, BendingModel b) { return a.index_ == b.index_; }
-  friend constexpr bool operator!=(BendingModel a, BendingModel b) { return !(a == b); }
+  using RegistryIndex::RegistryIndex;
   static const BendingModel discrete_shell;
   static const BendingModel quadratic;
   static const BendingModel patch;
-
-private:
-  int index_ = 0;
 };
 // In the registry's order (register_bending_models).
 inline constexpr BendingModel BendingModel::discrete_shell{0};

@@ -25,6 +25,7 @@
 // collapsed along u or v) has no direction: its stretch then contributes its
 // energy but no gradient and no Hessian, so the results stay finite.
 
+#include "common/registry_index.hpp"
 #include "element/element.hpp"
 #include "material/measured_cloth.hpp"
 #include "material/tension_curve.hpp"
@@ -54,21 +55,12 @@ TriangleRest triangle_rest(const std::array<Eigen::Vector2d, 3>& uv);
 // the stretches |F e_i| - 1), Saint Venant-Kirchhoff (of the Green strains,
 // warp-weft coupling by the Poisson ratio) and measured (a fabric's
 // stretching table, Wang et al. 2011).
-class MembraneModel {
+class MembraneModel : public RegistryIndex<MembraneModel> {
 public:
-  constexpr MembraneModel() = default;
-  constexpr explicit MembraneModel(int index) : index_(index) {}
-  constexpr int index() const { return index_; }
-  friend constexpr bool operator==(MembraneModel a, MembraneModel b) {
-    return a.index_ == b.index_;
-  }
-  friend constexpr bool operator!=(MembraneModel a, MembraneModel b) { return !(a == b); }
+  using RegistryIndex::RegistryIndex;
   static const MembraneModel baraff_witkin;
   static const MembraneModel saint_venant_kirchhoff;
   static const MembraneModel measured;
-
-private:
-  int index_ = 0;
 };
 // In the registry's order (register_membrane_models).
 inline constexpr MembraneModel MembraneModel::baraff_witkin{0};

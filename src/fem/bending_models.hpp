@@ -34,7 +34,6 @@ struct BendingSetUp {
   const std::vector<bool>& triangle_owned; // the triangles this rank assembles
   const std::vector<bool>& is_pinned;      // per vertex
   const std::vector<PetscInt>& vertex_dof; // local-vector offset of each vertex, -1 if absent
-  const std::vector<ClothMaterial>& materials;
   std::function<const ClothMaterial&(std::size_t triangle)> material; // of a triangle
 
   // The local-vector offsets of an element's vertices, vertex by vertex.

@@ -23,12 +23,16 @@ void ClothProblem::set_up_bending(const std::vector<bool>& triangle_owned,
                      " crease edges with rest angles, which only --bending-model "
                      "discrete_shell honours");
   }
+  for (const ClothMaterial& material : materials_) {
+    if (!material.rest_curvature.empty() &&
+        material.rest_curvature.size() != mesh_.triangle_count()) {
+      throw InputError("cloth: " + std::to_string(material.rest_curvature.size()) +
+                       " rest curvatures for " + std::to_string(mesh_.triangle_count()) +
+                       " triangles");
+    }
+  }
   const fem::BendingSetUp setup{
-      mesh_,
-      triangle_owned,
-      is_pinned,
-      vertex_dof_,
-      materials_,
+      mesh_, triangle_owned, is_pinned, vertex_dof_,
       [this](std::size_t triangle) -> const ClothMaterial& { return triangle_material(triangle); }};
   forms_.push_back(entry.form(setup, model));
 }

@@ -87,14 +87,6 @@ std::size_t slot_of(std::array<int, 12>& stencil, std::size_t& next, int vertex)
 // of both patches').
 std::unique_ptr<Form> patch_form(const BendingSetUp& setup, element::BendingModel) {
   const TriangleMesh& mesh = setup.mesh;
-  for (const ClothMaterial& material : setup.materials) {
-    if (!material.rest_curvature.empty() &&
-        material.rest_curvature.size() != mesh.triangle_count()) {
-      throw InputError("cloth: " + std::to_string(material.rest_curvature.size()) +
-                       " rest curvatures for " + std::to_string(mesh.triangle_count()) +
-                       " triangles");
-    }
-  }
   const std::vector<Across> across = neighbours(mesh);
   std::vector<Patch> patches(mesh.triangle_count());
   // A triangle of fixed vertices (a clamp) has a prescribed curvature: it
