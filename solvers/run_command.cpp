@@ -862,16 +862,11 @@ void solve_static_case(ClothProblem& problem, Vec x, const StaticOptions& solve,
     SartorPetscCall(resume->restore(problem, x));
     checkpointed.resume = &resume->report;
     result->resumed_time = 0.0;
-    const StaticReport& resumed = resume->report;
-    const std::string ramp =
-        resumed.ramp.under_way
-            ? " (load factor " + format_number(resume->checkpoint.load_factor) + ")"
-            : "";
-    SartorPetscCall(
-        PetscPrintf(PETSC_COMM_WORLD,
-                    "sartor: resuming from %s after %zu load step(s)%s, %d contact round(s)\n",
-                    checkpointing.restart_file.c_str(), resumed.steps.size(), ramp.c_str(),
-                    resumed.contact_rounds));
+    SartorPetscCall(PetscPrintf(
+        PETSC_COMM_WORLD,
+        "sartor: resuming from %s after %zu load step(s) (load factor %g), %d contact round(s)\n",
+        checkpointing.restart_file.c_str(), resume->report.steps.size(),
+        resume->checkpoint.load_factor, resume->report.contact_rounds));
   }
   if (checkpointing.interval > 0.0)
     checkpointed.checkpoint =

@@ -175,8 +175,14 @@ TEST(Sewing, MergedTubeStaysWhereTheSeamsClosedIt) {
 
 TEST(SewingMpi, SameSewnTubeOnAnyNumberOfRanks) {
   // Solved on all ranks together and on each rank alone. With several ranks
-  // the partitioner puts the panels' seam lines on different ranks.
-  const mesh::PanelMesh tube = mesh::tube_panels(width, height, 10, 6, 12, 4, gap);
+  // the partitioner puts the panels' seam lines on different ranks. From
+  // panels 2 cm apart: from 15 cm the sewing path folds the panels, and
+  // which of the tube's equilibria it ends in turned on round-off (2 cm
+  // apart on 1 and 2 ranks under OPENBLAS_CORETYPE=Prescott, 1.5 cm on 4
+  // ranks once in three runs), which this test of the parallel assembly
+  // must not see.
+  const double near_gap = 0.02;
+  const mesh::PanelMesh tube = mesh::tube_panels(width, height, 10, 6, 12, 4, near_gap);
   const auto springs = springs_of(tube);
   const auto pins = top_of_back_panel(tube);
   // With the discrete shell. With the patch model the far-start sewing ends
@@ -197,7 +203,10 @@ TEST(SewingMpi, SameSewnTubeOnAnyNumberOfRanks) {
     largest = std::max(largest, (together.positions[v] - alone.positions[v]).norm());
     scale = std::max(scale, (alone.positions[v] - tube.mesh.positions[v]).norm());
   }
-  EXPECT_LT(largest, 1e-8 * scale);
+  // Within the solve's tolerance, not at round-off: a solve that stops one
+  // Newton iteration earlier on some ranks ends 1e-7 of the sag away (2 ranks
+  // here: 1.3e-7; bit-identical paths give 4e-14).
+  EXPECT_LT(largest, 1e-6 * scale);
   if (PetscGlobalRank != 0) return; // the report line once
   std::printf("%d rank(s): %ld seam springs cross ranks, largest difference %.3e m "
               "(relative %.3e)\n",
