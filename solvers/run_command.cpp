@@ -191,6 +191,10 @@ const std::vector<OptionSpec>& static_option_specs() {
        "--sewing-start-tension (1: at once)"},
       {"sewing-start-tension", "N/M", "10",
        "static: with --sewing-stages, each seam's pull per metre of seam at the first stage"},
+      {"converge-stages", "", "",
+       "static: with --sewing-stages, solve every stage after the first to the full tolerance "
+       "(the same equilibrium under any CPU's round-off, for two to three times the Newton "
+       "iterations; docs/drape.md)"},
       {"contact-max-depth", "F", "0.5",
        "static: stiffen the contact penalty until no vertex is deeper in the offset layer than "
        "F times --contact-offset (0: never)"},
@@ -744,6 +748,10 @@ StaticOptions static_options(const Options& options, const ClothProblem& problem
   solve.sewing_stages = count_option(options, "sewing-stages", 1);
   if (solve.sewing_stages > 1 && !problem.seam_coupling()) {
     throw InputError("option --sewing-stages: the case has no seams to sew (or they are merged)");
+  }
+  solve.converge_stages = options.flag("converge-stages");
+  if (solve.converge_stages && solve.sewing_stages < 2) {
+    throw InputError("option --converge-stages: needs --sewing-stages of 2 or more");
   }
   solve.max_offset_depth = options.nonnegative_real("contact-max-depth");
   solve.max_contact_rounds = int(options.integer_in("contact-rounds", 0, 1000));

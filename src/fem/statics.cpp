@@ -301,7 +301,8 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
     // iteration budget passed on a state that round-off had already moved
     // (the coarse T-shirt's anchors froze it 1.8 mm apart under another
     // CPU's BLAS kernels); Newton's convergence removes that difference.
-    system.loose_rtol = stage + 2 >= stages ? 0.0 : options.stage_rtol;
+    const bool converged_stage = stage + 2 >= stages || (options.converge_stages && stage > 0);
+    system.loose_rtol = converged_stage ? 0.0 : options.stage_rtol;
     system.loose_max_iterations = options.stage_max_iterations;
     if (!(resumes_ramp && stage == first_stage)) {
       // Friction anchors for what touches a body now (none while sewing).

@@ -22,8 +22,18 @@
 // last two is solved to `stage_rtol` of its first residual or for at most
 // `stage_max_iterations` Newton iterations (it only starts the next), the
 // last two to the full tolerance (the last sets its friction anchors at
-// the state the one before ends in). The friction anchors are lagged: set for what touches a
-// body at the start of a stage, and updated (Coulomb's law) between solves.
+// the state the one before ends in). With `converge_stages`, every stage
+// after the first is solved to the full tolerance: a stage cut off in
+// Newton's transient hands on a state that round-off has moved, and the
+// frictionless stages that follow amplify that into another equilibrium;
+// a converged stage's equilibrium attracts and removes it (the 4 cm blouse
+// ends 2.5e-9 m from its run under another CPU's BLAS kernels instead of
+// in another friction-held state, for two to three times the Newton
+// iterations; docs/drape.md). The first stage, the seams pulling the
+// unloaded garment round the body without friction, has no well-defined
+// equilibrium to converge to quickly and keeps the loose budget. The
+// friction anchors are lagged: set for what touches a body at the start of
+// a stage, and updated (Coulomb's law) between solves.
 //
 // Contact rounds (minimiser, bodies): friction is lagged, so a solved state
 // is an equilibrium with the anchors it was solved with; updating them
@@ -66,8 +76,9 @@ struct StaticOptions {
   // --static-solver's default; off here, for callers of the SNES path).
   bool minimise = false;
   int sewing_stages = 1;         // with problem.sewing_tension > 0
-  double stage_rtol = 1e-3;      // of the stages before the last
-  int stage_max_iterations = 30; // of the stages before the last
+  double stage_rtol = 1e-3;      // of the stages before the last two
+  int stage_max_iterations = 30; // of the stages before the last two
+  bool converge_stages = false;  // all but the first to the full tolerance
   int max_contact_rounds = 30;
   double max_offset_depth = 0.5; // fraction of the contact offset
   // The minimiser's progress lines (stage or round, iteration, |F|, elapsed

@@ -7,8 +7,8 @@
 # seams closed, no vertex inside the body and none deeper than half the
 # contact offset in the offset layer (what the adaptive penalty promises),
 # and the garment resting on the body rather than squeezing it (the body's
-# normal force below $SARTOR_SQUEEZE_FACTOR, default 3, times the weight;
-# static friction can hold a garment pulled down over the body). The Newton
+# normal force below 3 times the weight; static friction can hold a
+# garment pulled down over the body). The Newton
 # count has a generous bound (the dynamic relaxation took about 3,000 on
 # these garments; the minimiser about 100 to 400).
 #
@@ -25,9 +25,9 @@ for f in final.obj result.h5 summary.json; do
   [ -s "$dir/$f" ] || { echo "drape_static: $dir/$f missing" >&2; exit 1; }
 done
 [ ! -e "$dir/dynamics.csv" ] || { echo "drape_static: time stepping ran" >&2; exit 1; }
-"$python" - "$dir" "$seams" "${SARTOR_SQUEEZE_FACTOR:-3}" <<'PY'
+"$python" - "$dir" "$seams" <<'PY'
 import json, math, os, sys
-d, seams, squeeze = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
+d, seams = sys.argv[1], int(sys.argv[2])
 s = json.load(open(os.path.join(d, "summary.json")))
 drape = s["drape"]
 assert "dynamics" not in s, "the static drape stepped in time"
@@ -65,7 +65,7 @@ body = s["contact"]["bodies"][0]
 # may hold every vertex off the offset layer on the convex shoulders).
 assert body["contacting_vertices"] + body["contacting_edge_samples"] > 0, body
 normal = math.hypot(*body["normal_force_N"])
-assert normal < squeeze * weight, f"the body presses on the garment with {normal} N (weight {weight} N)"
+assert normal < 3 * weight, f"the body presses on the garment with {normal} N (weight {weight} N)"
 print("drape_static: %d triangles, %d Newton iterations, gap %.2e m, deepest %.2f of the offset, "
       "residual %.1e of the weight" % (s["mesh"]["triangles"], s["solver"]["newton_iterations"],
       drape["largest_seam_gap_m"], drape["deepest_vertex_relative_to_offset"],
