@@ -9,9 +9,6 @@
 # machine; the garments agree to about 1e-8 m, the solver's tolerance).
 #
 #   drape_prescott_agrees.sh SARTOR PATTERN CASE OUT_DIR [DRAPE_OPTION ...]
-#
-# SARTOR_AGREE_TOLERANCE (m, default 1e-6) sets the bound for a garment
-# whose frictional equilibrium is known to be less sharply defined.
 set -euo pipefail
 [ $# -ge 4 ] || { echo "usage: $0 SARTOR PATTERN CASE OUT_DIR [DRAPE_OPTION ...]" >&2; exit 2; }
 sartor=$1 pattern=$2 case=$3 dir=$4
@@ -24,7 +21,7 @@ mkdir -p "$dir"
   > "$dir/default.log"
 OPENBLAS_CORETYPE=Prescott "$sartor" drape "$pattern" -options_file_yaml "$case" --no-plot "$@" \
   --output "$dir/prescott" > "$dir/prescott.log"
-"$python" - "$dir" "${SARTOR_AGREE_TOLERANCE:-1e-6}" <<'PY'
+"$python" - "$dir" 1e-6 <<'PY'
 import json, os, sys
 d, tolerance = sys.argv[1], float(sys.argv[2])
 
