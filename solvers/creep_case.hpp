@@ -23,6 +23,10 @@ struct CaseCheckpointing {
   std::string file;         // written every `interval` s of simulated time
   double interval = 0.0;    // s; 0: no checkpoints
   std::string restart_file; // resume from this checkpoint; "" starts afresh
+  // A static solve within a level of a drape on several levels: the level's
+  // record (JSON text) its checkpoints carry in /state, with the mesh's start
+  // (solvers/progressive_drape.cpp); "" for every other run.
+  std::string drape_level;
 };
 
 struct CreepRunResult {

@@ -343,8 +343,9 @@ const CommandSpec& drape_command() {
         options.push_back({"no-plot", "", "", "write data only, no PNG"});
         options.push_back({"checkpoint-interval", "S", "0",
                            "write a checkpoint every S s of simulated time (dynamics), after "
-                           "every sewing stage and contact round (statics: any S > 0), or after "
-                           "every refinement level but the last (docs/reliability.md)"});
+                           "every sewing stage and contact round (statics: any S > 0); on "
+                           "several levels, within each level and after every level but the "
+                           "last (docs/reliability.md)"});
         options.push_back({"checkpoint", "FILE", "", "the checkpoint file [OUTPUT/checkpoint.h5]"});
         options.push_back(
             {"restart", "FILE", "", "resume from this checkpoint (the same pattern and options)"});

@@ -46,30 +46,32 @@ DynamicStepReport step_from(const nlohmann::json& j) {
 // /state of a dynamic run's checkpoint. JSON writes doubles with 17
 // significant digits, so they read back exactly.
 std::string state_text(const DynamicControl& c, const DynamicReport& report,
-                       const std::vector<Eigen::Vector3d>& probe_history) {
+                       const std::vector<Eigen::Vector3d>& probe_history,
+                       const std::string& drape_level) {
   nlohmann::json steps = nlohmann::json::array();
   for (const DynamicStepReport& s : report.steps)
     steps.push_back(step_json(s));
   nlohmann::json probe = nlohmann::json::array();
   for (const Eigen::Vector3d& d : probe_history)
     probe.push_back({d.x(), d.y(), d.z()});
-  const nlohmann::json state{{"kind", dynamic_kind},
-                             {"control",
-                              {{"start", c.start},
-                               {"time", c.time},
-                               {"next_step", c.next_step},
-                               {"step", c.step},
-                               {"next_output", c.next_output},
-                               {"previous_kinetic", c.previous_kinetic},
-                               {"initial_residual", c.initial_residual}}},
-                             {"report",
-                              {{"at_rest", report.at_rest},
-                               {"newton_iterations", report.newton_iterations},
-                               {"linear_iterations", report.linear_iterations},
-                               {"rejected_steps", report.rejected_steps},
-                               {"velocity_resets", report.velocity_resets},
-                               {"steps", steps}}},
-                             {"probe_history", probe}};
+  nlohmann::json state{{"kind", dynamic_kind},
+                       {"control",
+                        {{"start", c.start},
+                         {"time", c.time},
+                         {"next_step", c.next_step},
+                         {"step", c.step},
+                         {"next_output", c.next_output},
+                         {"previous_kinetic", c.previous_kinetic},
+                         {"initial_residual", c.initial_residual}}},
+                       {"report",
+                        {{"at_rest", report.at_rest},
+                         {"newton_iterations", report.newton_iterations},
+                         {"linear_iterations", report.linear_iterations},
+                         {"rejected_steps", report.rejected_steps},
+                         {"velocity_resets", report.velocity_resets},
+                         {"steps", steps}}},
+                       {"probe_history", probe}};
+  if (!drape_level.empty()) state["drape_level"] = nlohmann::json::parse(drape_level);
   return state.dump();
 }
 
@@ -97,6 +99,7 @@ void read_state(const std::string& text, DynamicResume* resume) {
   for (const nlohmann::json& d : state.at("probe_history"))
     resume->probe_history.emplace_back(d.at(0).get<double>(), d.at(1).get<double>(),
                                        d.at(2).get<double>());
+  if (state.contains("drape_level")) resume->drape_level = state.at("drape_level").dump();
   if (report.steps.empty() || !(control.next_step > 0.0) || control.time < control.start) {
     throw std::invalid_argument("its step controller is not valid");
   }
@@ -169,8 +172,9 @@ dynamic_checkpoint_writer(ClothProblem& problem, const CaseCheckpointing& checkp
     for (int pin : problem.pinned())
       if (!checkpoint.velocities.empty()) checkpoint.velocities[std::size_t(pin)].setZero();
     PetscCall(problem.gather_anchors(&checkpoint.anchors));
+    if (!checkpointing.drape_level.empty()) checkpoint.start_positions = problem.mesh().positions;
     if (is_root()) {
-      checkpoint.state = state_text(control, report, probe_history);
+      checkpoint.state = state_text(control, report, probe_history, checkpointing.drape_level);
       write_checkpoint(checkpointing.file, checkpoint);
     }
     ++*written;

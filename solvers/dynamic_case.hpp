@@ -25,6 +25,7 @@ struct DynamicResume {
   DynamicControl control;
   DynamicReport report;
   std::vector<Eigen::Vector3d> probe_history;
+  std::string drape_level; // the drape level's record (JSON text); "" if not a level's run
   // The states written to series.h5 before the checkpoint (output steps).
   std::size_t series_states() const;
   // Collective: x, v, problem.time, load factor and friction anchors.

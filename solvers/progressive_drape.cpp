@@ -285,32 +285,66 @@ LevelRun level_run_from(const nlohmann::json& r) {
   return run;
 }
 
-// The level after the one a checkpoint ended, with that level's positions
-// and the runs so far.
-std::size_t read_level_checkpoint(const std::string& path, const std::vector<DrapeLevel>& levels,
-                                  std::vector<Eigen::Vector3d>* solved,
+// Where a drape on several levels resumes from a checkpoint: after a level's
+// end (the next level starts from its drape), or within a level's solve
+// (which reads the same checkpoint: a static solve's stages and rounds done,
+// a dynamic one's time reached).
+struct LevelResume {
+  std::size_t level = 0; // the level solved next
+  bool within = false;
+  std::vector<Eigen::Vector3d> solved; // after a level's end: that level's drape
+  std::vector<Eigen::Vector3d> start;  // within a finer level: the level's start
+  LevelRun run;                        // within a level: its start's record
+};
+
+// What a checkpoint within level `level` carries in /state ("drape_level").
+std::string level_record(std::size_t level, std::size_t count, const std::vector<LevelRun>& runs,
+                         const LevelRun& run) {
+  return nlohmann::json{{"level", level},
+                        {"levels", count},
+                        {"runs", levels_json(runs)},
+                        {"run", levels_json({run})[0]}}
+      .dump();
+}
+
+LevelResume read_level_checkpoint(const std::string& path, const std::vector<DrapeLevel>& levels,
                                   std::vector<LevelRun>* runs) {
   const RunCheckpoint checkpoint = read_checkpoint(path);
+  LevelResume resume;
   std::size_t level = 0;
   try {
     const nlohmann::json state = nlohmann::json::parse(checkpoint.state);
-    if (state.at("kind") != level_kind) throw std::invalid_argument("not a level's end");
-    level = state.at("level").get<std::size_t>();
-    if (state.at("levels").get<std::size_t>() != levels.size() || level + 1 >= levels.size())
+    resume.within = state.contains("drape_level");
+    if (!resume.within && state.at("kind") != level_kind)
+      throw std::invalid_argument("neither a level's end nor within a level");
+    const nlohmann::json& record = resume.within ? state.at("drape_level") : state;
+    level = record.at("level").get<std::size_t>();
+    if (record.at("levels").get<std::size_t>() != levels.size() || level >= levels.size() ||
+        (!resume.within && level + 1 >= levels.size()))
       throw std::invalid_argument("of a drape with other levels");
-    for (const nlohmann::json& r : state.at("runs"))
+    for (const nlohmann::json& r : record.at("runs"))
       runs->push_back(level_run_from(r));
+    if (runs->size() != (resume.within ? level : level + 1))
+      throw std::invalid_argument("its record of the levels before is not complete");
+    if (resume.within) resume.run = level_run_from(record.at("run"));
   } catch (const std::exception& error) {
     throw InputError(path + ": not the checkpoint of a level of this drape's " +
                      std::to_string(levels.size()) + " levels (" + error.what() + ")");
   }
-  if (runs->size() != level + 1 ||
-      checkpoint.positions.size() != levels[level].cloth.mesh.vertex_count()) {
+  const std::size_t vertices = levels[level].cloth.mesh.vertex_count();
+  const bool start_needed = resume.within && level > 0;
+  if (checkpoint.positions.size() != vertices ||
+      (start_needed && checkpoint.start_positions.size() != vertices)) {
     throw InputError(path + ": the checkpoint's level " + std::to_string(level + 1) +
                      " has another mesh than this drape's");
   }
-  *solved = checkpoint.positions;
-  return level + 1;
+  resume.level = resume.within ? level : level + 1;
+  if (resume.within) {
+    resume.start = checkpoint.start_positions;
+  } else {
+    resume.solved = checkpoint.positions;
+  }
+  return resume;
 }
 
 void print_level(std::size_t index, std::size_t count, const LevelRun& run) {
@@ -378,20 +412,34 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
   }
   levels.push_back(finest);
   CaseResult result;
-  std::vector<Eigen::Vector3d> solved;
-  // Several levels: a checkpoint at the end of each level before the last
-  // (the levels' own solves write none); one level: solve_case's.
-  std::size_t first = 0;
+  // Several levels: a checkpoint at the end of each level before the last,
+  // and within each level as its solve writes them (after every sewing stage
+  // and contact round of a static one, every --checkpoint-interval s of
+  // simulated time of a dynamic one); one level: solve_case's.
+  LevelResume resume;
   if (count > 1 && !checkpointing.restart_file.empty()) {
-    first = read_level_checkpoint(checkpointing.restart_file, levels, &solved, runs);
+    resume = read_level_checkpoint(checkpointing.restart_file, levels, runs);
     SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD,
-                                "sartor drape: resuming from %s at level %zu of %zu\n",
-                                checkpointing.restart_file.c_str(), first + 1, count));
+                                "sartor drape: resuming from %s %s level %zu of %zu\n",
+                                checkpointing.restart_file.c_str(), resume.within ? "within" : "at",
+                                resume.level + 1, count));
   }
-  const CaseCheckpointing in_level = count > 1 ? CaseCheckpointing{} : checkpointing;
-  for (std::size_t l = first; l < count; ++l) {
+  std::vector<Eigen::Vector3d> solved = resume.solved;
+  // The checkpointing of level l's solve, whose start `run` records.
+  const auto level_checkpointing = [&](std::size_t l, const LevelRun& run, bool resumed) {
+    if (count == 1) return checkpointing;
+    CaseCheckpointing within;
+    if (!(checkpointing.interval > 0.0)) return within;
+    within.file = checkpointing.file;
+    within.interval = checkpointing.interval;
+    within.drape_level = level_record(l, count, *runs, run);
+    if (resumed) within.restart_file = checkpointing.restart_file;
+    return within;
+  };
+  for (std::size_t l = resume.level; l < count; ++l) {
     DrapeLevel& level = levels[l];
-    LevelRun run;
+    const bool resumed = resume.within && l == resume.level;
+    LevelRun run = resumed ? resume.run : LevelRun{};
     run.edge_length = level.edge_length;
     run.vertices = level.cloth.mesh.vertex_count();
     run.triangles = level.cloth.mesh.triangle_count();
@@ -408,20 +456,25 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
       const ScopedOption seams("-seams_file", level.seams_file.c_str());
       ClothOutputLabels coarsest = labels;
       coarsest.panel_of_triangle = level.panel_of_triangle;
+      const CaseCheckpointing in_level = level_checkpointing(l, run, resumed);
       result = solve_case(options, 0, series_writer(directory, coarsest, in_level.restart_file),
                           in_level, &level.cloth);
     } else {
-      const garment::Prolongation prolongation(panel_mesh(levels[l - 1]), panel_mesh(level));
-      std::vector<Eigen::Vector3d> start = prolongation.vertex_field(solved);
-      const garment::SeamClosure closure =
-          garment::close_seams(panel_mesh(level), level.seams, &start);
-      run.seam_gap_prolonged = closure.gap_before;
-      run.seam_gap_start = closure.gap_after;
-      run.outside_distance = prolongation.largest_outside_distance();
-      run.deepest_start = lift_out_of_bodies(options, level.cloth.mesh, &start);
-      level.cloth.mesh.positions = start;
+      if (resumed) {
+        level.cloth.mesh.positions = resume.start;
+      } else {
+        const garment::Prolongation prolongation(panel_mesh(levels[l - 1]), panel_mesh(level));
+        std::vector<Eigen::Vector3d> start = prolongation.vertex_field(solved);
+        const garment::SeamClosure closure =
+            garment::close_seams(panel_mesh(level), level.seams, &start);
+        run.seam_gap_prolonged = closure.gap_before;
+        run.seam_gap_start = closure.gap_after;
+        run.outside_distance = prolongation.largest_outside_distance();
+        run.deepest_start = lift_out_of_bodies(options, level.cloth.mesh, &start);
+        level.cloth.mesh.positions = start;
+      }
       const auto scoped = finer_level_options(options, level.seams_file);
-      result = solve_case(options, 0, {}, {}, &level.cloth);
+      result = solve_case(options, 0, {}, level_checkpointing(l, run, resumed), &level.cloth);
     }
     run.cpu_seconds = cpu_seconds() - cpu_start;
     record(result, &run);

@@ -69,8 +69,9 @@ struct LevelRun {
 // `runs` gets one entry per level. A single
 // level is solve_case on `finest`, as before, with `checkpointing`. Several
 // levels with checkpoints: one at the end of every level before the last
-// (its positions and the LevelRuns so far), and a restart goes on with the
-// level after the checkpoint's.
+// (its positions and the LevelRuns so far), and in a static drape the level
+// solve's own within each level (with the level's record and start); a
+// restart goes on with the level after the checkpoint's, or within its level.
 CaseResult drape_progressively(const Options& options, const garment::Construction& construction,
                                const PanelMeshOptions& mesh_options, const DrapeLevel& finest,
                                const std::vector<double>& edge_lengths,

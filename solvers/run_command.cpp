@@ -799,6 +799,32 @@ void broadcast(double* values, int count) {
   MPI_Bcast(values, count, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
 }
 
+// Stages meant to converge that stopped at the iteration limit: the result
+// is an equilibrium, but one the stages' round-off may have chosen.
+void warn_unconverged_stages(const StaticReport& report) {
+  if (report.unconverged_stages.empty()) return;
+  std::string stages;
+  for (int stage : report.unconverged_stages)
+    stages += (stages.empty() ? "" : ", ") + std::to_string(stage);
+  print_warnings({"sewing stage(s) " + stages + " of " + std::to_string(report.sewing_stages) +
+                  " stopped at -snes_max_it before reaching the tolerance: the stages after "
+                  "them started from a state that round-off moves, so the drape may land "
+                  "elsewhere on another machine; raise -snes_max_it "
+                  "(docs/drape.md#sewing-by-continuation)"});
+}
+
+// A checkpoint within a level of a drape on several levels resumes that
+// level only, and a level resumes only from such a checkpoint.
+void check_drape_level(const CaseCheckpointing& checkpointing, const std::string& drape_level) {
+  if (drape_level.empty() == checkpointing.drape_level.empty()) return;
+  throw InputError(checkpointing.restart_file +
+                   (drape_level.empty()
+                        ? ": the checkpoint is of a run on one mesh (sartor run, or a drape "
+                          "with --levels 1); resume it as one"
+                        : ": the checkpoint is within a level of a drape on several levels; "
+                          "resume it with the same --levels"));
+}
+
 // --analysis dynamic: from rest, or from --restart's checkpoint, with
 // checkpoints as `checkpointing` says.
 void solve_dynamic_case(const Options& options, ClothProblem& problem, Vec x,
@@ -813,6 +839,7 @@ void solve_dynamic_case(const Options& options, ClothProblem& problem, Vec x,
   std::optional<DynamicResume> resume;
   if (!checkpointing.restart_file.empty()) {
     resume = read_dynamic_checkpoint(checkpointing.restart_file, problem);
+    check_drape_level(checkpointing, resume->drape_level);
     if (options.positive_real("time-end") < resume->control.time) {
       throw InputError("option --time-end: " + options.text("time-end") + " s is before " +
                        checkpointing.restart_file + "'s time, " +
@@ -867,6 +894,7 @@ void solve_static_case(ClothProblem& problem, Vec x, const StaticOptions& solve,
   std::optional<StaticResume> resume;
   if (!checkpointing.restart_file.empty()) {
     resume = read_static_checkpoint(checkpointing.restart_file, problem);
+    check_drape_level(checkpointing, resume->drape_level);
     SartorPetscCall(resume->restore(problem, x));
     checkpointed.resume = &resume->report;
     result->resumed_time = 0.0;
@@ -881,6 +909,7 @@ void solve_static_case(ClothProblem& problem, Vec x, const StaticOptions& solve,
         static_checkpoint_writer(problem, checkpointing, &result->checkpoints_written);
   SartorPetscCall(solve_static(problem, x, checkpointed, &result->report));
   reject_unmet_residual(problem.force_scale(), &result->report);
+  warn_unconverged_stages(result->report);
 }
 
 // One material per fabric: the cloth's, or --fabric's.
@@ -1128,6 +1157,7 @@ void add_statics_summary(const StaticReport& report, nlohmann::json& summary) {
         {"failed_factorisations", report.minimiser.failed_factorisations},
         {"exact_steps", report.minimiser.exact_steps},
         {"sewing_stages", report.sewing_stages},
+        {"unconverged_stages", report.unconverged_stages},
         {"contact_rounds", report.contact_rounds},
         {"contact_round_failed", report.contact_round_failed},
         {"contact_stiffness_scale", report.contact_stiffness_scale},

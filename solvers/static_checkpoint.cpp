@@ -12,8 +12,9 @@ namespace {
 constexpr const char* static_kind = "static";
 
 // /state of a static solve's checkpoint: the report so far. JSON writes
-// doubles with 17 significant digits, so they read back exactly.
-std::string state_text(const StaticReport& r) {
+// doubles with 17 significant digits, so they read back exactly. Within a
+// level of a drape on several levels, the level's record as "drape_level".
+std::string state_text(const StaticReport& r, const std::string& drape_level) {
   nlohmann::json steps = nlohmann::json::array();
   for (const LoadStepReport& s : r.steps) {
     steps.push_back({s.load_factor, s.converged, s.reason, s.newton_iterations, s.linear_iterations,
@@ -25,7 +26,7 @@ std::string state_text(const StaticReport& r) {
         {c.newton_iterations, c.residual_norm, c.sliding_vertices, c.contact_stiffness_scale});
   }
   const auto& m = r.minimiser;
-  return nlohmann::json{
+  nlohmann::json state{
       {"kind", static_kind},
       {"report",
        {{"converged", r.converged},
@@ -48,12 +49,13 @@ std::string state_text(const StaticReport& r) {
         {"anchored_residual_norm", r.anchored_residual_norm},
         {"consistency_tolerance", r.consistency_tolerance},
         {"rounds", rounds},
-        {"ramp", {r.ramp.under_way, r.ramp.reached, r.ramp.increment, r.ramp.cutbacks}}}}}
-      .dump();
+        {"unconverged_stages", r.unconverged_stages},
+        {"ramp", {r.ramp.under_way, r.ramp.reached, r.ramp.increment, r.ramp.cutbacks}}}}};
+  if (!drape_level.empty()) state["drape_level"] = nlohmann::json::parse(drape_level);
+  return state.dump();
 }
 
-StaticReport report_from(const std::string& text) {
-  const nlohmann::json state = nlohmann::json::parse(text);
+StaticReport report_from(const nlohmann::json& state) {
   if (state.at("kind") != static_kind) throw std::invalid_argument("not of a static solve");
   const nlohmann::json& j = state.at("report");
   StaticReport r;
@@ -84,6 +86,9 @@ StaticReport report_from(const std::string& text) {
     r.rounds.push_back({c.at(0).get<PetscInt>(), c.at(1).get<double>(), c.at(2).get<long>(),
                         c.at(3).get<double>()});
   }
+  // Checkpoints written before these were reported have none.
+  if (j.contains("unconverged_stages"))
+    r.unconverged_stages = j.at("unconverged_stages").get<std::vector<int>>();
   // Checkpoints written before load steps were checkpointed have no ramp.
   if (j.contains("ramp")) {
     const nlohmann::json& ramp = j.at("ramp");
@@ -125,7 +130,9 @@ StaticResume read_static_checkpoint(const std::string& path, const ClothProblem&
                      ": it belongs to another case or mesh");
   }
   try {
-    resume.report = report_from(checkpoint.state);
+    const nlohmann::json state = nlohmann::json::parse(checkpoint.state);
+    resume.report = report_from(state);
+    if (state.contains("drape_level")) resume.drape_level = state.at("drape_level").dump();
   } catch (const std::exception& error) {
     throw InputError(path + ": the checkpoint's /state is not a static solve's state (" +
                      error.what() + ")");
@@ -146,8 +153,9 @@ static_checkpoint_writer(ClothProblem& problem, const CaseCheckpointing& checkpo
     checkpoint.load_factor = problem.load_factor;
     PetscCall(problem.gather_positions(x, &checkpoint.positions));
     PetscCall(problem.gather_anchors(&checkpoint.anchors));
+    if (!checkpointing.drape_level.empty()) checkpoint.start_positions = problem.mesh().positions;
     if (is_root()) {
-      checkpoint.state = state_text(report);
+      checkpoint.state = state_text(report, checkpointing.drape_level);
       write_checkpoint(checkpointing.file, checkpoint);
     }
     ++*written;

@@ -16,7 +16,8 @@ namespace sartor {
 
 struct StaticResume {
   RunCheckpoint checkpoint;
-  StaticReport report; // the stages and rounds done
+  StaticReport report;     // the stages and rounds done
+  std::string drape_level; // the drape level's record (JSON text); "" if not a level's solve
   // Collective: x, the friction anchors and the contact stiffness scale.
   PetscErrorCode restore(ClothProblem& problem, Vec x) const;
 };

@@ -212,6 +212,8 @@ std::uint64_t checksum(const RunCheckpoint& checkpoint) {
   sum.add(anchor_rows(checkpoint.anchors));
   sum.add(checkpoint.history.data(), checkpoint.history.size());
   sum.add(checkpoint.state.data(), checkpoint.state.size());
+  // Summed only when present, so that files without it sum as before.
+  if (!checkpoint.start_positions.empty()) sum.add(flatten(checkpoint.start_positions));
   return sum.value();
 }
 
@@ -232,6 +234,9 @@ void write_checkpoint(const std::string& path, const RunCheckpoint& checkpoint) 
     write_rows(f, "/positions", flatten(checkpoint.positions), 3, path);
     if (!checkpoint.velocities.empty()) {
       write_rows(f, "/velocities", flatten(checkpoint.velocities), 3, path);
+    }
+    if (!checkpoint.start_positions.empty()) {
+      write_rows(f, "/start_positions", flatten(checkpoint.start_positions), 3, path);
     }
     write_rows(f, "/creep", creep_rows(checkpoint.creep), 6, path);
     write_rows(f, "/anchors", anchor_rows(checkpoint.anchors), 10, path);
@@ -288,6 +293,7 @@ RunCheckpoint read_checkpoint(const std::string& path) {
   checkpoint.step = long(step);
   checkpoint.positions = vectors(read_rows(f, "/positions", 3, path));
   checkpoint.velocities = vectors(read_rows(f, "/velocities", 3, path, false));
+  checkpoint.start_positions = vectors(read_rows(f, "/start_positions", 3, path, false));
   const auto creep = read_rows(f, "/creep", 6, path);
   for (std::size_t i = 0; i + 6 <= creep.size(); i += 6) {
     ElementCreep c;

@@ -11,6 +11,8 @@
 //
 // Layout (all in SI units): /time, /next_step, /load_factor (scalars),
 // /step (int64), /positions (n x 3), /velocities (n x 3, optional),
+// /start_positions (n x 3, optional: the mesh's start where the run did not
+// start from its case's placement, a finer drape level's prolonged start),
 // /creep (t x 6: eps_v warp, eps_p warp, eps_v weft, eps_p weft, tension
 // warp, tension weft), /anchors (k x 10: body, vertex, point, normal, the lagged normal force
 // (N; inf where not known) and whether the anchor slid at its last update),
@@ -39,7 +41,10 @@ struct RunCheckpoint {
   double load_factor = 0.0;
   std::vector<Eigen::Vector3d> positions;  // m, mesh numbering
   std::vector<Eigen::Vector3d> velocities; // m/s; empty for quasi-static runs
-  std::vector<ElementCreep> creep;         // per mesh triangle
+  // m; the mesh's start when it is not the case's own placement (a finer
+  // level of a drape starts from the level before's drape); usually empty
+  std::vector<Eigen::Vector3d> start_positions;
+  std::vector<ElementCreep> creep; // per mesh triangle
   std::vector<AnchorRow> anchors;
   std::string history; // the run's history file (CSV) up to this state
   std::string state;   // JSON: the step controller and reports so far; "" for creep runs

@@ -318,6 +318,8 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
       // A stage before the last only starts the next: its iterate is kept
       // even where it did not reach the loose tolerance in its budget.
       PetscCall(sewing_stage(system, x, report));
+      if (converged_stage && !report->steps.back().converged)
+        report->unconverged_stages.push_back(stage + 1);
       // Seams pulling cloth against a body: the next stage's stiffer
       // springs need a stiffer penalty to hold it outside.
       if (system.minimises() && !problem.bodies.empty() && options.max_contact_rounds > 0) {

@@ -134,7 +134,12 @@ struct StaticReport {
   double solve_seconds = 0.0;
   bool minimised = false; // by the static minimiser
   IncrementalSystem::MinimiserStatistics minimiser;
-  int sewing_stages = 0;                // solved
+  int sewing_stages = 0; // solved
+  // Sewing stages (from 1) before the last that were to reach the full
+  // tolerance (the one before the last; all after the first with
+  // converge_stages) and stopped short of it, at -snes_max_it: the stages
+  // after them started from a state that round-off moves.
+  std::vector<int> unconverged_stages;
   int contact_rounds = 0;               // solves after the last stage
   double contact_stiffness_scale = 1.0; // of the adaptive penalty at the end
   long sliding_vertices = 0;            // anchors that slid at the last update

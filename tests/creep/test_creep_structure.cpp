@@ -389,5 +389,33 @@ TEST(Checkpoint, StateRoundTripsAndIsSummed) {
   std::remove((path + ".tmp").c_str());
 }
 
+// The start of a finer drape level (/start_positions, optional) reads back
+// exactly and is summed: a flipped bit in it is refused.
+TEST(Checkpoint, StartPositionsRoundTripAndAreSummed) {
+  RunCheckpoint written;
+  written.next_step = 1.0;
+  const double marker = 0.987654321098765432;
+  written.positions = {{0.1, 0.2, 0.3}, {0.4, 0.5, 0.6}};
+  written.start_positions = {{0.7, marker, 0.9}, {1.0, 1.1, 1.2}};
+  const std::string path = "test_checkpoint_start.h5";
+  write_checkpoint(path, written);
+  const RunCheckpoint read = read_checkpoint(path);
+  ASSERT_EQ(read.start_positions.size(), 2u);
+  EXPECT_EQ(read.start_positions[0].y(), marker);
+  EXPECT_EQ(read.start_positions[1], written.start_positions[1]);
+  const std::string good = file_bytes(path);
+  std::string marker_bytes(sizeof marker, '\0');
+  std::memcpy(marker_bytes.data(), &marker, sizeof marker);
+  const std::size_t at = good.find(marker_bytes);
+  ASSERT_NE(at, std::string::npos);
+  std::string flipped = good;
+  flipped[at] = char(flipped[at] ^ 1);
+  expect_refused(path, flipped, "a bit of a start position flipped");
+  written.start_positions.clear();
+  write_checkpoint(path, written);
+  EXPECT_TRUE(read_checkpoint(path).start_positions.empty());
+  std::remove(path.c_str());
+}
+
 } // namespace
 } // namespace sartor

@@ -2,7 +2,9 @@
 # kill -9 at pseudo-random moments and resume (docs/reliability.md#checkpoints-and-restart):
 # a static run in 40 load steps (the slit annular plate), a dynamic run (the
 # swinging sheet), a static drape (the skirt: sewing
-# stages and contact rounds), the same on two refinement levels, and a
+# stages and contact rounds), the same on two refinement levels (killed at
+# random moments, and once within the second level; a dynamic drape on two
+# levels too), and a
 # dynamic drape (the skirt sewn in time) are
 # each run once uninterrupted, then again with checkpoints, killed with
 # SIGKILL a few times at moments drawn from a fixed seed (the first after its
@@ -78,6 +80,57 @@ interrupted sheet 3 run "${sheet[@]}" --checkpoint-interval 0.05
 interrupted skirt 3 drape "${skirt[@]}" --checkpoint-interval 1
 "$sartor" drape "${skirt_levels[@]}" --output "$work/skirt_levels_whole" > "$work/skirt_levels_whole.log"
 interrupted skirt_levels 2 drape "${skirt_levels[@]}" --checkpoint-interval 1
+# Within the finer level of a drape on two levels: killed once the first
+# checkpoint within level 2 is written (/state's drape_level), resumed from
+# there (static: after a sewing stage; dynamic: at a multiple of 0.02 s).
+within_level() { # OUT LEVEL PID: waits until OUT/checkpoint.h5 is within LEVEL (from 0)
+  "$python" - "$1/checkpoint.h5" "$2" "$3" <<'PY'
+import json, os, sys, time
+import h5py
+path, level, pid = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+for _ in range(6000):  # up to 5 min on a loaded machine
+    try:
+        with h5py.File(path, "r") as f:
+            state = json.loads(f["state"][()].tobytes().decode())
+        if state.get("drape_level", {}).get("level") == level:
+            sys.exit(0)
+    except (OSError, KeyError, ValueError):
+        pass  # not written yet
+    try:
+        os.kill(pid, 0)
+    except OSError:
+        sys.exit(1)  # the run ended first
+    time.sleep(0.05)
+sys.exit(1)
+PY
+}
+# killed_in_level2 NAME ARGS...: drape ARGS into $work/NAME, killed within level 2, resumed.
+killed_in_level2() {
+  local name=$1 out="$work/$1"
+  shift
+  "$sartor" drape "$@" --output "$out" > "$out.log" 2>&1 &
+  local pid=$!
+  within_level "$out" 1 "$pid" || { cat "$out.log" >&2; echo "$name: no checkpoint within level 2" >&2; exit 1; }
+  kill -9 "$pid" && wait "$pid" 2> /dev/null || true
+  "$sartor" drape "$@" --restart "$out/checkpoint.h5" --output "$out" >> "$out.log" 2>&1 ||
+    { cat "$out.log" >&2; echo "$name: the resumed run failed" >&2; exit 1; }
+  grep -q "resuming from .* within level 2 of 2" "$out.log" ||
+    { cat "$out.log" >&2; echo "$name: did not resume within level 2" >&2; exit 1; }
+}
+skirt_dynamic_levels=("${skirt_levels[@]}" --analysis dynamic --time-end 0.2 --sewing-time 0.1 -settle false)
+killed_in_level2 skirt_level2 "${skirt_levels[@]}" --checkpoint-interval 1
+"$sartor" drape "${skirt_dynamic_levels[@]}" --output "$work/skirt_dynamic_levels_whole" \
+  > "$work/skirt_dynamic_levels_whole.log"
+killed_in_level2 skirt_dynamic_level2 "${skirt_dynamic_levels[@]}" --checkpoint-interval 0.02
+# A checkpoint within a level resumes only a drape with the same levels.
+if "$sartor" drape "${skirt[@]}" --levels 1 --restart "$work/skirt_level2/checkpoint.h5" \
+  --output "$work/wrong_levels" > "$work/wrong_levels.log" 2>&1; then
+  echo "a checkpoint within level 2 resumed a drape on one level" >&2
+  exit 1
+fi
+grep -q "within a level of a drape on several levels; resume it with the same --levels" \
+  "$work/wrong_levels.log" || { cat "$work/wrong_levels.log" >&2; exit 1; }
+
 "$sartor" drape "${skirt_dynamic[@]}" --output "$work/skirt_dynamic_whole" \
   > "$work/skirt_dynamic_whole.log"
 interrupted skirt_dynamic 2 drape "${skirt_dynamic[@]}" --checkpoint-interval 0.02
@@ -98,14 +151,17 @@ work = sys.argv[1]
 tolerance = 1e-6  # m
 failures = []
 
-def largest_difference(name):
-    with h5py.File(f"{work}/{name}_whole/result.h5") as a, h5py.File(f"{work}/{name}/result.h5") as b:
+def largest_difference(name, whole):
+    with h5py.File(f"{work}/{whole}_whole/result.h5") as a, h5py.File(f"{work}/{name}/result.h5") as b:
         x, y = a["fields/position"][()], b["fields/position"][()]
         moved = np.abs(x - a["mesh/initial_position"][()]).max() if "mesh/initial_position" in a else None
         return np.abs(x - y).max(), moved
 
-for name in ("plate", "sheet", "skirt", "skirt_levels", "skirt_dynamic"):
-    diff, moved = largest_difference(name)
+for name, whole in (("plate", "plate"), ("sheet", "sheet"), ("skirt", "skirt"),
+                    ("skirt_levels", "skirt_levels"), ("skirt_level2", "skirt_levels"),
+                    ("skirt_dynamic_level2", "skirt_dynamic_levels"),
+                    ("skirt_dynamic", "skirt_dynamic")):
+    diff, moved = largest_difference(name, whole)
     print(f"{name}: resumed final positions differ by {diff:.3g} m from the uninterrupted run's"
           + (f" (largest displacement {moved:.3g} m)" if moved is not None else ""))
     if not diff <= tolerance:
