@@ -172,8 +172,9 @@ dynamic_checkpoint_writer(ClothProblem& problem, const CaseCheckpointing& checkp
     for (int pin : problem.pinned())
       if (!checkpoint.velocities.empty()) checkpoint.velocities[std::size_t(pin)].setZero();
     PetscCall(problem.gather_anchors(&checkpoint.anchors));
-    if (!checkpointing.drape_level.empty()) checkpoint.start_positions = problem.mesh().positions;
     if (is_root()) {
+      // Within a drape level: the level's start, which its mesh holds.
+      if (!checkpointing.drape_level.empty()) checkpoint.start_positions = problem.mesh().positions;
       checkpoint.state = state_text(control, report, probe_history, checkpointing.drape_level);
       write_checkpoint(checkpointing.file, checkpoint);
     }

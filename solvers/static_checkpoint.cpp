@@ -153,8 +153,9 @@ static_checkpoint_writer(ClothProblem& problem, const CaseCheckpointing& checkpo
     checkpoint.load_factor = problem.load_factor;
     PetscCall(problem.gather_positions(x, &checkpoint.positions));
     PetscCall(problem.gather_anchors(&checkpoint.anchors));
-    if (!checkpointing.drape_level.empty()) checkpoint.start_positions = problem.mesh().positions;
     if (is_root()) {
+      // Within a drape level: the level's start, which its mesh holds.
+      if (!checkpointing.drape_level.empty()) checkpoint.start_positions = problem.mesh().positions;
       checkpoint.state = state_text(report, checkpointing.drape_level);
       write_checkpoint(checkpointing.file, checkpoint);
     }
