@@ -6,6 +6,7 @@
 // what the outputs report.
 
 #include "element/membrane.hpp"
+#include "fem/checkpoint.hpp"
 #include "fem/cloth_output.hpp"
 #include "fem/cloth_problem.hpp"
 #include "fem/dynamics.hpp"
@@ -71,6 +72,9 @@ struct CaseResult {
   // Dynamic runs: checkpoints written, and the time resumed from (--restart; -1: none), s.
   long checkpoints_written = 0;
   double resumed_time = -1.0;
+  // Statics: the last checkpoint written or resumed from (rank 0; null
+  // without checkpoints), which a wear's checkpoints carry as /before.
+  std::shared_ptr<const RunCheckpoint> last_checkpoint;
 
   // Rank 0 only (empty elsewhere): final positions and per-triangle strains.
   std::vector<Eigen::Vector3d> positions;
@@ -107,8 +111,10 @@ struct CaseCloth {
   // results are gathered (drape's wear, solvers/wear_case.hpp), with the
   // problem, its materials (per mesh material id), its seam springs and the
   // solved positions x, which it may advance.
+  // The last argument: CaseResult::last_checkpoint.
   std::function<void(ClothProblem&, const std::vector<ClothMaterial>&,
-                     const std::vector<SeamSpring>&, Vec)>
+                     const std::vector<SeamSpring>&, Vec,
+                     const std::shared_ptr<const RunCheckpoint>&)>
       after_statics;
 };
 // The panels' fabrics as the case's materials: cloth->fabrics lists each

@@ -93,6 +93,10 @@ std::string history_header(bool probe) {
 RunCheckpoint checked_checkpoint(const std::string& path, const ClothProblem& problem,
                                  bool dynamic) {
   RunCheckpoint checkpoint = read_checkpoint(path);
+  if (checkpoint.before || !checkpoint.state.empty()) {
+    throw InputError(path + ": the checkpoint is not of a creep run (a drape's or a wear's?); "
+                            "resume it as one");
+  }
   const TriangleMesh& mesh = problem.mesh();
   if (checkpoint.positions.size() != mesh.vertex_count() ||
       checkpoint.creep.size() != mesh.triangle_count()) {

@@ -21,6 +21,7 @@
 #include "solvers/garment_construction.hpp"
 #include "solvers/progressive_drape.hpp"
 #include "solvers/wear_case.hpp"
+#include "solvers/wear_checkpoint.hpp"
 
 #include <nlohmann/json.hpp>
 #include <petscsys.h>
@@ -722,6 +723,9 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
   if (wear_requested(options)) {
     if (dynamic) throw InputError("option --wear-time: wear follows a static drape, not dynamics");
     attach_wear(options, directory, labels, &cloth, wear);
+  } else if (options.is_set("restart") && within_wear(options.text("restart"))) {
+    throw InputError("option --restart: " + options.text("restart") +
+                     " was taken within a wear; resume it with the same --wear-time");
   }
   if (edit) {
     if (dynamic || wear_requested(options))

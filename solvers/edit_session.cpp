@@ -427,9 +427,12 @@ void attach_edit(const Options& options, const std::string& directory, EditGarme
                  const std::shared_ptr<EditRun>& run) {
   auto session = std::make_shared<EditSession>(options, directory, std::move(garment),
                                                std::move(steps), drape_started_cpu, run);
-  cloth->after_statics =
-      [session](ClothProblem& problem, const std::vector<ClothMaterial>& materials,
-                const std::vector<SeamSpring>&, Vec x) { session->edit(problem, materials, x); };
+  cloth->after_statics = [session](ClothProblem& problem,
+                                   const std::vector<ClothMaterial>& materials,
+                                   const std::vector<SeamSpring>&, Vec x,
+                                   const std::shared_ptr<const RunCheckpoint>&) {
+    session->edit(problem, materials, x);
+  };
 }
 
 } // namespace sartor

@@ -309,7 +309,9 @@ std::string level_record(std::size_t level, std::size_t count, const std::vector
 
 LevelResume read_level_checkpoint(const std::string& path, const std::vector<DrapeLevel>& levels,
                                   std::vector<LevelRun>* runs) {
-  const RunCheckpoint checkpoint = read_checkpoint(path);
+  // A wear's checkpoint: the drape's last, which it carries, is the level's.
+  const RunCheckpoint read = read_checkpoint(path);
+  const RunCheckpoint& checkpoint = read.before ? *read.before : read;
   LevelResume resume;
   std::size_t level = 0;
   try {

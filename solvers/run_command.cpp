@@ -897,6 +897,8 @@ void solve_static_case(ClothProblem& problem, Vec x, const StaticOptions& solve,
     check_drape_level(checkpointing, resume->drape_level);
     SartorPetscCall(resume->restore(problem, x));
     checkpointed.resume = &resume->report;
+    if (is_root())
+      result->last_checkpoint = std::make_shared<const RunCheckpoint>(resume->checkpoint);
     result->resumed_time = 0.0;
     SartorPetscCall(PetscPrintf(
         PETSC_COMM_WORLD,
@@ -905,8 +907,8 @@ void solve_static_case(ClothProblem& problem, Vec x, const StaticOptions& solve,
         resume->checkpoint.load_factor, resume->report.contact_rounds));
   }
   if (checkpointing.interval > 0.0)
-    checkpointed.checkpoint =
-        static_checkpoint_writer(problem, checkpointing, &result->checkpoints_written);
+    checkpointed.checkpoint = static_checkpoint_writer(
+        problem, checkpointing, &result->checkpoints_written, &result->last_checkpoint);
   SartorPetscCall(solve_static(problem, x, checkpointed, &result->report));
   reject_unmet_residual(problem.force_scale(), &result->report);
   warn_unconverged_stages(result->report);
@@ -1126,9 +1128,10 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   result.contact = measure_contact(options, problem, x, result.positions);
   if (cloth && cloth->after_statics && !dynamic && !creep && result.converged) {
     const bool springs = !seams.empty() && !(result.seams && result.seams->merged);
-    cloth->after_statics(
-        problem, materials,
-        springs ? case_seam_springs(options, mesh, seams, material) : std::vector<SeamSpring>{}, x);
+    cloth->after_statics(problem, materials,
+                         springs ? case_seam_springs(options, mesh, seams, material)
+                                 : std::vector<SeamSpring>{},
+                         x, result.last_checkpoint);
   }
   SartorPetscCall(VecDestroy(&x));
 

@@ -117,7 +117,8 @@ PetscErrorCode StaticResume::restore(ClothProblem& problem, Vec x) const {
 
 StaticResume read_static_checkpoint(const std::string& path, const ClothProblem& problem) {
   StaticResume resume;
-  resume.checkpoint = read_checkpoint(path);
+  const RunCheckpoint read = read_checkpoint(path);
+  resume.checkpoint = read.before ? *read.before : read;
   const RunCheckpoint& checkpoint = resume.checkpoint;
   if (checkpoint.state.empty() || !checkpoint.velocities.empty()) {
     throw InputError(path + ": the checkpoint is not of a static solve (a dynamic or creep "
@@ -142,8 +143,9 @@ StaticResume read_static_checkpoint(const std::string& path, const ClothProblem&
 
 std::function<PetscErrorCode(Vec, const StaticReport&)>
 static_checkpoint_writer(ClothProblem& problem, const CaseCheckpointing& checkpointing,
-                         long* written) {
-  return [&problem, checkpointing, written](Vec x, const StaticReport& report) -> PetscErrorCode {
+                         long* written, std::shared_ptr<const RunCheckpoint>* last) {
+  return [&problem, checkpointing, written, last](Vec x,
+                                                  const StaticReport& report) -> PetscErrorCode {
     RunCheckpoint checkpoint;
     PetscFunctionBeginUser;
     // A static solve has no clock: its load steps (those of the stages and
@@ -158,6 +160,7 @@ static_checkpoint_writer(ClothProblem& problem, const CaseCheckpointing& checkpo
       if (!checkpointing.drape_level.empty()) checkpoint.start_positions = problem.mesh().positions;
       checkpoint.state = state_text(report, checkpointing.drape_level);
       write_checkpoint(checkpointing.file, checkpoint);
+      *last = std::make_shared<const RunCheckpoint>(std::move(checkpoint));
     }
     ++*written;
     PetscFunctionReturn(0);

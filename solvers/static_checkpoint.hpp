@@ -22,14 +22,17 @@ struct StaticResume {
   PetscErrorCode restore(ClothProblem& problem, Vec x) const;
 };
 
-// Reads and checks a static solve's checkpoint against the problem's mesh.
-// Throws InputError naming the file when it is not one of this case.
+// Reads and checks a static solve's checkpoint against the problem's mesh:
+// the file's, or the /before of a later phase's (a wear's, which resumes
+// after the drape). Throws InputError naming the file when it is not one of
+// this case.
 StaticResume read_static_checkpoint(const std::string& path, const ClothProblem& problem);
 
 // Collective. The checkpoint writer for StaticOptions::checkpoint (rank 0
-// writes `checkpointing.file` atomically); counts them in *written.
+// writes `checkpointing.file` atomically and keeps it in *last); counts
+// them in *written.
 std::function<PetscErrorCode(Vec, const StaticReport&)>
 static_checkpoint_writer(ClothProblem& problem, const CaseCheckpointing& checkpointing,
-                         long* written);
+                         long* written, std::shared_ptr<const RunCheckpoint>* last);
 
 } // namespace sartor

@@ -7,12 +7,14 @@
 #include "material/fabric.hpp"
 #include "solvers/commands.hpp"
 #include "solvers/creep_case.hpp"
+#include "solvers/wear_checkpoint.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <ctime>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -156,11 +158,13 @@ std::vector<ClothTimeSeries::CellField> creep_fields(const std::vector<ElementCr
   return fields;
 }
 
-// The wear states (every accepted step) into DIRECTORY/wear/series.*.
-WearObserver wear_series(const std::string& directory, const ClothOutputLabels& labels) {
+// The wear states (every accepted step) into DIRECTORY/wear/series.*; a
+// resumed wear keeps the states up to `resumed_time` (s; negative: none).
+WearObserver wear_series(const std::string& directory, const ClothOutputLabels& labels,
+                         double resumed_time) {
   auto series = std::make_shared<std::unique_ptr<ClothTimeSeries>>();
-  return [directory, series, labels](ClothProblem& problem, Vec x, const CreepCoupling& creep,
-                                     double time) {
+  return [directory, series, labels, resumed_time](ClothProblem& problem, Vec x,
+                                                   const CreepCoupling& creep, double time) {
     std::vector<Eigen::Vector3d> positions;
     std::vector<element::MembraneStrain> strains;
     std::vector<ElementCreep> states;
@@ -170,11 +174,47 @@ WearObserver wear_series(const std::string& directory, const ClothOutputLabels& 
     if (!is_root()) return;
     if (!*series) {
       make_output_directory(directory + "/wear");
-      *series = std::make_unique<ClothTimeSeries>(directory + "/wear", problem.mesh(), labels);
+      *series = resumed_time < 0.0
+                    ? std::make_unique<ClothTimeSeries>(directory + "/wear", problem.mesh(), labels)
+                    : std::make_unique<ClothTimeSeries>(directory + "/wear", problem.mesh(), labels,
+                                                        resumed_time);
     }
     (*series)->write(time, positions, strains, creep_fields(states));
   };
 }
+
+// The wear's resume (when --restart is a checkpoint taken within the wear)
+// and its checkpoints (with --checkpoint-interval: after every wear step).
+class WearCheckpoints {
+public:
+  // `resume`: read_wear_checkpoint's of --restart, read before the drape.
+  WearCheckpoints(const CaseCheckpointing& checkpointing, std::optional<WearResume> resume,
+                  const ClothProblem& problem, const std::shared_ptr<const RunCheckpoint>& drape,
+                  WearRun* run)
+      : resume_(std::move(resume)) {
+    if (resume_) {
+      check_wear_mesh(*resume_, checkpointing.restart_file, problem.mesh());
+      restart_.resume = &resume_->checkpoint;
+      restart_.resumed = &resume_->report;
+      restart_.contact_stiffness_scale = resume_->contact_stiffness_scale;
+      run->resumed_time = resume_->checkpoint.time;
+      SartorPetscCall(PetscPrintf(problem.comm(),
+                                  "sartor drape: resuming the wear from %s at t = %g s\n",
+                                  checkpointing.restart_file.c_str(), run->resumed_time));
+    }
+    if (checkpointing.interval > 0.0) {
+      restart_.write = wear_checkpoint_writer(checkpointing.file, drape, &run->checkpoints_written);
+    }
+  }
+  WearCheckpoints(const WearCheckpoints&) = delete;
+  WearCheckpoints& operator=(const WearCheckpoints&) = delete;
+  double resumed_time() const { return resume_ ? resume_->checkpoint.time : -1.0; }
+  const WearRestart& restart() const { return restart_; }
+
+private:
+  std::optional<WearResume> resume_;
+  WearRestart restart_; // points into resume_
+};
 
 } // namespace
 
@@ -186,9 +226,15 @@ void attach_wear(const Options& options, const std::string& directory,
   run->fabrics = cloth->fabrics;
   const std::vector<CreepMaterial> creep = wear_creep_materials(options, cloth->fabrics);
   const std::vector<double> gravity = option_numbers(options, "gravity", 3);
-  cloth->after_statics = [&options, settings, creep, gravity, directory, labels,
-                          run](ClothProblem& problem, const std::vector<ClothMaterial>& materials,
-                               const std::vector<SeamSpring>& springs, Vec x) {
+  const CaseCheckpointing checkpointing = case_checkpointing(options, directory);
+  auto resume = std::make_shared<std::optional<WearResume>>();
+  if (!checkpointing.restart_file.empty())
+    *resume = read_wear_checkpoint(checkpointing.restart_file);
+  cloth->after_statics = [&options, settings, creep, gravity, directory, labels, run, checkpointing,
+                          resume](ClothProblem& problem,
+                                  const std::vector<ClothMaterial>& materials,
+                                  const std::vector<SeamSpring>& springs, Vec x,
+                                  const std::shared_ptr<const RunCheckpoint>& drape) {
     const double cpu_start = process_cpu_seconds();
     WearGarment garment;
     garment.materials = materials;
@@ -213,8 +259,10 @@ void attach_wear(const Options& options, const std::string& directory,
                                 "at take-off, %zu hem vertices\n",
                                 settings.wear.time_end, run->scheme.c_str(), garment.held.size(),
                                 garment.hem.size()));
-    SartorPetscCall(
-        solve_wear(problem, x, garment, settings, &run->report, wear_series(directory, labels)));
+    const WearCheckpoints checkpoints(checkpointing, std::move(*resume), problem, drape, run.get());
+    SartorPetscCall(solve_wear(problem, x, garment, settings, &run->report,
+                               wear_series(directory, labels, checkpoints.resumed_time()),
+                               checkpoints.restart()));
     if (is_root()) {
       make_output_directory(directory + "/takeoff");
       ClothTimeSeries series(directory + "/takeoff", problem.mesh(), labels);
@@ -298,6 +346,9 @@ void add_wear_summary(const WearRun& run, const ClothOutputLabels& labels,
       {"fresh_hung_hem_height_m", report.fresh_hem_height},
       {"fresh_hung_converged", report.fresh_converged},
       {"take_offs", take_offs},
+      {"checkpoints_written", run.checkpoints_written},
+      {"resumed_at_s",
+       run.resumed_time >= 0.0 ? nlohmann::json(run.resumed_time) : nlohmann::json()},
       {"cpu_s", run.cpu_seconds}};
 }
 

@@ -33,6 +33,8 @@ struct WearRun {
   WearReport report;
   std::vector<int> held, hem;
   double cpu_seconds = 0.0;
+  long checkpoints_written = 0;
+  double resumed_time = -1.0; // s: the wear time resumed from (--restart); -1: none
 };
 
 // Sets cloth->after_statics so that the drape's solve goes on into the wear

@@ -673,7 +673,8 @@ nlohmann::json certificate_json(const Certificate& c) {
                          {"centroid_drop_m", p.centroid_drop}};
   }
   const StabilityCheck& s = c.stability;
-  json["stability"] = {{"assessed", s.assessed},
+  json["stability"] = {{"requested", c.options.stability},
+                       {"assessed", s.assessed},
                        {"stable", s.stable()},
                        {"saddle", c.saddle()},
                        {"free_dofs", s.free_dofs},
@@ -682,6 +683,63 @@ nlohmann::json certificate_json(const Certificate& c) {
                        {"zero_mode_shift_per_s2", s.sigma},
                        {"from_symmetric_part", s.from_symmetric_part}};
   return json;
+}
+
+Certificate certificate_from_json(const nlohmann::json& json) {
+  Certificate c;
+  const nlohmann::json& equilibrium = json.at("equilibrium");
+  c.residual_norm = equilibrium.at("residual_norm_N").get<double>();
+  c.reference_force = equilibrium.at("reference_force_N").get<double>();
+  c.relative_residual = equilibrium.at("relative_residual").get<double>();
+  c.options.residual_tolerance = equilibrium.at("tolerance").get<double>();
+  const nlohmann::json& seams = json.at("seams");
+  c.seam_gap = seams.at("largest_gap_m").get<double>();
+  c.options.seam_gap_tolerance = seams.at("tolerance_m").get<double>();
+  c.has_bodies = json.contains("depth");
+  if (c.has_bodies) {
+    const nlohmann::json& depth = json.at("depth");
+    c.contact_offset = depth.at("contact_offset_m").get<double>();
+    c.min_distance = depth.at("min_distance_m").get<double>();
+    c.relative_depth = depth.at("relative_depth").get<double>();
+    c.deepest_vertex = depth.at("deepest_vertex").get<long>();
+    c.options.depth_tolerance = depth.at("tolerance").get<double>();
+    const nlohmann::json& edges = json.at("edges");
+    c.edges = edges.at("tested").get<long>();
+    c.edges_inside = edges.at("inside_a_body").get<long>();
+    c.edges_through = edges.at("both_ends_outside").get<long>();
+    c.deepest_edge_point = edges.at("deepest_point_m").get<double>();
+    const nlohmann::json& coulomb = json.at("coulomb");
+    CoulombCheck& k = c.coulomb;
+    k.contacts = coulomb.at("contacts").get<long>();
+    k.sticking = coulomb.at("sticking").get<long>();
+    k.sliding = coulomb.at("sliding").get<long>();
+    k.outside_cone = coulomb.at("outside_cone").get<long>();
+    k.pulling = coulomb.at("pulling").get<long>();
+    k.worst_ratio = coulomb.at("worst_ratio").get<double>();
+    k.worst_vertex = coulomb.at("worst_vertex").get<long>();
+    c.options.cone_tolerance = coulomb.at("tolerance").get<double>();
+  }
+  c.placement.applicable = json.contains("placement");
+  if (c.placement.applicable) {
+    const nlohmann::json& placement = json.at("placement");
+    PlacementCheck& p = c.placement;
+    p.carried_share = placement.at("body_shares").get<std::vector<double>>();
+    p.pins_share = placement.at("pins_share").get<double>();
+    p.on_floor = placement.at("on_floor").get<bool>();
+    p.off_body = placement.at("off_body").get<bool>();
+    p.fell_below_start = placement.at("fell_below_start").get<bool>();
+    p.centroid_drop = placement.at("centroid_drop_m").get<double>();
+  }
+  const nlohmann::json& stability = json.at("stability");
+  StabilityCheck& s = c.stability;
+  s.assessed = stability.at("assessed").get<bool>();
+  s.from_symmetric_part = stability.at("from_symmetric_part").get<bool>();
+  s.free_dofs = stability.at("free_dofs").get<long>();
+  s.negative = stability.at("negative_directions").get<long>();
+  s.zero_modes = stability.at("zero_modes").get<long>();
+  s.sigma = stability.at("zero_mode_shift_per_s2").get<double>();
+  c.options.stability = stability.at("requested").get<bool>();
+  return c;
 }
 
 } // namespace sartor

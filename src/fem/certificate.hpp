@@ -134,5 +134,9 @@ PetscErrorCode descent_direction(ClothProblem& problem, Vec x, const Certificate
 
 // The "certificate" block of summary.json.
 nlohmann::json certificate_json(const Certificate& certificate);
+// Its inverse (a checkpoint keeps certificates so): the measures and the
+// tolerances it holds, the other options at their defaults. Throws
+// nlohmann::json::exception when a field is missing or of the wrong type.
+Certificate certificate_from_json(const nlohmann::json& json);
 
 } // namespace sartor

@@ -148,16 +148,16 @@ std::string read_text(hid_t file, const char* name, const std::string& path, boo
   return text;
 }
 
-std::uint64_t read_checksum(hid_t file, const std::string& path) {
-  if (H5Lexists(file, "/checksum", H5P_DEFAULT) <= 0) {
-    throw InputError(path + ": not a complete checkpoint (no dataset /checksum)");
+std::uint64_t read_checksum(hid_t file, const std::string& name, const std::string& path) {
+  if (H5Lexists(file, name.c_str(), H5P_DEFAULT) <= 0) {
+    throw InputError(path + ": not a complete checkpoint (no dataset " + name + ")");
   }
-  const H5Handle set(H5Dopen2(file, "/checksum", H5P_DEFAULT), H5Dclose);
+  const H5Handle set(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose);
   const H5Handle space(H5Dget_space(set.get()), H5Sclose);
   unsigned long long sum = 0;
   if (set.get() < 0 || H5Sget_simple_extent_npoints(space.get()) != 1 ||
       H5Dread(set.get(), H5T_NATIVE_ULLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &sum) < 0) {
-    throw InputError(path + ": cannot read dataset /checksum");
+    throw InputError(path + ": cannot read dataset " + name);
   }
   return sum;
 }
@@ -199,7 +199,7 @@ std::vector<double> anchor_rows(const std::vector<AnchorRow>& anchors) {
 }
 
 // The sum of everything a checkpoint holds, in the order it is written.
-std::uint64_t checksum(const RunCheckpoint& checkpoint) {
+std::uint64_t checksum(const RunCheckpoint& checkpoint) { // NOLINT(misc-no-recursion)
   Checksum sum;
   sum.add(checkpoint.time);
   sum.add(checkpoint.next_step);
@@ -212,9 +212,52 @@ std::uint64_t checksum(const RunCheckpoint& checkpoint) {
   sum.add(anchor_rows(checkpoint.anchors));
   sum.add(checkpoint.history.data(), checkpoint.history.size());
   sum.add(checkpoint.state.data(), checkpoint.state.size());
-  // Summed only when present, so that files without it sum as before.
+  // Summed only when present, so that files without them sum as before.
   if (!checkpoint.start_positions.empty()) sum.add(flatten(checkpoint.start_positions));
+  if (checkpoint.before) {
+    const std::uint64_t before = checksum(*checkpoint.before);
+    sum.add(&before, sizeof before);
+  }
   return sum.value();
+}
+
+} // namespace
+
+namespace {
+
+// The checkpoint's datasets in `group` ("" for the file's root).
+void write_contents(hid_t f, const std::string& group, const RunCheckpoint& checkpoint,
+                    const std::string& path) {
+  const auto name = [&group](const char* set) { return group + set; };
+  write_set(f, name("/time").c_str(), H5T_NATIVE_DOUBLE, &checkpoint.time, {1}, path);
+  write_set(f, name("/next_step").c_str(), H5T_NATIVE_DOUBLE, &checkpoint.next_step, {1}, path);
+  write_set(f, name("/load_factor").c_str(), H5T_NATIVE_DOUBLE, &checkpoint.load_factor, {1}, path);
+  const long long step = checkpoint.step;
+  write_set(f, name("/step").c_str(), H5T_NATIVE_LLONG, &step, {1}, path);
+  write_rows(f, name("/positions").c_str(), flatten(checkpoint.positions), 3, path);
+  if (!checkpoint.velocities.empty()) {
+    write_rows(f, name("/velocities").c_str(), flatten(checkpoint.velocities), 3, path);
+  }
+  if (!checkpoint.start_positions.empty()) {
+    write_rows(f, name("/start_positions").c_str(), flatten(checkpoint.start_positions), 3, path);
+  }
+  write_rows(f, name("/creep").c_str(), creep_rows(checkpoint.creep), 6, path);
+  write_rows(f, name("/anchors").c_str(), anchor_rows(checkpoint.anchors), 10, path);
+  const unsigned long long sum = checksum(checkpoint);
+  write_set(f, name("/checksum").c_str(), H5T_NATIVE_ULLONG, &sum, {1}, path);
+  write_set(f, name("/history").c_str(), H5T_NATIVE_CHAR, checkpoint.history.data(),
+            {checkpoint.history.size()}, path);
+  if (!checkpoint.state.empty()) {
+    write_set(f, name("/state").c_str(), H5T_NATIVE_CHAR, checkpoint.state.data(),
+              {checkpoint.state.size()}, path);
+  }
+  if (checkpoint.before) {
+    if (checkpoint.before->before) throw InputError(path + ": a checkpoint nests one phase only");
+    const H5Handle before(
+        H5Gcreate2(f, name("/before").c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+    if (before.get() < 0) throw InputError(path + ": cannot write /before");
+    write_contents(f, name("/before"), *checkpoint.before, path);
+  }
 }
 
 } // namespace
@@ -226,28 +269,7 @@ void write_checkpoint(const std::string& path, const RunCheckpoint& checkpoint) 
                         H5Fclose);
     if (file.get() < 0) throw InputError(path + ": cannot create checkpoint file " + temporary);
     const hid_t f = file.get();
-    write_set(f, "/time", H5T_NATIVE_DOUBLE, &checkpoint.time, {1}, path);
-    write_set(f, "/next_step", H5T_NATIVE_DOUBLE, &checkpoint.next_step, {1}, path);
-    write_set(f, "/load_factor", H5T_NATIVE_DOUBLE, &checkpoint.load_factor, {1}, path);
-    const long long step = checkpoint.step;
-    write_set(f, "/step", H5T_NATIVE_LLONG, &step, {1}, path);
-    write_rows(f, "/positions", flatten(checkpoint.positions), 3, path);
-    if (!checkpoint.velocities.empty()) {
-      write_rows(f, "/velocities", flatten(checkpoint.velocities), 3, path);
-    }
-    if (!checkpoint.start_positions.empty()) {
-      write_rows(f, "/start_positions", flatten(checkpoint.start_positions), 3, path);
-    }
-    write_rows(f, "/creep", creep_rows(checkpoint.creep), 6, path);
-    write_rows(f, "/anchors", anchor_rows(checkpoint.anchors), 10, path);
-    const unsigned long long sum = checksum(checkpoint);
-    write_set(f, "/checksum", H5T_NATIVE_ULLONG, &sum, {1}, path);
-    write_set(f, "/history", H5T_NATIVE_CHAR, checkpoint.history.data(),
-              {checkpoint.history.size()}, path);
-    if (!checkpoint.state.empty()) {
-      write_set(f, "/state", H5T_NATIVE_CHAR, checkpoint.state.data(), {checkpoint.state.size()},
-                path);
-    }
+    write_contents(f, "", checkpoint, path);
     const H5Handle string_type(H5Tcopy(H5T_C_S1), H5Tclose);
     H5Tset_size(string_type.get(), std::strlen(format_tag));
     const H5Handle scalar(H5Screate(H5S_SCALAR), H5Sclose);
@@ -264,6 +286,59 @@ void write_checkpoint(const std::string& path, const RunCheckpoint& checkpoint) 
   }
   flush_directory(path);
 }
+
+namespace {
+
+// The checkpoint in `group` ("" for the file's root), its checksum verified.
+RunCheckpoint read_contents(hid_t f, const std::string& group, // NOLINT(misc-no-recursion)
+                            const std::string& path) {
+  const auto name = [&group](const char* set) { return group + set; };
+  RunCheckpoint checkpoint;
+  checkpoint.time = read_scalar(f, name("/time").c_str(), path);
+  checkpoint.next_step = read_scalar(f, name("/next_step").c_str(), path);
+  checkpoint.load_factor = read_scalar(f, name("/load_factor").c_str(), path);
+  const double step = read_scalar(f, name("/step").c_str(), path);
+  if (!(step >= 0.0 && step <= 1e15)) throw InputError(path + ": the step count is not valid");
+  checkpoint.step = long(step);
+  checkpoint.positions = vectors(read_rows(f, name("/positions").c_str(), 3, path));
+  checkpoint.velocities = vectors(read_rows(f, name("/velocities").c_str(), 3, path, false));
+  checkpoint.start_positions =
+      vectors(read_rows(f, name("/start_positions").c_str(), 3, path, false));
+  const auto creep = read_rows(f, name("/creep").c_str(), 6, path);
+  for (std::size_t i = 0; i + 6 <= creep.size(); i += 6) {
+    ElementCreep c;
+    c.warp = {creep[i], creep[i + 1]};
+    c.weft = {creep[i + 2], creep[i + 3]};
+    c.tension_warp = creep[i + 4];
+    c.tension_weft = creep[i + 5];
+    checkpoint.creep.push_back(c);
+  }
+  const auto anchors = read_rows(f, name("/anchors").c_str(), 10, path);
+  for (std::size_t i = 0; i + 10 <= anchors.size(); i += 10) {
+    AnchorRow row;
+    std::copy_n(anchors.begin() + long(i), 10, row.begin());
+    checkpoint.anchors.push_back(row);
+  }
+  checkpoint.history = read_text(f, name("/history").c_str(), path, true);
+  checkpoint.state = read_text(f, name("/state").c_str(), path, false);
+  // Only the file's root may hold the phase before (a group, not a dataset).
+  if (group.empty() && H5Lexists(f, "/before", H5P_DEFAULT) > 0) {
+    if (H5Lexists(f, "/before/before", H5P_DEFAULT) > 0)
+      throw InputError(path + ": a checkpoint nests one phase only (/before/before)");
+    checkpoint.before = std::make_shared<const RunCheckpoint>(read_contents(f, "/before", path));
+  }
+  if (checksum(checkpoint) != read_checksum(f, name("/checksum"), path)) {
+    throw InputError(path + ": the checkpoint is corrupted (its checksum does not match its "
+                            "contents); resume from another checkpoint or start again");
+  }
+  if (!(checkpoint.time >= 0.0) || !std::isfinite(checkpoint.time) ||
+      !(checkpoint.next_step > 0.0) || !std::isfinite(checkpoint.next_step)) {
+    throw InputError(path + ": time or next step size is not valid");
+  }
+  return checkpoint;
+}
+
+} // namespace
 
 RunCheckpoint read_checkpoint(const std::string& path) {
   // HDF5 would print its own error stack for a file that is not HDF5.
@@ -284,42 +359,7 @@ RunCheckpoint read_checkpoint(const std::string& path) {
     throw InputError(path + ": not a Sartor checkpoint (its format is not '" +
                      std::string(format_tag) + "')");
   }
-  RunCheckpoint checkpoint;
-  checkpoint.time = read_scalar(f, "/time", path);
-  checkpoint.next_step = read_scalar(f, "/next_step", path);
-  checkpoint.load_factor = read_scalar(f, "/load_factor", path);
-  const double step = read_scalar(f, "/step", path);
-  if (!(step >= 0.0 && step <= 1e15)) throw InputError(path + ": the step count is not valid");
-  checkpoint.step = long(step);
-  checkpoint.positions = vectors(read_rows(f, "/positions", 3, path));
-  checkpoint.velocities = vectors(read_rows(f, "/velocities", 3, path, false));
-  checkpoint.start_positions = vectors(read_rows(f, "/start_positions", 3, path, false));
-  const auto creep = read_rows(f, "/creep", 6, path);
-  for (std::size_t i = 0; i + 6 <= creep.size(); i += 6) {
-    ElementCreep c;
-    c.warp = {creep[i], creep[i + 1]};
-    c.weft = {creep[i + 2], creep[i + 3]};
-    c.tension_warp = creep[i + 4];
-    c.tension_weft = creep[i + 5];
-    checkpoint.creep.push_back(c);
-  }
-  const auto anchors = read_rows(f, "/anchors", 10, path);
-  for (std::size_t i = 0; i + 10 <= anchors.size(); i += 10) {
-    AnchorRow row;
-    std::copy_n(anchors.begin() + long(i), 10, row.begin());
-    checkpoint.anchors.push_back(row);
-  }
-  checkpoint.history = read_text(f, "/history", path, true);
-  checkpoint.state = read_text(f, "/state", path, false);
-  if (checksum(checkpoint) != read_checksum(f, path)) {
-    throw InputError(path + ": the checkpoint is corrupted (its checksum does not match its "
-                            "contents); resume from another checkpoint or start again");
-  }
-  if (!(checkpoint.time >= 0.0) || !std::isfinite(checkpoint.time) ||
-      !(checkpoint.next_step > 0.0) || !std::isfinite(checkpoint.next_step)) {
-    throw InputError(path + ": time or next step size is not valid");
-  }
-  return checkpoint;
+  return read_contents(f, "", path);
 }
 
 } // namespace sartor

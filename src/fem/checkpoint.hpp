@@ -18,10 +18,13 @@
 // (N; inf where not known) and whether the anchor slid at its last update),
 // /history (the history CSV text), /state (optional: JSON text of the
 // controller of a dynamic run or a static drape, fem/run_state.hpp),
-// /checksum (uint64: FNV-1a over all of the above, verified on reading: a
-// corrupted file is refused), and the attribute /format = "sartor-checkpoint
-// 3". A file without /state sums as one with an empty /state, so checkpoints
-// written before /state existed still resume.
+// /before (optional: a group holding, in this same layout, the checkpoint of
+// the phase this run followed: a drape's last, under its wear's checkpoints),
+// /checksum (uint64: FNV-1a over all of the above, /before's own checksum
+// standing for /before, verified on reading: a corrupted file is refused),
+// and the attribute /format = "sartor-checkpoint 3". A file without /state
+// sums as one with an empty /state, so checkpoints written before /state
+// existed still resume.
 
 #include "fem/cloth_problem.hpp"
 #include "fem/creep_coupling.hpp"
@@ -29,6 +32,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -48,6 +52,9 @@ struct RunCheckpoint {
   std::vector<AnchorRow> anchors;
   std::string history; // the run's history file (CSV) up to this state
   std::string state;   // JSON: the step controller and reports so far; "" for creep runs
+  // The last checkpoint of the phase this run followed (the drape a wear
+  // starts from), which a restart resumes first; null for a run of one phase
+  std::shared_ptr<const RunCheckpoint> before;
 };
 
 // Atomic (temporary file and rename). Throws InputError when it cannot write.

@@ -368,7 +368,7 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
     }
     report->steps.push_back(accepted);
     if (observe) PetscCall(observe(accepted, x));
-    if (t >= next_checkpoint - tiny) {
+    if (restart.every_step || t >= next_checkpoint - tiny) {
       next_checkpoint = next_multiple(t, restart.checkpoint_interval, tiny);
       if (restart.write) PetscCall(restart.write(accepted, x, velocity, dt));
     }

@@ -83,6 +83,7 @@ using CreepObserver = std::function<PetscErrorCode(const CreepStepReport&, Vec x
 struct CreepRestart {
   const RunCheckpoint* resume = nullptr; // start from this state instead of solving
   double checkpoint_interval = 0.0;      // s of simulated time; 0: none
+  bool every_step = false;               // a checkpoint after every accepted step
   // Writes a checkpoint of the state after `step` (collective; the caller
   // adds what it keeps, such as its history rows). v: the velocities in the
   // dynamic variant, else null.

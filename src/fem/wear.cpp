@@ -292,11 +292,25 @@ PetscErrorCode measure_step(ClothProblem& worn, Vec x, const CreepCoupling& cree
   PetscFunctionReturn(0);
 }
 
+// What the wear had done by the state it resumes from.
+void resume_report(const WearRestart& restart, ClothProblem& worn, WearReport* report) {
+  const WearReport& resumed = *restart.resumed;
+  report->steps = resumed.steps;
+  report->certified_steps = resumed.certified_steps;
+  report->take_offs = resumed.take_offs;
+  report->wear.newton_iterations = resumed.wear.newton_iterations;
+  report->wear.rejected_steps = resumed.wear.rejected_steps;
+  report->wear.steps.clear();
+  for (const WearStep& step : resumed.steps)
+    report->wear.steps.push_back(step.step);
+  worn.contact.stiffness_scale = restart.contact_stiffness_scale;
+}
+
 } // namespace
 
 PetscErrorCode solve_wear(ClothProblem& worn, Vec x, const WearGarment& garment,
                           const WearOptions& options, WearReport* report,
-                          const WearObserver& observe) {
+                          const WearObserver& observe, const WearRestart& restart) {
   PetscFunctionBeginUser;
   check(garment, options);
   // The drape's sewing is over: the seams pull with their own stiffness and
@@ -319,7 +333,8 @@ PetscErrorCode solve_wear(ClothProblem& worn, Vec x, const WearGarment& garment,
     knots.push_back({t, 1.0});
   if (!knots.empty()) wear.load = LoadHistory(knots, "wear: take-off times");
   CreepCoupling creep(worn, garment.creep);
-  std::size_t next_take_off = 0;
+  if (restart.resume) resume_report(restart, worn, report);
+  std::size_t next_take_off = report->take_offs.size();
   const double tiny = 1e-9 * options.wear.time_end;
   const CreepObserver follow = [&](const CreepStepReport& step, Vec state) -> PetscErrorCode {
     PetscFunctionBeginUser;
@@ -343,7 +358,15 @@ PetscErrorCode solve_wear(ClothProblem& worn, Vec x, const WearGarment& garment,
     }
     PetscFunctionReturn(0);
   };
-  PetscCall(solve_creep(worn, creep, x, wear, &report->wear, follow));
+  CreepRestart checkpoints;
+  checkpoints.resume = restart.resume;
+  if (restart.write) {
+    checkpoints.every_step = true;
+    checkpoints.write = [&](const CreepStepReport& step, Vec state, Vec, double next_step) {
+      return restart.write(worn, state, creep, step, next_step, *report);
+    };
+  }
+  PetscCall(solve_creep(worn, creep, x, wear, &report->wear, follow, checkpoints));
   CertificateOptions final_options;
   PetscCall(certify(worn, x, final_options, &report->final_certificate));
   PetscFunctionReturn(0);

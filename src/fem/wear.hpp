@@ -150,11 +150,29 @@ struct WearReport {
 using WearObserver =
     std::function<void(ClothProblem& problem, Vec x, const CreepCoupling& creep, double time)>;
 
+// Where a wear resumes from, and its checkpoints (docs/reliability.md).
+struct WearRestart {
+  // The worn state after an accepted wear step (time, step, next step,
+  // positions, creep, friction anchors), and what the wear had done by then
+  // (its steps and take-offs) with the contact stiffness scale it had.
+  const RunCheckpoint* resume = nullptr;
+  const WearReport* resumed = nullptr;
+  double contact_stiffness_scale = 1.0;
+  // Collective, after every accepted wear step (and its take-off, if any):
+  // writes a checkpoint of x, the report so far, the next step size.
+  std::function<PetscErrorCode(ClothProblem& worn, Vec x, const CreepCoupling& creep,
+                               const CreepStepReport& step, double next_step,
+                               const WearReport& report)>
+      write;
+};
+
 // Collective. `worn`: the draped problem, x its static equilibrium (advanced
-// in place to the end of the wear). Throws InputError for bad options.
+// in place to the end of the wear). The garment taken off is measured
+// against the fresh garment hung from x, so a resumed wear passes the same
+// draped x. Throws InputError for bad options.
 PetscErrorCode solve_wear(ClothProblem& worn, Vec x, const WearGarment& garment,
                           const WearOptions& options, WearReport* report,
-                          const WearObserver& observe = {});
+                          const WearObserver& observe = {}, const WearRestart& restart = {});
 
 // Mean height of `vertices` (positions in mesh numbering), m.
 double mean_height(const std::vector<Eigen::Vector3d>& positions, const std::vector<int>& vertices);

@@ -22,6 +22,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <memory>
 #include <random>
 
 namespace sartor {
@@ -415,6 +416,54 @@ TEST(Checkpoint, StartPositionsRoundTripAndAreSummed) {
   write_checkpoint(path, written);
   EXPECT_TRUE(read_checkpoint(path).start_positions.empty());
   std::remove(path.c_str());
+}
+
+// The checkpoint of the phase before (/before: a drape's last, which its
+// wear's checkpoints carry) reads back whole and is summed: a flipped bit in
+// it is refused. One phase nests, no more.
+TEST(Checkpoint, PhaseBeforeRoundTripsAndIsSummed) {
+  auto drape = std::make_shared<RunCheckpoint>();
+  drape->next_step = 1.0;
+  drape->step = 9;
+  const double marker = 0.314159265358979312;
+  drape->positions = {{0.1, marker, 0.3}};
+  drape->start_positions = {{0.0, 0.5, 0.0}};
+  drape->anchors = {AnchorRow{}};
+  drape->state = R"({"kind":"static"})";
+  RunCheckpoint written;
+  written.time = 60.0;
+  written.next_step = 12.0;
+  written.step = 5;
+  written.positions = {{0.1, 0.2, 0.25}};
+  written.creep = {ElementCreep{}};
+  written.state = R"({"kind":"wear"})";
+  written.before = drape;
+  const std::string path = "test_checkpoint_before.h5";
+  write_checkpoint(path, written);
+  const RunCheckpoint read = read_checkpoint(path);
+  ASSERT_TRUE(read.before);
+  EXPECT_EQ(read.time, 60.0);
+  EXPECT_EQ(read.positions, written.positions);
+  EXPECT_EQ(read.state, written.state);
+  EXPECT_EQ(read.before->step, 9);
+  EXPECT_EQ(read.before->positions[0].y(), marker);
+  EXPECT_EQ(read.before->start_positions, drape->start_positions);
+  EXPECT_EQ(read.before->anchors.size(), 1u);
+  EXPECT_EQ(read.before->state, drape->state);
+  EXPECT_FALSE(read.before->before);
+  const std::string good = file_bytes(path);
+  std::string marker_bytes(sizeof marker, '\0');
+  std::memcpy(marker_bytes.data(), &marker, sizeof marker);
+  const std::size_t at = good.find(marker_bytes);
+  ASSERT_NE(at, std::string::npos);
+  std::string flipped = good;
+  flipped[at + 3] = char(flipped[at + 3] ^ 4);
+  expect_refused(path, flipped, "a bit of the phase before's positions flipped");
+  RunCheckpoint twice = written;
+  twice.before = std::make_shared<RunCheckpoint>(written); // whose own /before is the drape's
+  EXPECT_THROW(write_checkpoint(path, twice), InputError);
+  std::remove(path.c_str());
+  std::remove((path + ".tmp").c_str());
 }
 
 } // namespace

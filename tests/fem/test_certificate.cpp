@@ -191,6 +191,52 @@ TEST(Certificate, EdgesThroughAThinBodyAreCounted) {
   VecDestroy(&x);
 }
 
+// A checkpoint keeps certificates as their summary.json block: every
+// measure and tolerance it holds reads back exactly, so the verdict does.
+TEST(Certificate, JsonRoundTripKeepsEveryMeasure) {
+  Certificate c;
+  c.residual_norm = 0.1 / 3.0;
+  c.reference_force = 1.4245;
+  c.relative_residual = c.residual_norm / c.reference_force;
+  c.options.residual_tolerance = 5e-2;
+  c.seam_gap = 2.5e-4;
+  c.options.seam_gap_tolerance = 1e-3;
+  c.has_bodies = true;
+  c.contact_offset = 1e-3;
+  c.min_distance = 3.0e-4;
+  c.relative_depth = 0.7;
+  c.deepest_vertex = 17;
+  c.options.depth_tolerance = 0.9;
+  c.edges = 1200;
+  c.edges_inside = 0;
+  c.edges_through = 0;
+  c.deepest_edge_point = 0.0;
+  c.coulomb = {40, 30, 9, 1, 0, 1.07, 5};
+  c.options.cone_tolerance = 0.05;
+  c.placement.applicable = true;
+  c.placement.carried_share = {0.75, 0.125};
+  c.placement.pins_share = 0.125;
+  c.placement.centroid_drop = 0.02;
+  c.stability = {true, false, 900, 2, 1, 1e-3};
+  const Certificate read = certificate_from_json(certificate_json(c));
+  EXPECT_EQ(read.verdict(), c.verdict());
+  EXPECT_EQ(certificate_json(read), certificate_json(c));
+  EXPECT_EQ(read.relative_residual, c.relative_residual);
+  EXPECT_EQ(read.placement.carried_share, c.placement.carried_share);
+  EXPECT_EQ(read.stability.negative, 2);
+  EXPECT_TRUE(read.saddle());
+  c.has_bodies = false; // and so no contacts
+  c.coulomb = {};
+  c.placement.applicable = false;
+  c.stability = {};
+  const Certificate bare = certificate_from_json(certificate_json(c));
+  EXPECT_FALSE(bare.has_bodies);
+  EXPECT_FALSE(bare.placement.applicable);
+  EXPECT_EQ(certificate_json(bare), certificate_json(c));
+  EXPECT_THROW(certificate_from_json(nlohmann::json{{"certified", true}}),
+               nlohmann::json::exception);
+}
+
 // A strip of length L, width w, its short edges pinned, compressed
 // uniformly by strain e (an equilibrium without gravity): membrane force
 // N = E e per unit width. Euler's load per unit width lies between

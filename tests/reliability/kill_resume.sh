@@ -4,8 +4,9 @@
 # swinging sheet), a static drape (the skirt: sewing
 # stages and contact rounds), the same on two refinement levels (killed at
 # random moments, and once within the second level; a dynamic drape on two
-# levels too), and a
-# dynamic drape (the skirt sewn in time) are
+# levels too), a
+# dynamic drape (the skirt sewn in time), and a static drape worn for 40 s
+# (killed once within the wear after its first take-off) are
 # each run once uninterrupted, then again with checkpoints, killed with
 # SIGKILL a few times at moments drawn from a fixed seed (the first after its
 # first checkpoint appeared), resumed with --restart into the same output
@@ -13,8 +14,8 @@
 # states of series.h5 and dynamics.csv, must equal the uninterrupted run's
 # within 1e-6 m (the drapes' solver tolerance is 1e-6 of the weight in
 # force; the displacements are 0.05 to 1 m), and the static run's load steps
-# (load factors, Newton iterations) must be the uninterrupted run's. The
-# differences are printed.
+# (load factors, Newton iterations) and the wear's tables must be the
+# uninterrupted run's. The differences are printed.
 #   kill_resume.sh SARTOR PROJECT_DIR WORKDIR
 set -euo pipefail
 sartor=$1 project=$2 work=$3
@@ -135,6 +136,52 @@ grep -q "within a level of a drape on several levels; resume it with the same --
   > "$work/skirt_dynamic_whole.log"
 interrupted skirt_dynamic 2 drape "${skirt_dynamic[@]}" --checkpoint-interval 0.02
 
+# Within the wear after the drape: killed once a checkpoint within the wear
+# holds its first take-off (/state: kind "wear", one take-off), resumed from
+# there: the drape from the checkpoint's /before, the wear from its state.
+# 40 s of wear in 15 steps, taken off at 8 s and at 40 s (about 35 s of wall time).
+skirt_wear=("${skirt[@]}" --wear-time 40 --take-off-times 8,40 --recovery-time 30
+  --wear-first-step 2 --creep-tolerance 1e-2 -snes_max_it 2000)
+"$sartor" drape "${skirt_wear[@]}" --output "$work/skirt_wear_whole" > "$work/skirt_wear_whole.log"
+within_wear() { # OUT PID: waits until OUT/checkpoint.h5 is within the wear, after a take-off
+  "$python" - "$1/checkpoint.h5" "$2" <<'PY'
+import json, os, sys, time
+import h5py
+path, pid = sys.argv[1], int(sys.argv[2])
+for _ in range(6000):  # up to 5 min on a loaded machine
+    try:
+        with h5py.File(path, "r") as f:
+            state = json.loads(f["state"][()].tobytes().decode())
+        if state.get("kind") == "wear" and len(state["take_offs"]) >= 1:
+            sys.exit(0)
+    except (OSError, KeyError, ValueError):
+        pass  # not written yet
+    try:
+        os.kill(pid, 0)
+    except OSError:
+        sys.exit(1)  # the run ended first
+    time.sleep(0.05)
+sys.exit(1)
+PY
+}
+out="$work/skirt_wear"
+"$sartor" drape "${skirt_wear[@]}" --checkpoint-interval 1 --output "$out" > "$out.log" 2>&1 &
+pid=$!
+within_wear "$out" "$pid" || { cat "$out.log" >&2; echo "skirt_wear: no checkpoint within the wear" >&2; exit 1; }
+kill -9 "$pid" && wait "$pid" 2> /dev/null || true
+"$sartor" drape "${skirt_wear[@]}" --checkpoint-interval 1 --restart "$out/checkpoint.h5" \
+  --output "$out" >> "$out.log" 2>&1 || { cat "$out.log" >&2; echo "skirt_wear: the resumed run failed" >&2; exit 1; }
+grep -q "resuming the wear from .* at t = " "$out.log" ||
+  { cat "$out.log" >&2; echo "skirt_wear: did not resume within the wear" >&2; exit 1; }
+# A checkpoint within the wear resumes only a drape with the wear.
+if "$sartor" drape "${skirt[@]}" --restart "$out/checkpoint.h5" --output "$work/wrong_wear" \
+  > "$work/wrong_wear.log" 2>&1; then
+  echo "a checkpoint within the wear resumed a drape without --wear-time" >&2
+  exit 1
+fi
+grep -q "was taken within a wear; resume it with the same --wear-time" "$work/wrong_wear.log" ||
+  { cat "$work/wrong_wear.log" >&2; exit 1; }
+
 # A checkpoint of another kind of run is refused, with its file named.
 if "$sartor" run "${sheet[@]}" --restart "$work/skirt/checkpoint.h5" --output "$work/wrong" \
   > "$work/wrong.log" 2>&1; then
@@ -190,6 +237,30 @@ for name in ("sheet", "skirt_dynamic"):
             abs(float(p) - float(q)) > 1e-9 * max(1.0, abs(float(p)))
             for r, s in zip(rows[0][1:], rows[1][1:]) for p, q in zip(r[:6], s[:6])):
         failures.append(f"{name}: dynamics.csv differs from the uninterrupted run's")
+
+# The wear: every row of wear.csv and takeoff.csv, and every state of
+# wear/series.h5 and takeoff/series.h5.
+for table in ("wear.csv", "takeoff.csv"):
+    rows = [list(csv.reader(open(f"{work}/{n}/{table}"))) for n in ("skirt_wear_whole", "skirt_wear")]
+    worst = max((abs(float(p) - float(q)) / max(1.0, abs(float(p)))
+                 for r, s in zip(rows[0][1:], rows[1][1:]) for p, q in zip(r, s)), default=0.0)
+    print(f"skirt_wear: {table} {len(rows[1]) - 1} rows (uninterrupted {len(rows[0]) - 1}), "
+          f"values differ by at most {worst:.3g} (relative, of those above 1)")
+    if len(rows[0]) != len(rows[1]) or not worst <= 1e-9:
+        failures.append(f"skirt_wear: {table} differs from the uninterrupted run's")
+for series in ("wear", "takeoff"):
+    with h5py.File(f"{work}/skirt_wear_whole/{series}/series.h5") as a, \
+         h5py.File(f"{work}/skirt_wear/{series}/series.h5") as b:
+        steps = sorted(a["steps"])
+        if sorted(b["steps"]) != steps:
+            failures.append(f"skirt_wear: {series}/series.h5 has states {sorted(b['steps'])}, "
+                            f"uninterrupted {steps}")
+            continue
+        worst = max(np.abs(a[f"steps/{s}/fields/position"][()] - b[f"steps/{s}/fields/position"][()]).max()
+                    for s in steps)
+        print(f"skirt_wear: {series}/series.h5 {len(steps)} states, positions differ by at most {worst:.3g} m")
+        if not worst <= tolerance:
+            failures.append(f"skirt_wear: {series}/series.h5 states differ by {worst:.3g} m")
 if failures:
     print("\n".join(failures), file=sys.stderr)
     sys.exit(1)
