@@ -37,9 +37,10 @@ const std::vector<OptionSpec>& wear_option_specs() {
        "(wear) the hem: boundary vertices within M of the lowest draped vertex, m"},
       {"bagging-box", "X0,X1,Y0,Y1,Z0,Z1", "",
        "(wear) the bagging height is measured on the vertices draped in this box, m [all]"},
-      {"wear-contact-rounds", "N", "0",
-       "(wear) contact rounds of each step's solve (friction anchors updated and the penalty "
-       "adapted within the step; 0: anchors lagged by a step, drape's penalty kept)"},
+      {"wear-contact-rounds", "N", "8",
+       "(wear) contact rounds of each step's solve, at most (friction anchors updated and the "
+       "penalty adapted within the step until friction is consistent; 0: anchors lagged by a "
+       "step, drape's penalty kept, and the states not in equilibrium)"},
       {"no-step-certificate", "", "",
        "(wear) do not certify every wear step (the final states are certified)"},
   };
@@ -366,6 +367,17 @@ void print_wear(const WearRun& run) {
       steps, report.wear.rejected_steps, steps > 0 ? double(newton) / double(steps) : 0.0,
       report.certified_steps, report.steps.size(), run.cpu_seconds,
       report.final_certificate.verdict().c_str()));
+  // Certified per step unless --no-step-certificate (then no verdicts).
+  const auto failed = [](const WearStep& s) { return !s.certified && !s.verdict.empty(); };
+  const auto first = std::find_if(report.steps.begin(), report.steps.end(), failed);
+  if (first != report.steps.end()) {
+    std::ostringstream warning;
+    warning << std::count_if(report.steps.begin(), report.steps.end(), failed) << " of "
+            << report.steps.size()
+            << " wear states are not certified, the first at t = " << first->step.time
+            << " s: " << first->verdict << " (wear.csv's column certificate; docs/wear.md)";
+    print_warnings({warning.str()});
+  }
   for (const TakeOffReport& t : report.take_offs) {
     SartorPetscCall(PetscPrintf(
         PETSC_COMM_WORLD,
@@ -381,12 +393,12 @@ void write_wear_tables(const std::string& directory, const WearRun& run) {
   std::ostringstream wear;
   wear.precision(10);
   wear << "time_s,dt_s,newton_iterations,rejected,creep_increment,hem_height_m,"
-          "max_elastic_strain,max_viscoelastic_strain,max_permanent_strain,certified\n";
+          "max_elastic_strain,max_viscoelastic_strain,max_permanent_strain,certified,certificate\n";
   for (const WearStep& s : run.report.steps) {
     wear << s.step.time << ',' << s.step.dt << ',' << s.step.newton_iterations << ','
          << s.step.rejected << ',' << s.step.increment << ',' << s.hem_height << ','
          << s.max_elastic << ',' << s.max_viscoelastic << ',' << s.max_permanent << ','
-         << (s.certified ? 1 : 0) << '\n';
+         << (s.certified ? 1 : 0) << ',' << s.verdict << '\n';
   }
   write_file_atomically(directory + "/wear.csv", wear.str());
   std::ostringstream takeoff;

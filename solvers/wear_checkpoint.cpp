@@ -48,7 +48,7 @@ nlohmann::json step_json(const WearStep& s) {
   const CreepStepReport& c = s.step;
   return {c.step,      c.time,   c.dt,         c.load_factor, c.newton_iterations, c.rejected,
           c.increment, c.output, s.hem_height, s.max_elastic, s.max_viscoelastic,  s.max_permanent,
-          s.certified};
+          s.certified, s.verdict};
 }
 
 WearStep step_from(const nlohmann::json& j) {
@@ -67,6 +67,7 @@ WearStep step_from(const nlohmann::json& j) {
   s.max_viscoelastic = j.at(10).get<double>();
   s.max_permanent = j.at(11).get<double>();
   s.certified = j.at(12).get<bool>();
+  s.verdict = j.at(13).get<std::string>();
   return s;
 }
 

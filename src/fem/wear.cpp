@@ -288,6 +288,7 @@ PetscErrorCode measure_step(ClothProblem& worn, Vec x, const CreepCoupling& cree
     Certificate certificate;
     PetscCall(certify(worn, x, options, &certificate));
     step->certified = certificate.certified();
+    step->verdict = certificate.verdict();
   }
   PetscFunctionReturn(0);
 }

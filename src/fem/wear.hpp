@@ -133,6 +133,8 @@ struct WearStep {
   double max_viscoelastic = 0.0;
   double max_permanent = 0.0;
   bool certified = false; // the step's certificate (without the inertia check)
+  std::string
+      verdict; // its verdict ("certified", or the first failed check); "" if not certified per step
 };
 
 struct WearReport {

@@ -242,8 +242,13 @@ for name in ("sheet", "skirt_dynamic"):
 # wear/series.h5 and takeoff/series.h5.
 for table in ("wear.csv", "takeoff.csv"):
     rows = [list(csv.reader(open(f"{work}/{n}/{table}"))) for n in ("skirt_wear_whole", "skirt_wear")]
-    worst = max((abs(float(p) - float(q)) / max(1.0, abs(float(p)))
-                 for r, s in zip(rows[0][1:], rows[1][1:]) for p, q in zip(r, s)), default=0.0)
+    def difference(p, q):  # numbers, or the certificate's verdict
+        try:
+            return abs(float(p) - float(q)) / max(1.0, abs(float(p)))
+        except ValueError:
+            return 0.0 if p == q else float("inf")
+    worst = max((difference(p, q) for r, s in zip(rows[0][1:], rows[1][1:]) for p, q in zip(r, s)),
+                default=0.0)
     print(f"skirt_wear: {table} {len(rows[1]) - 1} rows (uninterrupted {len(rows[0]) - 1}), "
           f"values differ by at most {worst:.3g} (relative, of those above 1)")
     if len(rows[0]) != len(rows[1]) or not worst <= 1e-9:
