@@ -320,6 +320,13 @@ void write_bytes(const std::string& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
 }
 
+// The bytes of a double, to find where a file holds it.
+std::string bytes_of(double value) {
+  std::string bytes(sizeof value, '\0');
+  std::memcpy(bytes.data(), &value, sizeof value);
+  return bytes;
+}
+
 // A checkpoint read back from `bytes` must be refused with a message naming
 // the file (InputError), whatever the damage.
 void expect_refused(const std::string& path, const std::string& bytes, const std::string& what) {
@@ -345,8 +352,7 @@ TEST(Checkpoint, CorruptedFilesAreRefused) {
   const std::string path = "test_checkpoint_corrupted.h5";
   write_checkpoint(path, written);
   const std::string good = file_bytes(path);
-  std::string marker_bytes(sizeof marker, '\0');
-  std::memcpy(marker_bytes.data(), &marker, sizeof marker);
+  const std::string marker_bytes = bytes_of(marker);
   const std::size_t at = good.find(marker_bytes);
   ASSERT_NE(at, std::string::npos);
   ASSERT_EQ(good.find(marker_bytes, at + 1), std::string::npos);
@@ -405,8 +411,7 @@ TEST(Checkpoint, StartPositionsRoundTripAndAreSummed) {
   EXPECT_EQ(read.start_positions[0].y(), marker);
   EXPECT_EQ(read.start_positions[1], written.start_positions[1]);
   const std::string good = file_bytes(path);
-  std::string marker_bytes(sizeof marker, '\0');
-  std::memcpy(marker_bytes.data(), &marker, sizeof marker);
+  const std::string marker_bytes = bytes_of(marker);
   const std::size_t at = good.find(marker_bytes);
   ASSERT_NE(at, std::string::npos);
   std::string flipped = good;
@@ -452,8 +457,7 @@ TEST(Checkpoint, PhaseBeforeRoundTripsAndIsSummed) {
   EXPECT_EQ(read.before->state, drape->state);
   EXPECT_FALSE(read.before->before);
   const std::string good = file_bytes(path);
-  std::string marker_bytes(sizeof marker, '\0');
-  std::memcpy(marker_bytes.data(), &marker, sizeof marker);
+  const std::string marker_bytes = bytes_of(marker);
   const std::size_t at = good.find(marker_bytes);
   ASSERT_NE(at, std::string::npos);
   std::string flipped = good;

@@ -84,16 +84,17 @@ interrupted skirt_levels 2 drape "${skirt_levels[@]}" --checkpoint-interval 1
 # Within the finer level of a drape on two levels: killed once the first
 # checkpoint within level 2 is written (/state's drape_level), resumed from
 # there (static: after a sewing stage; dynamic: at a multiple of 0.02 s).
-within_level() { # OUT LEVEL PID: waits until OUT/checkpoint.h5 is within LEVEL (from 0)
+checkpoint_state() { # OUT PID CONDITION: waits until OUT/checkpoint.h5's /state makes
+  # CONDITION (a Python expression of `state`, the parsed JSON) true
   "$python" - "$1/checkpoint.h5" "$2" "$3" <<'PY'
 import json, os, sys, time
 import h5py
-path, level, pid = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+path, pid, condition = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 for _ in range(6000):  # up to 5 min on a loaded machine
     try:
         with h5py.File(path, "r") as f:
             state = json.loads(f["state"][()].tobytes().decode())
-        if state.get("drape_level", {}).get("level") == level:
+        if eval(condition, {}, {"state": state}):
             sys.exit(0)
     except (OSError, KeyError, ValueError):
         pass  # not written yet
@@ -111,7 +112,8 @@ killed_in_level2() {
   shift
   "$sartor" drape "$@" --output "$out" > "$out.log" 2>&1 &
   local pid=$!
-  within_level "$out" 1 "$pid" || { cat "$out.log" >&2; echo "$name: no checkpoint within level 2" >&2; exit 1; }
+  checkpoint_state "$out" "$pid" 'state.get("drape_level", {}).get("level") == 1' ||
+    { cat "$out.log" >&2; echo "$name: no checkpoint within level 2" >&2; exit 1; }
   kill -9 "$pid" && wait "$pid" 2> /dev/null || true
   "$sartor" drape "$@" --restart "$out/checkpoint.h5" --output "$out" >> "$out.log" 2>&1 ||
     { cat "$out.log" >&2; echo "$name: the resumed run failed" >&2; exit 1; }
@@ -143,31 +145,11 @@ interrupted skirt_dynamic 2 drape "${skirt_dynamic[@]}" --checkpoint-interval 0.
 skirt_wear=("${skirt[@]}" --wear-time 40 --take-off-times 8,40 --recovery-time 30
   --wear-first-step 2 --creep-tolerance 1e-2 -snes_max_it 2000)
 "$sartor" drape "${skirt_wear[@]}" --output "$work/skirt_wear_whole" > "$work/skirt_wear_whole.log"
-within_wear() { # OUT PID: waits until OUT/checkpoint.h5 is within the wear, after a take-off
-  "$python" - "$1/checkpoint.h5" "$2" <<'PY'
-import json, os, sys, time
-import h5py
-path, pid = sys.argv[1], int(sys.argv[2])
-for _ in range(6000):  # up to 5 min on a loaded machine
-    try:
-        with h5py.File(path, "r") as f:
-            state = json.loads(f["state"][()].tobytes().decode())
-        if state.get("kind") == "wear" and len(state["take_offs"]) >= 1:
-            sys.exit(0)
-    except (OSError, KeyError, ValueError):
-        pass  # not written yet
-    try:
-        os.kill(pid, 0)
-    except OSError:
-        sys.exit(1)  # the run ended first
-    time.sleep(0.05)
-sys.exit(1)
-PY
-}
 out="$work/skirt_wear"
 "$sartor" drape "${skirt_wear[@]}" --checkpoint-interval 1 --output "$out" > "$out.log" 2>&1 &
 pid=$!
-within_wear "$out" "$pid" || { cat "$out.log" >&2; echo "skirt_wear: no checkpoint within the wear" >&2; exit 1; }
+checkpoint_state "$out" "$pid" 'state.get("kind") == "wear" and len(state["take_offs"]) >= 1' ||
+  { cat "$out.log" >&2; echo "skirt_wear: no checkpoint within the wear" >&2; exit 1; }
 kill -9 "$pid" && wait "$pid" 2> /dev/null || true
 "$sartor" drape "${skirt_wear[@]}" --checkpoint-interval 1 --restart "$out/checkpoint.h5" \
   --output "$out" >> "$out.log" 2>&1 || { cat "$out.log" >&2; echo "skirt_wear: the resumed run failed" >&2; exit 1; }
