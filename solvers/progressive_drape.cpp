@@ -311,7 +311,7 @@ LevelResume read_level_checkpoint(const std::string& path, const std::vector<Dra
                                   std::vector<LevelRun>* runs) {
   // A wear's checkpoint: the drape's last, which it carries, is the level's.
   const RunCheckpoint read = read_checkpoint(path);
-  const RunCheckpoint& checkpoint = read.before ? *read.before : read;
+  const RunCheckpoint& checkpoint = first_phase(read);
   LevelResume resume;
   std::size_t level = 0;
   try {

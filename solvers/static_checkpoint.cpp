@@ -117,8 +117,7 @@ PetscErrorCode StaticResume::restore(ClothProblem& problem, Vec x) const {
 
 StaticResume read_static_checkpoint(const std::string& path, const ClothProblem& problem) {
   StaticResume resume;
-  const RunCheckpoint read = read_checkpoint(path);
-  resume.checkpoint = read.before ? *read.before : read;
+  resume.checkpoint = first_phase(read_checkpoint(path));
   const RunCheckpoint& checkpoint = resume.checkpoint;
   if (checkpoint.state.empty() || !checkpoint.velocities.empty()) {
     throw InputError(path + ": the checkpoint is not of a static solve (a dynamic or creep "

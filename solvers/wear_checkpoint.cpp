@@ -12,38 +12,6 @@ namespace {
 
 constexpr const char* wear_kind = "wear";
 
-std::vector<double> flat_positions(const std::vector<Eigen::Vector3d>& positions) {
-  std::vector<double> values;
-  for (const Eigen::Vector3d& p : positions)
-    values.insert(values.end(), {p.x(), p.y(), p.z()});
-  return values;
-}
-
-std::vector<Eigen::Vector3d> positions_from(const std::vector<double>& values) {
-  if (values.size() % 3 != 0) throw std::invalid_argument("positions are not triples");
-  std::vector<Eigen::Vector3d> positions;
-  for (std::size_t i = 0; i < values.size(); i += 3)
-    positions.emplace_back(values[i], values[i + 1], values[i + 2]);
-  return positions;
-}
-
-std::vector<double> flat_creep(const std::vector<ElementCreep>& states) {
-  std::vector<double> values;
-  for (const ElementCreep& s : states)
-    values.insert(values.end(), {s.warp.viscoelastic, s.warp.permanent, s.weft.viscoelastic,
-                                 s.weft.permanent, s.tension_warp, s.tension_weft});
-  return values;
-}
-
-std::vector<ElementCreep> creep_from(const std::vector<double>& values) {
-  if (values.size() % 6 != 0) throw std::invalid_argument("creep states are not of 6 values");
-  std::vector<ElementCreep> states;
-  for (std::size_t i = 0; i < values.size(); i += 6)
-    states.push_back(
-        {{values[i], values[i + 1]}, {values[i + 2], values[i + 3]}, values[i + 4], values[i + 5]});
-  return states;
-}
-
 nlohmann::json step_json(const WearStep& s) {
   const CreepStepReport& c = s.step;
   return {c.step,      c.time,   c.dt,         c.load_factor, c.newton_iterations, c.rejected,
@@ -85,8 +53,8 @@ nlohmann::json take_off_json(const TakeOffReport& t) {
           {"recovery_steps", t.recovery_steps},
           {"rejected_steps", t.rejected_steps},
           {"certificate", certificate_json(t.certificate)},
-          {"positions", flat_positions(t.positions)},
-          {"creep", flat_creep(t.creep)}};
+          {"positions", position_rows(t.positions)},
+          {"creep", creep_rows(t.creep)}};
 }
 
 TakeOffReport take_off_from(const nlohmann::json& j) {
@@ -104,8 +72,8 @@ TakeOffReport take_off_from(const nlohmann::json& j) {
   t.recovery_steps = j.at("recovery_steps").get<long>();
   t.rejected_steps = j.at("rejected_steps").get<long>();
   t.certificate = certificate_from_json(j.at("certificate"));
-  t.positions = positions_from(j.at("positions").get<std::vector<double>>());
-  t.creep = creep_from(j.at("creep").get<std::vector<double>>());
+  t.positions = positions_from_rows(j.at("positions").get<std::vector<double>>());
+  t.creep = creep_from_rows(j.at("creep").get<std::vector<double>>());
   return t;
 }
 

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
+#include <stdexcept>
 #include <unistd.h>
 
 namespace sartor {
@@ -101,21 +102,6 @@ double read_scalar(hid_t file, const char* name, const std::string& path) {
   return values.front();
 }
 
-std::vector<double> flatten(const std::vector<Eigen::Vector3d>& vectors) {
-  std::vector<double> values;
-  values.reserve(3 * vectors.size());
-  for (const auto& v : vectors)
-    values.insert(values.end(), {v.x(), v.y(), v.z()});
-  return values;
-}
-
-std::vector<Eigen::Vector3d> vectors(const std::vector<double>& values) {
-  std::vector<Eigen::Vector3d> result;
-  for (std::size_t i = 0; i + 3 <= values.size(); i += 3)
-    result.emplace_back(values[i], values[i + 1], values[i + 2]);
-  return result;
-}
-
 // The format attribute, or "" when there is none.
 std::string read_format(hid_t file) {
   if (H5Aexists(file, "format") <= 0) return "";
@@ -182,15 +168,6 @@ void flush_directory(const std::string& path) {
   ::close(descriptor);
 }
 
-std::vector<double> creep_rows(const std::vector<ElementCreep>& creep) {
-  std::vector<double> values;
-  for (const ElementCreep& c : creep) {
-    values.insert(values.end(), {c.warp.viscoelastic, c.warp.permanent, c.weft.viscoelastic,
-                                 c.weft.permanent, c.tension_warp, c.tension_weft});
-  }
-  return values;
-}
-
 std::vector<double> anchor_rows(const std::vector<AnchorRow>& anchors) {
   std::vector<double> values;
   for (const auto& row : anchors)
@@ -206,24 +183,20 @@ std::uint64_t checksum(const RunCheckpoint& checkpoint) { // NOLINT(misc-no-recu
   sum.add(checkpoint.load_factor);
   const long long step = checkpoint.step;
   sum.add(&step, sizeof step);
-  sum.add(flatten(checkpoint.positions));
-  sum.add(flatten(checkpoint.velocities));
+  sum.add(position_rows(checkpoint.positions));
+  sum.add(position_rows(checkpoint.velocities));
   sum.add(creep_rows(checkpoint.creep));
   sum.add(anchor_rows(checkpoint.anchors));
   sum.add(checkpoint.history.data(), checkpoint.history.size());
   sum.add(checkpoint.state.data(), checkpoint.state.size());
   // Summed only when present, so that files without them sum as before.
-  if (!checkpoint.start_positions.empty()) sum.add(flatten(checkpoint.start_positions));
+  if (!checkpoint.start_positions.empty()) sum.add(position_rows(checkpoint.start_positions));
   if (checkpoint.before) {
     const std::uint64_t before = checksum(*checkpoint.before);
     sum.add(&before, sizeof before);
   }
   return sum.value();
 }
-
-} // namespace
-
-namespace {
 
 // The checkpoint's datasets in `group` ("" for the file's root).
 void write_contents(hid_t f, const std::string& group, const RunCheckpoint& checkpoint,
@@ -234,12 +207,13 @@ void write_contents(hid_t f, const std::string& group, const RunCheckpoint& chec
   write_set(f, name("/load_factor").c_str(), H5T_NATIVE_DOUBLE, &checkpoint.load_factor, {1}, path);
   const long long step = checkpoint.step;
   write_set(f, name("/step").c_str(), H5T_NATIVE_LLONG, &step, {1}, path);
-  write_rows(f, name("/positions").c_str(), flatten(checkpoint.positions), 3, path);
+  write_rows(f, name("/positions").c_str(), position_rows(checkpoint.positions), 3, path);
   if (!checkpoint.velocities.empty()) {
-    write_rows(f, name("/velocities").c_str(), flatten(checkpoint.velocities), 3, path);
+    write_rows(f, name("/velocities").c_str(), position_rows(checkpoint.velocities), 3, path);
   }
   if (!checkpoint.start_positions.empty()) {
-    write_rows(f, name("/start_positions").c_str(), flatten(checkpoint.start_positions), 3, path);
+    write_rows(f, name("/start_positions").c_str(), position_rows(checkpoint.start_positions), 3,
+               path);
   }
   write_rows(f, name("/creep").c_str(), creep_rows(checkpoint.creep), 6, path);
   write_rows(f, name("/anchors").c_str(), anchor_rows(checkpoint.anchors), 10, path);
@@ -258,6 +232,48 @@ void write_contents(hid_t f, const std::string& group, const RunCheckpoint& chec
     if (before.get() < 0) throw InputError(path + ": cannot write /before");
     write_contents(f, name("/before"), *checkpoint.before, path);
   }
+}
+
+// The checkpoint in `group` ("" for the file's root), its checksum verified.
+RunCheckpoint read_contents(hid_t f, const std::string& group, // NOLINT(misc-no-recursion)
+                            const std::string& path) {
+  const auto name = [&group](const char* set) { return group + set; };
+  RunCheckpoint checkpoint;
+  checkpoint.time = read_scalar(f, name("/time").c_str(), path);
+  checkpoint.next_step = read_scalar(f, name("/next_step").c_str(), path);
+  checkpoint.load_factor = read_scalar(f, name("/load_factor").c_str(), path);
+  const double step = read_scalar(f, name("/step").c_str(), path);
+  if (!(step >= 0.0 && step <= 1e15)) throw InputError(path + ": the step count is not valid");
+  checkpoint.step = long(step);
+  checkpoint.positions = positions_from_rows(read_rows(f, name("/positions").c_str(), 3, path));
+  checkpoint.velocities =
+      positions_from_rows(read_rows(f, name("/velocities").c_str(), 3, path, false));
+  checkpoint.start_positions =
+      positions_from_rows(read_rows(f, name("/start_positions").c_str(), 3, path, false));
+  checkpoint.creep = creep_from_rows(read_rows(f, name("/creep").c_str(), 6, path));
+  const auto anchors = read_rows(f, name("/anchors").c_str(), 10, path);
+  for (std::size_t i = 0; i + 10 <= anchors.size(); i += 10) {
+    AnchorRow row;
+    std::copy_n(anchors.begin() + long(i), 10, row.begin());
+    checkpoint.anchors.push_back(row);
+  }
+  checkpoint.history = read_text(f, name("/history").c_str(), path, true);
+  checkpoint.state = read_text(f, name("/state").c_str(), path, false);
+  // Only the file's root may hold the phase before (a group, not a dataset).
+  if (group.empty() && H5Lexists(f, "/before", H5P_DEFAULT) > 0) {
+    if (H5Lexists(f, "/before/before", H5P_DEFAULT) > 0)
+      throw InputError(path + ": a checkpoint nests one phase only (/before/before)");
+    checkpoint.before = std::make_shared<const RunCheckpoint>(read_contents(f, "/before", path));
+  }
+  if (checksum(checkpoint) != read_checksum(f, name("/checksum"), path)) {
+    throw InputError(path + ": the checkpoint is corrupted (its checksum does not match its "
+                            "contents); resume from another checkpoint or start again");
+  }
+  if (!(checkpoint.time >= 0.0) || !std::isfinite(checkpoint.time) ||
+      !(checkpoint.next_step > 0.0) || !std::isfinite(checkpoint.next_step)) {
+    throw InputError(path + ": time or next step size is not valid");
+  }
+  return checkpoint;
 }
 
 } // namespace
@@ -287,59 +303,6 @@ void write_checkpoint(const std::string& path, const RunCheckpoint& checkpoint) 
   flush_directory(path);
 }
 
-namespace {
-
-// The checkpoint in `group` ("" for the file's root), its checksum verified.
-RunCheckpoint read_contents(hid_t f, const std::string& group, // NOLINT(misc-no-recursion)
-                            const std::string& path) {
-  const auto name = [&group](const char* set) { return group + set; };
-  RunCheckpoint checkpoint;
-  checkpoint.time = read_scalar(f, name("/time").c_str(), path);
-  checkpoint.next_step = read_scalar(f, name("/next_step").c_str(), path);
-  checkpoint.load_factor = read_scalar(f, name("/load_factor").c_str(), path);
-  const double step = read_scalar(f, name("/step").c_str(), path);
-  if (!(step >= 0.0 && step <= 1e15)) throw InputError(path + ": the step count is not valid");
-  checkpoint.step = long(step);
-  checkpoint.positions = vectors(read_rows(f, name("/positions").c_str(), 3, path));
-  checkpoint.velocities = vectors(read_rows(f, name("/velocities").c_str(), 3, path, false));
-  checkpoint.start_positions =
-      vectors(read_rows(f, name("/start_positions").c_str(), 3, path, false));
-  const auto creep = read_rows(f, name("/creep").c_str(), 6, path);
-  for (std::size_t i = 0; i + 6 <= creep.size(); i += 6) {
-    ElementCreep c;
-    c.warp = {creep[i], creep[i + 1]};
-    c.weft = {creep[i + 2], creep[i + 3]};
-    c.tension_warp = creep[i + 4];
-    c.tension_weft = creep[i + 5];
-    checkpoint.creep.push_back(c);
-  }
-  const auto anchors = read_rows(f, name("/anchors").c_str(), 10, path);
-  for (std::size_t i = 0; i + 10 <= anchors.size(); i += 10) {
-    AnchorRow row;
-    std::copy_n(anchors.begin() + long(i), 10, row.begin());
-    checkpoint.anchors.push_back(row);
-  }
-  checkpoint.history = read_text(f, name("/history").c_str(), path, true);
-  checkpoint.state = read_text(f, name("/state").c_str(), path, false);
-  // Only the file's root may hold the phase before (a group, not a dataset).
-  if (group.empty() && H5Lexists(f, "/before", H5P_DEFAULT) > 0) {
-    if (H5Lexists(f, "/before/before", H5P_DEFAULT) > 0)
-      throw InputError(path + ": a checkpoint nests one phase only (/before/before)");
-    checkpoint.before = std::make_shared<const RunCheckpoint>(read_contents(f, "/before", path));
-  }
-  if (checksum(checkpoint) != read_checksum(f, name("/checksum"), path)) {
-    throw InputError(path + ": the checkpoint is corrupted (its checksum does not match its "
-                            "contents); resume from another checkpoint or start again");
-  }
-  if (!(checkpoint.time >= 0.0) || !std::isfinite(checkpoint.time) ||
-      !(checkpoint.next_step > 0.0) || !std::isfinite(checkpoint.next_step)) {
-    throw InputError(path + ": time or next step size is not valid");
-  }
-  return checkpoint;
-}
-
-} // namespace
-
 RunCheckpoint read_checkpoint(const std::string& path) {
   // HDF5 would print its own error stack for a file that is not HDF5.
   H5E_auto2_t handler = nullptr;
@@ -360,6 +323,46 @@ RunCheckpoint read_checkpoint(const std::string& path) {
                      std::string(format_tag) + "')");
   }
   return read_contents(f, "", path);
+}
+
+const RunCheckpoint& first_phase(const RunCheckpoint& checkpoint) {
+  return checkpoint.before ? *checkpoint.before : checkpoint;
+}
+
+std::vector<double> position_rows(const std::vector<Eigen::Vector3d>& positions) {
+  std::vector<double> values;
+  values.reserve(3 * positions.size());
+  for (const Eigen::Vector3d& p : positions)
+    values.insert(values.end(), {p.x(), p.y(), p.z()});
+  return values;
+}
+
+std::vector<Eigen::Vector3d> positions_from_rows(const std::vector<double>& values) {
+  if (values.size() % 3 != 0) throw std::invalid_argument("positions are not triples");
+  std::vector<Eigen::Vector3d> positions;
+  positions.reserve(values.size() / 3);
+  for (std::size_t i = 0; i < values.size(); i += 3)
+    positions.emplace_back(values[i], values[i + 1], values[i + 2]);
+  return positions;
+}
+
+std::vector<double> creep_rows(const std::vector<ElementCreep>& states) {
+  std::vector<double> values;
+  values.reserve(6 * states.size());
+  for (const ElementCreep& c : states)
+    values.insert(values.end(), {c.warp.viscoelastic, c.warp.permanent, c.weft.viscoelastic,
+                                 c.weft.permanent, c.tension_warp, c.tension_weft});
+  return values;
+}
+
+std::vector<ElementCreep> creep_from_rows(const std::vector<double>& values) {
+  if (values.size() % 6 != 0) throw std::invalid_argument("creep states are not of 6 values");
+  std::vector<ElementCreep> states;
+  states.reserve(values.size() / 6);
+  for (std::size_t i = 0; i < values.size(); i += 6)
+    states.push_back(
+        {{values[i], values[i + 1]}, {values[i + 2], values[i + 3]}, values[i + 4], values[i + 5]});
+  return states;
 }
 
 } // namespace sartor

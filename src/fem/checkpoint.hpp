@@ -57,6 +57,18 @@ struct RunCheckpoint {
   std::shared_ptr<const RunCheckpoint> before;
 };
 
+// The checkpoint itself, or the phase it carries in /before: the run it
+// resumes first (a wear's checkpoint resumes its drape from /before).
+const RunCheckpoint& first_phase(const RunCheckpoint& checkpoint);
+
+// Positions and creep states as a checkpoint's rows, flattened (3 values a
+// position; 6 a creep state, in /creep's column order), and back. The way
+// back throws std::invalid_argument on a partial row.
+std::vector<double> position_rows(const std::vector<Eigen::Vector3d>& positions);
+std::vector<Eigen::Vector3d> positions_from_rows(const std::vector<double>& values);
+std::vector<double> creep_rows(const std::vector<ElementCreep>& states);
+std::vector<ElementCreep> creep_from_rows(const std::vector<double>& values);
+
 // Atomic (temporary file and rename). Throws InputError when it cannot write.
 void write_checkpoint(const std::string& path, const RunCheckpoint& checkpoint);
 // Throws InputError naming the file and what is missing or malformed.

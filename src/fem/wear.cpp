@@ -123,13 +123,9 @@ PetscErrorCode positions_everywhere(ClothProblem& problem, Vec x,
                                     std::vector<Eigen::Vector3d>* positions) {
   PetscFunctionBeginUser;
   PetscCall(problem.gather_positions(x, positions));
-  std::vector<double> flat;
-  for (const Eigen::Vector3d& p : *positions)
-    flat.insert(flat.end(), {p.x(), p.y(), p.z()});
+  std::vector<double> flat = position_rows(*positions);
   PetscCall(broadcast(problem.comm(), &flat));
-  positions->resize(flat.size() / 3);
-  for (std::size_t v = 0; v < positions->size(); ++v)
-    (*positions)[v] = {flat[3 * v], flat[3 * v + 1], flat[3 * v + 2]};
+  *positions = positions_from_rows(flat);
   PetscFunctionReturn(0);
 }
 
@@ -138,16 +134,9 @@ PetscErrorCode creep_everywhere(MPI_Comm comm, const CreepCoupling& creep,
                                 std::vector<ElementCreep>* states) {
   PetscFunctionBeginUser;
   PetscCall(creep.gather(states));
-  std::vector<double> flat;
-  for (const ElementCreep& s : *states)
-    flat.insert(flat.end(), {s.warp.viscoelastic, s.warp.permanent, s.weft.viscoelastic,
-                             s.weft.permanent, s.tension_warp, s.tension_weft});
+  std::vector<double> flat = creep_rows(*states);
   PetscCall(broadcast(comm, &flat));
-  states->resize(flat.size() / 6);
-  for (std::size_t t = 0; t < states->size(); ++t) {
-    const double* f = &flat[6 * t];
-    (*states)[t] = {{f[0], f[1]}, {f[2], f[3]}, f[4], f[5]};
-  }
+  *states = creep_from_rows(flat);
   PetscFunctionReturn(0);
 }
 

@@ -133,8 +133,9 @@ struct WearStep {
   double max_viscoelastic = 0.0;
   double max_permanent = 0.0;
   bool certified = false; // the step's certificate (without the inertia check)
-  std::string
-      verdict; // its verdict ("certified", or the first failed check); "" if not certified per step
+  // Its verdict ("certified", or the first failed check); "" when steps are
+  // not certified (--no-step-certificate).
+  std::string verdict;
 };
 
 struct WearReport {
