@@ -6,7 +6,7 @@
 # random moments, and once within the second level; a dynamic drape on two
 # levels too), a
 # dynamic drape (the skirt sewn in time), and a static drape worn for 40 s
-# (killed once within the wear after its first take-off) are
+# on 2 ranks (killed once within the wear after its first take-off) are
 # each run once uninterrupted, then again with checkpoints, killed with
 # SIGKILL a few times at moments drawn from a fixed seed (the first after its
 # first checkpoint appeared), resumed with --restart into the same output
@@ -16,9 +16,12 @@
 # force; the displacements are 0.05 to 1 m), and the static run's load steps
 # (load factors, Newton iterations) and the wear's tables must be the
 # uninterrupted run's. The differences are printed.
-#   kill_resume.sh SARTOR PROJECT_DIR WORKDIR
+#   kill_resume.sh SARTOR PROJECT_DIR WORKDIR MPIEXEC
 set -euo pipefail
+[ $# -eq 4 ] || { echo "usage: $0 SARTOR PROJECT_DIR WORKDIR MPIEXEC" >&2; exit 2; }
 sartor=$1 project=$2 work=$3
+on_two_ranks=("$4" --oversubscribe -n 2)
+[ "$(id -u)" = 0 ] && on_two_ranks+=(--allow-run-as-root)
 python=/usr/bin/python3
 "$python" -c "import h5py, numpy" 2> /dev/null || { echo "error: $python lacks h5py/numpy (./dev deps installs it)" >&2; exit 1; }
 rm -rf "$work" && mkdir -p "$work"
@@ -138,21 +141,27 @@ grep -q "within a level of a drape on several levels; resume it with the same --
   > "$work/skirt_dynamic_whole.log"
 interrupted skirt_dynamic 2 drape "${skirt_dynamic[@]}" --checkpoint-interval 0.02
 
-# Within the wear after the drape: killed once a checkpoint within the wear
-# holds its first take-off (/state: kind "wear", one take-off), resumed from
-# there: the drape from the checkpoint's /before, the wear from its state.
-# 40 s of wear in 15 steps, taken off at 8 s and at 40 s (about 35 s of wall time).
+# Within the wear after the drape, on 2 ranks: killed (every rank) once a
+# checkpoint within the wear holds its first take-off (/state: kind "wear",
+# one take-off), resumed from there on 2 ranks: the drape from the
+# checkpoint's /before, the wear from its state. 40 s of wear in 15 steps,
+# taken off at 8 s and at 40 s (about 35 s of wall time).
 skirt_wear=("${skirt[@]}" --wear-time 40 --take-off-times 8,40 --recovery-time 30
   --wear-first-step 2 --creep-tolerance 1e-2 -snes_max_it 2000)
-"$sartor" drape "${skirt_wear[@]}" --output "$work/skirt_wear_whole" > "$work/skirt_wear_whole.log"
+"${on_two_ranks[@]}" "$sartor" drape "${skirt_wear[@]}" --output "$work/skirt_wear_whole" \
+  > "$work/skirt_wear_whole.log"
 out="$work/skirt_wear"
-"$sartor" drape "${skirt_wear[@]}" --checkpoint-interval 1 --output "$out" > "$out.log" 2>&1 &
+"${on_two_ranks[@]}" "$sartor" drape "${skirt_wear[@]}" --checkpoint-interval 1 --output "$out" \
+  > "$out.log" 2>&1 &
 pid=$!
 checkpoint_state "$out" "$pid" 'state.get("kind") == "wear" and len(state["take_offs"]) >= 1' ||
   { cat "$out.log" >&2; echo "skirt_wear: no checkpoint within the wear" >&2; exit 1; }
-kill -9 "$pid" && wait "$pid" 2> /dev/null || true
-"$sartor" drape "${skirt_wear[@]}" --checkpoint-interval 1 --restart "$out/checkpoint.h5" \
-  --output "$out" >> "$out.log" 2>&1 || { cat "$out.log" >&2; echo "skirt_wear: the resumed run failed" >&2; exit 1; }
+pkill -9 -f -- "--output $out\$" || true # the ranks, as a node failure would
+kill -9 "$pid" 2> /dev/null || true
+wait "$pid" 2> /dev/null || true
+"${on_two_ranks[@]}" "$sartor" drape "${skirt_wear[@]}" --checkpoint-interval 1 \
+  --restart "$out/checkpoint.h5" --output "$out" >> "$out.log" 2>&1 ||
+  { cat "$out.log" >&2; echo "skirt_wear: the resumed run failed" >&2; exit 1; }
 grep -q "resuming the wear from .* at t = " "$out.log" ||
   { cat "$out.log" >&2; echo "skirt_wear: did not resume within the wear" >&2; exit 1; }
 # A checkpoint within the wear resumes only a drape with the wear.
