@@ -163,6 +163,9 @@ const std::vector<OptionSpec>& edit_option_specs() {
        "the sensitivity's tangent: exact (the derivative) or projected (the minimiser's, "
        "PSD-projected element Hessians: damps the wrinkles' negative curvature)"},
       {"gmls-degree", "N", "2", "degree of GMLS's polynomial basis: 1 (Sensitive Couture's) or 2"},
+      {"no-edit-retry", "", "",
+       "keep a re-solve that fails (not converged, or not certified) instead of re-solving "
+       "again from the other starts (by increasing potential energy)"},
       {"no-edit-outputs", "", "",
        "write summary.json and the edited patterns only, not the predicted and re-solved "
        "drapes"},

@@ -17,8 +17,9 @@ const CommandSpec& edit_command() {
   static const CommandSpec spec{
       "edit",
       "drape a garment, then edit its pattern and follow the drape by sensitivity",
-      "sartor edit PATTERN.json EDITS.yaml [--edit-start gmls|linear|unchanged] "
-      "[--gmls-degree 1|2] [--no-edit-outputs] [any option of sartor drape]",
+      "sartor edit PATTERN.json EDITS.yaml [--edit-start auto|gmls|linear|unchanged] "
+      "[--edit-anchors fresh|kept] [--gmls-degree 1|2] [--no-edit-retry] [--no-edit-outputs] "
+      "[any option of sartor drape]",
       "Drapes PATTERN.json as `sartor drape` does (every drape option applies; the\n"
       "static drape only), then applies the edits of EDITS.yaml in turn (each\n"
       "moves outline corners of the pattern: a whole line, or one end of it; the\n"
@@ -29,12 +30,15 @@ const CommandSpec& edit_command() {
       "the drape's last stage starts from one of them (--edit-start) and its\n"
       "certificate is reported as it is (friction and contact checks included:\n"
       "a re-solve that converged is not called certified unless the certificate\n"
-      "says so). Prints one line per edit: the lowest point's change, each\n"
+      "says so). A re-solve that fails is tried again from the other starts\n"
+      "(not with --no-edit-retry); the edit goes on from the first that is\n"
+      "certified, else the first that converged, else the first. Prints one\n"
+      "line per edit: the lowest point's change, each\n"
       "prediction's largest vertex error against the re-solved drape, the\n"
       "re-solve and the CPU times against the drape from scratch.\n\n"
       "Output in DIR: what `sartor drape` writes (the drape before the edits),\n"
       "summary.json with \"edit\" (per edit: errors of the unchanged, linear and\n"
-      "GMLS predictions, lowest points, re-solve, certificate, CPU seconds and\n"
+      "GMLS predictions, lowest points, re-solve, its attempts, certificate, CPU seconds and\n"
       "speed-ups against the drape from scratch), and per edit DIR/edit_NN/:\n"
       "pattern.svg (outlines before and after), linear/, gmls/ and resolved/\n"
       "(result.h5, result.xmf, final.obj each; not with --no-edit-outputs).\n\n"

@@ -21,6 +21,9 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <memory>
+#include <tuple>
+#include <vector>
 
 namespace sartor {
 
@@ -120,35 +123,78 @@ double residual_norm(ClothProblem& problem, Vec x) {
   return norm;
 }
 
-// The re-solve's start, pushed out of the body, copied into x: the one
-// --edit-start names, or with `auto` the candidate of least potential
-// energy (the minimiser descends it). Each candidate's energy goes into
-// `energies`.
-std::string choose_start(const std::map<std::string, Vec>& candidates, const Options& options,
-                         ClothProblem& problem, Vec x, nlohmann::json* energies) {
-  std::string start = options.text("edit-start");
-  if (start != "auto" && !candidates.count(start))
-    throw InputError("option --edit-start: unknown start '" + start +
+// The order in which the re-solve tries its starts: the one --edit-start
+// names (with `auto` the candidate of least potential energy, which the
+// minimiser descends), then the others by increasing energy. Each
+// candidate's energy, pushed out of the body, goes into `energies`.
+std::vector<std::string> order_starts(const std::map<std::string, Vec>& candidates,
+                                      const Options& options, ClothProblem& problem, Vec work,
+                                      nlohmann::json* energies) {
+  const std::string requested = options.text("edit-start");
+  if (requested != "auto" && !candidates.count(requested))
+    throw InputError("option --edit-start: unknown start '" + requested +
                      "' (auto, gmls, linear, unchanged)");
-  double least = INFINITY;
+  std::vector<std::pair<double, std::string>> by_energy;
   for (const auto& [kind, candidate] : candidates) {
-    if (start != "auto" && kind != start) continue;
-    SartorPetscCall(VecCopy(candidate, x));
-    push_out_of_bodies(problem, x);
+    SartorPetscCall(VecCopy(candidate, work));
+    push_out_of_bodies(problem, work);
     ClothEnergy energy;
-    SartorPetscCall(problem.energy(x, &energy));
+    SartorPetscCall(problem.energy(work, &energy));
     (*energies)[kind] = energy.total();
-    least = std::min(least, energy.total());
+    by_energy.emplace_back(energy.total(), kind);
   }
-  if (start == "auto")
-    for (const auto& [kind, energy] : energies->items())
-      if (energy.get<double>() == least) start = kind;
-  SartorPetscCall(VecCopy(candidates.at(start), x));
-  return start;
+  std::stable_sort(by_energy.begin(), by_energy.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<std::string> order;
+  if (requested != "auto") order.push_back(requested);
+  for (const auto& [energy, kind] : by_energy)
+    if (kind != requested) order.push_back(kind);
+  return order;
 }
 
 nlohmann::json distance_json(const Distance& d) {
   return {{"rms_m", d.rms}, {"max_m", d.max}};
+}
+
+// One re-solve of an edit from one start: its report, certificate and
+// state (positions, friction anchors, contact penalty), kept so that the
+// edit can go on from the best of its attempts.
+struct Attempt {
+  std::string start;
+  StaticReport report;
+  CertifiedState certified;
+  long pushed = 0;      // vertices of the start pushed out of the body
+  double deepest = 0.0; // m, the deepest of them
+  double start_residual = 0.0;
+  double cpu = 0.0;
+  Vec x = nullptr;
+  std::vector<AnchorRow> anchors;
+  ContactSettings contact;
+  bool succeeded() const { return report.converged && certified.certificate.certified(); }
+  Attempt() = default;
+  Attempt(const Attempt&) = delete;
+  Attempt& operator=(const Attempt&) = delete;
+  ~Attempt() { VecDestroy(&x); }
+};
+
+nlohmann::json attempt_json(const Attempt& a) {
+  return {{"start", a.start},
+          {"converged", a.report.converged},
+          {"reason", a.report.reason},
+          {"newton_iterations", a.report.newton_iterations},
+          {"certificate", a.certified.certificate.verdict()},
+          {"certified", a.certified.certificate.certified()},
+          {"cpu_s", a.cpu}};
+}
+
+// Which attempt the edit goes on from: the first that succeeded, else the
+// first that converged, else the first (the requested start's).
+const Attempt& best_attempt(const std::vector<std::unique_ptr<Attempt>>& attempts) {
+  for (const auto& a : attempts)
+    if (a->succeeded()) return *a;
+  for (const auto& a : attempts)
+    if (a->report.converged) return *a;
+  return *attempts.front();
 }
 
 class EditSession {
@@ -166,6 +212,9 @@ private:
   void add_slope(Design& from, const Eigen::VectorXd& dp, ClothProblem& to, Vec into);
   void predict_gmls(const Eigen::VectorXd& query, ClothProblem& to, Vec into, GmlsWeights* used);
   StaticOptions static_options() const;
+  void reset_state(Design& last, ClothProblem& problem);
+  std::unique_ptr<Attempt> resolve_from(Design& last, ClothProblem& problem,
+                                        const std::string& start, Vec candidate);
   nlohmann::json solve_step(std::size_t k, const Eigen::VectorXd& p, const EditDesign& design);
   void write_state(const std::string& directory, const Design& design, Vec x);
 
@@ -265,6 +314,37 @@ StaticOptions EditSession::static_options() const {
   return solve;
 }
 
+// `problem` in the last design's state (loads, sewing, contact), with its
+// friction anchors afresh unless --edit-anchors kept: statics anchor what
+// touches a body at their start, and the last drape's anchors would hold the
+// contact where the edit moved it from.
+void EditSession::reset_state(Design& last, ClothProblem& problem) {
+  SartorPetscCall(copy_problem_state(*last.problem, problem));
+  if (options_.text("edit-anchors") == "fresh") problem.restore_anchors({});
+}
+
+// The drape's last stage re-solved from `candidate` (pushed out of the
+// body), on `problem` reset to the last design's state, and certified.
+std::unique_ptr<Attempt> EditSession::resolve_from(Design& last, ClothProblem& problem,
+                                                   const std::string& start, Vec candidate) {
+  reset_state(last, problem);
+  auto attempt = std::make_unique<Attempt>();
+  attempt->start = start;
+  const double started = process_cpu_seconds();
+  SartorPetscCall(VecDuplicate(candidate, &attempt->x));
+  SartorPetscCall(VecCopy(candidate, attempt->x));
+  std::tie(attempt->pushed, attempt->deepest) = push_out_of_bodies(problem, attempt->x);
+  attempt->start_residual = residual_norm(problem, attempt->x);
+  const StaticOptions solve = static_options();
+  SartorPetscCall(solve_static(problem, attempt->x, solve, &attempt->report));
+  attempt->certified = certify_case(options_, problem, attempt->x, &solve, &attempt->report);
+  attempt->cpu = process_cpu_seconds() - started;
+  SartorPetscCall(problem.gather_anchors(&attempt->anchors));
+  SartorPetscCall(broadcast_anchors(problem.comm(), &attempt->anchors));
+  attempt->contact = problem.contact;
+  return attempt;
+}
+
 void EditSession::write_state(const std::string& directory, const Design& design, Vec x) {
   std::vector<element::MembraneStrain> strains;
   SartorPetscCall(design.problem->gather_strains(x, &strains));
@@ -285,11 +365,7 @@ nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
   next->owned = factory_(last.problem->comm(), *next->mesh, 0.0);
   next->problem = next->owned.get();
   ClothProblem& problem = *next->problem;
-  SartorPetscCall(copy_problem_state(*last.problem, problem));
-  // The friction anchors start afresh where the re-solve starts (statics
-  // anchor what touches a body at their start): the last drape's anchors
-  // would hold the contact where the edit moved it from.
-  if (options_.text("edit-anchors") == "fresh") problem.restore_anchors({});
+  reset_state(last, problem);
   SartorPetscCall(problem.create_solution(&next->x));
   Vec unchanged = nullptr, linear = nullptr, gmls = nullptr;
   for (Vec* v : {&unchanged, &linear, &gmls})
@@ -301,18 +377,33 @@ nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
   predict_gmls(p, problem, gmls, &used);
   const double predict_cpu = process_cpu_seconds() - predict_started;
 
+  // With one design GMLS is the linear prediction: one of the two is tried.
+  const std::string requested = options_.text("edit-start");
+  std::map<std::string, Vec> candidates{{"linear", linear}, {"unchanged", unchanged}};
+  if (designs_.size() > 1 || requested == "gmls") candidates["gmls"] = gmls;
+  if (designs_.size() == 1 && requested == "gmls") candidates.erase("linear");
   nlohmann::json start_energy = nlohmann::json::object();
-  const std::string start =
-      choose_start({{"gmls", gmls}, {"linear", linear}, {"unchanged", unchanged}}, options_,
-                   problem, next->x, &start_energy);
-  const StaticOptions solve = static_options();
-  StaticReport report;
-  const double solve_started = process_cpu_seconds();
-  const auto [pushed, deepest] = push_out_of_bodies(problem, next->x);
-  const double start_residual = residual_norm(problem, next->x);
-  SartorPetscCall(solve_static(problem, next->x, solve, &report));
-  const CertifiedState certified = certify_case(options_, problem, next->x, &solve, &report);
-  const double solve_cpu = process_cpu_seconds() - solve_started;
+  const std::vector<std::string> order =
+      order_starts(candidates, options_, problem, next->x, &start_energy);
+  // A re-solve that fails (not converged, or not certified) is tried again
+  // from the other starts, unless --no-edit-retry.
+  std::vector<std::unique_ptr<Attempt>> attempts;
+  for (const std::string& start : order) {
+    attempts.push_back(resolve_from(last, problem, start, candidates.at(start)));
+    if (attempts.back()->succeeded() || options_.flag("no-edit-retry")) break;
+  }
+  const Attempt& chosen = best_attempt(attempts);
+  SartorPetscCall(VecCopy(chosen.x, next->x));
+  problem.restore_anchors(chosen.anchors);
+  problem.contact = chosen.contact;
+  const StaticReport& report = chosen.report;
+  const CertifiedState& certified = chosen.certified;
+  double solve_cpu = 0.0;
+  nlohmann::json tried = nlohmann::json::array();
+  for (const auto& attempt : attempts) {
+    solve_cpu += attempt->cpu;
+    tried.push_back(attempt_json(*attempt));
+  }
 
   char name[32];
   std::snprintf(name, sizeof name, "edit_%02zu", k + 1);
@@ -328,44 +419,46 @@ nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
     write_state(folder + "/resolved", *next, next->x);
   }
   const double edit_cpu = slope_cpu + predict_cpu + solve_cpu;
-  nlohmann::json step = {{"name", steps_[k].name},
-                         {"folder", name},
-                         {"largest_corner_move_m", design.largest_move(p - last.p)},
-                         {"error_against_resolved",
-                          {{"unchanged", distance_json(distance(problem, unchanged, next->x))},
-                           {"linear", distance_json(distance(problem, linear, next->x))},
-                           {"gmls", distance_json(distance(problem, gmls, next->x))}}},
-                         {"gmls", {{"designs", designs_.size()}, {"degree", used.degree}}},
-                         {"lowest_point_z_m",
-                          {{"before", lowest_point(problem, unchanged)},
-                           {"linear", lowest_point(problem, linear)},
-                           {"gmls", lowest_point(problem, gmls)},
-                           {"resolved", lowest_point(problem, next->x)}}},
-                         {"start", start},
-                         {"start_energy_J", start_energy},
-                         {"start_pushed_out", {{"vertices", pushed}, {"deepest_m", deepest}}},
-                         {"start_residual_N", start_residual},
-                         {"resolve",
-                          {{"converged", report.converged},
-                           {"reason", report.reason},
-                           {"newton_iterations", report.newton_iterations},
-                           {"contact_rounds", report.contact_rounds},
-                           {"residual_N", report.final_residual_norm},
-                           {"sliding_vertices", report.sliding_vertices},
-                           {"contact_round_failed", report.contact_round_failed},
-                           {"contact_stiffness_scale", report.contact_stiffness_scale},
-                           {"certificate", certified.certificate.verdict()},
-                           {"certified", certified.certificate.certified()}}},
-                         {"sensitivity_stabilised", last.slope->stabilised()},
-                         {"cpu_s",
-                          {{"sensitivity_factorisation", slope_cpu},
-                           {"prediction", predict_cpu},
-                           {"resolve", solve_cpu},
-                           {"edit_total", edit_cpu},
-                           {"drape_from_scratch", scratch_cpu_}}},
-                         {"speedup",
-                          {{"resolve", solve_cpu > 0.0 ? scratch_cpu_ / solve_cpu : 0.0},
-                           {"edit_total", edit_cpu > 0.0 ? scratch_cpu_ / edit_cpu : 0.0}}}};
+  nlohmann::json step = {
+      {"name", steps_[k].name},
+      {"folder", name},
+      {"largest_corner_move_m", design.largest_move(p - last.p)},
+      {"error_against_resolved",
+       {{"unchanged", distance_json(distance(problem, unchanged, next->x))},
+        {"linear", distance_json(distance(problem, linear, next->x))},
+        {"gmls", distance_json(distance(problem, gmls, next->x))}}},
+      {"gmls", {{"designs", designs_.size()}, {"degree", used.degree}}},
+      {"lowest_point_z_m",
+       {{"before", lowest_point(problem, unchanged)},
+        {"linear", lowest_point(problem, linear)},
+        {"gmls", lowest_point(problem, gmls)},
+        {"resolved", lowest_point(problem, next->x)}}},
+      {"start", chosen.start},
+      {"start_energy_J", start_energy},
+      {"start_pushed_out", {{"vertices", chosen.pushed}, {"deepest_m", chosen.deepest}}},
+      {"start_residual_N", chosen.start_residual},
+      {"attempts", tried},
+      {"resolve",
+       {{"converged", report.converged},
+        {"reason", report.reason},
+        {"newton_iterations", report.newton_iterations},
+        {"contact_rounds", report.contact_rounds},
+        {"residual_N", report.final_residual_norm},
+        {"sliding_vertices", report.sliding_vertices},
+        {"contact_round_failed", report.contact_round_failed},
+        {"contact_stiffness_scale", report.contact_stiffness_scale},
+        {"certificate", certified.certificate.verdict()},
+        {"certified", certified.certificate.certified()}}},
+      {"sensitivity_stabilised", last.slope->stabilised()},
+      {"cpu_s",
+       {{"sensitivity_factorisation", slope_cpu},
+        {"prediction", predict_cpu},
+        {"resolve", solve_cpu},
+        {"edit_total", edit_cpu},
+        {"drape_from_scratch", scratch_cpu_}}},
+      {"speedup",
+       {{"resolve", solve_cpu > 0.0 ? scratch_cpu_ / solve_cpu : 0.0},
+        {"edit_total", edit_cpu > 0.0 ? scratch_cpu_ / edit_cpu : 0.0}}}};
   for (Vec* v : {&unchanged, &linear, &gmls})
     SartorPetscCall(VecDestroy(v));
   designs_.push_back(std::move(next));
@@ -395,6 +488,14 @@ void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& mat
     all_certified = all_certified && step["resolve"]["certified"].get<bool>();
     const auto& error = step["error_against_resolved"];
     const auto& cpu = step["cpu_s"];
+    std::string from = step["start"].get<std::string>();
+    for (const auto& attempt : step["attempts"])
+      if (attempt["start"] != step["start"])
+        from += std::string(from.find('(') == std::string::npos ? " (" : ", ") + "from " +
+                attempt["start"].get<std::string>() + ": " +
+                (attempt["converged"].get<bool>() ? attempt["certificate"].get<std::string>()
+                                                  : "not converged");
+    if (from.find('(') != std::string::npos) from += ")";
     SartorPetscCall(PetscPrintf(
         base.comm(),
         "sartor edit: %s ('%s'): lowest point %+.1f mm; predictions off by (max) linear %.2f "
@@ -404,7 +505,7 @@ void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& mat
         1e3 * (step["lowest_point_z_m"]["resolved"].get<double>() -
                step["lowest_point_z_m"]["before"].get<double>()),
         1e3 * error["linear"]["max_m"].get<double>(), 1e3 * error["gmls"]["max_m"].get<double>(),
-        1e3 * error["unchanged"]["max_m"].get<double>(), step["start"].get<std::string>().c_str(),
+        1e3 * error["unchanged"]["max_m"].get<double>(), from.c_str(),
         step["resolve"]["converged"].get<bool>() ? "converged" : "NOT converged",
         int(step["resolve"]["newton_iterations"].get<long>()),
         step["resolve"]["certificate"].get<std::string>().c_str(), cpu["resolve"].get<double>(),

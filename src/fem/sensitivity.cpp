@@ -31,18 +31,6 @@ double mean_edge_length(const TriangleMesh& mesh) {
   return mesh.material_uv.empty() ? 0.0 : total / (3.0 * double(mesh.material_uv.size()));
 }
 
-PetscErrorCode broadcast_anchors(MPI_Comm comm, std::vector<AnchorRow>* rows) {
-  PetscFunctionBeginUser;
-  auto count = static_cast<unsigned long>(rows->size());
-  PetscCallMPI(MPI_Bcast(&count, 1, MPI_UNSIGNED_LONG, 0, comm));
-  rows->resize(count);
-  if (count > 0)
-    PetscCallMPI(MPI_Bcast(rows->data()->data(),
-                           PetscMPIInt(std::tuple_size<AnchorRow>::value * count), MPI_DOUBLE, 0,
-                           comm));
-  PetscFunctionReturn(0);
-}
-
 } // namespace
 
 RestChange rest_change_per_vertex(const TriangleMesh& mesh,
@@ -68,6 +56,18 @@ TriangleMesh moved_rest(const TriangleMesh& mesh, const RestChange& change, doub
     for (std::size_t k = 0; k < 3; ++k)
       moved.material_uv[t][k] += scale * change[t][k];
   return moved;
+}
+
+PetscErrorCode broadcast_anchors(MPI_Comm comm, std::vector<AnchorRow>* rows) {
+  PetscFunctionBeginUser;
+  auto count = static_cast<unsigned long>(rows->size());
+  PetscCallMPI(MPI_Bcast(&count, 1, MPI_UNSIGNED_LONG, 0, comm));
+  rows->resize(count);
+  if (count > 0)
+    PetscCallMPI(MPI_Bcast(rows->data()->data(),
+                           PetscMPIInt(std::tuple_size<AnchorRow>::value * count), MPI_DOUBLE, 0,
+                           comm));
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode copy_problem_state(ClothProblem& from, ClothProblem& to) {
