@@ -163,6 +163,10 @@ const std::vector<OptionSpec>& edit_option_specs() {
        "the sensitivity's tangent: exact (the derivative) or projected (the minimiser's, "
        "PSD-projected element Hessians: damps the wrinkles' negative curvature)"},
       {"gmls-degree", "N", "2", "degree of GMLS's polynomial basis: 1 (Sensitive Couture's) or 2"},
+      {"edit-max-newton", "N", "0",
+       "the most Newton iterations of each solve (sewing stage or contact round) of a "
+       "re-solve; a start that needs more fails, and the next is tried (0: the drape's "
+       "-snes_max_it)"},
       {"no-edit-retry", "", "",
        "keep a re-solve that fails (not converged, or not certified) instead of re-solving "
        "again from the other starts (by increasing potential energy)"},

@@ -60,6 +60,7 @@ struct EditRun {
   nlohmann::json summary = nlohmann::json::object();
   std::string message; // the closing lines
   bool all_certified = false;
+  std::vector<std::string> not_converged; // the folders of the edits no re-solve converged
 };
 
 // Sets cloth->after_statics so that, once the drape converged, the edits of

@@ -76,6 +76,14 @@ int run_edit(const Invocation& invocation) {
   const int status = drape_pattern(invocation, &request);
   if (!request.run->ran)
     throw SolveFailure("sartor edit: the drape did not converge, so no edit was made");
+  if (!request.run->not_converged.empty()) {
+    std::string folders;
+    for (const std::string& folder : request.run->not_converged)
+      folders += (folders.empty() ? "" : ", ") + folder;
+    throw SolveFailure("sartor edit: the re-solve of " + folders +
+                       " did not converge from any start tried (summary.json: "
+                       "edit.steps[].attempts); the edit folders hold the states reached");
+  }
   if (!request.run->all_certified) {
     SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD,
                                 "sartor edit: not every re-solved drape is certified "

@@ -6,6 +6,7 @@
 #include "common/gmls.hpp"
 #include "common/output.hpp"
 #include "contact/body.hpp"
+#include "fem/incremental_system.hpp"
 #include "fem/petsc_call.hpp"
 #include "fem/sensitivity.hpp"
 #include "fem/statics.hpp"
@@ -336,7 +337,16 @@ std::unique_ptr<Attempt> EditSession::resolve_from(Design& last, ClothProblem& p
   std::tie(attempt->pushed, attempt->deepest) = push_out_of_bodies(problem, attempt->x);
   attempt->start_residual = residual_norm(problem, attempt->x);
   const StaticOptions solve = static_options();
-  SartorPetscCall(solve_static(problem, attempt->x, solve, &attempt->report));
+  IncrementalSystem system(problem, attempt->x);
+  if (const long cap = options_.integer_in("edit-max-newton", 0, 1000000000); cap > 0) {
+    PetscReal atol = 0.0, rtol = 0.0, stol = 0.0;
+    PetscInt max_iterations = 0, max_evaluations = 0;
+    SartorPetscCall(
+        SNESGetTolerances(system.snes(), &atol, &rtol, &stol, &max_iterations, &max_evaluations));
+    SartorPetscCall(
+        SNESSetTolerances(system.snes(), atol, rtol, stol, PetscInt(cap), max_evaluations));
+  }
+  SartorPetscCall(solve_static(system, attempt->x, solve, &attempt->report));
   attempt->certified = certify_case(options_, problem, attempt->x, &solve, &attempt->report);
   attempt->cpu = process_cpu_seconds() - started;
   SartorPetscCall(problem.gather_anchors(&attempt->anchors));
@@ -486,6 +496,8 @@ void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& mat
     p += design.parameters(steps_[k]);
     const nlohmann::json step = solve_step(k, p, design);
     all_certified = all_certified && step["resolve"]["certified"].get<bool>();
+    if (!step["resolve"]["converged"].get<bool>())
+      run_->not_converged.push_back(step["folder"].get<std::string>());
     const auto& error = step["error_against_resolved"];
     const auto& cpu = step["cpu_s"];
     std::string from = step["start"].get<std::string>();
@@ -511,6 +523,8 @@ void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& mat
         step["resolve"]["certificate"].get<std::string>().c_str(), cpu["resolve"].get<double>(),
         cpu["edit_total"].get<double>(), cpu["drape_from_scratch"].get<double>()));
     steps.push_back(step);
+    // The edits build on each other: none follows a drape out of equilibrium.
+    if (!run_->not_converged.empty()) break;
   }
   designs_.clear();
   run_->ran = true;
