@@ -74,13 +74,12 @@ int run_edit(const Invocation& invocation) {
   // predicted worse (docs/sensitivity.md#bending-models).
   SartorPetscCall(set_default_option("-bending_model", "discrete_shell"));
   const int status = drape_pattern(invocation, &request);
-  if (!request.run->ran)
-    throw SolveFailure("sartor edit: the drape did not converge, so no edit was made");
+  if (!request.run->ran) throw SolveFailure("the drape did not converge, so no edit was made");
   if (!request.run->not_converged.empty()) {
     std::string folders;
     for (const std::string& folder : request.run->not_converged)
       folders += (folders.empty() ? "" : ", ") + folder;
-    throw SolveFailure("sartor edit: the re-solve of " + folders +
+    throw SolveFailure("the re-solve of " + folders +
                        " did not converge from any start tried (summary.json: "
                        "edit.steps[].attempts); the edit folders hold the states reached");
   }
