@@ -3,6 +3,7 @@
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
+#include "contact/self_intersections.hpp"
 #include "mesh/obj_lines.hpp"
 
 #include <Eigen/Geometry>
@@ -232,6 +233,18 @@ void check_outward(const BodyMesh& mesh, const FaceLocator& where) {
   }
 }
 
+void check_embedded(const BodyMesh& mesh, const FaceLocator& where) {
+  const auto crossing = self_intersecting_faces(mesh);
+  if (crossing.empty()) return;
+  const auto [first, second] = crossing.front();
+  const std::size_t others = crossing.size() - 1;
+  throw InputError(where(second) + "the surface intersects itself: this face crosses another (" +
+                   where.place(first) + ")" +
+                   (others > 0 ? "; " + std::to_string(others) + " more pair(s) of faces cross"
+                               : std::string()) +
+                   "; a body must be the boundary of a solid");
+}
+
 void check(const BodyMesh& mesh, const FaceLocator& where, const std::string& empty_context) {
   if (mesh.faces.empty()) {
     throw InputError(empty_context + "the body has no faces; a body needs a closed triangle mesh");
@@ -240,6 +253,7 @@ void check(const BodyMesh& mesh, const FaceLocator& where, const std::string& em
   check_edges(mesh, where);
   check_vertex_fans(mesh, where);
   check_outward(mesh, where);
+  check_embedded(mesh, where);
 }
 
 class BodyObjParser {

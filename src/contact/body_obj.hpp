@@ -17,8 +17,9 @@
 // below 1e-12 of the squared longest side); 2-manifold (every edge in exactly
 // two faces, every vertex's faces one fan); closed (no edge in one face);
 // consistently oriented (the two faces of an edge run it in opposite
-// directions); and oriented outward (positive enclosed volume). Self-
-// intersections are not detected.
+// directions); oriented outward (positive enclosed volume); and free of
+// self-intersections (no two faces cross other than along the edge or at the
+// vertex they share; CGAL's exact predicates).
 
 #include <Eigen/Core>
 

@@ -1,6 +1,7 @@
 #include "contact/mannequin.hpp"
 
 #include "common/error.hpp"
+#include "contact/self_intersections.hpp"
 
 #include <Eigen/Geometry>
 
@@ -10,6 +11,7 @@
 #include <cstdint>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <unordered_map>
 #include <utility>
 
@@ -320,6 +322,14 @@ Eigen::Vector3d project_to_surface(const Design& d, Eigen::Vector3d p) {
 // --- marching tetrahedra -----------------------------------------------------
 
 constexpr double grid_spacing = 0.02; // m; sets the triangle count (about 36k)
+// Near a fold (see `generate`), node values are kept this far from zero (m
+// of field): where the surface passes closer to a node, the crossings on the
+// node's 14 edges crowd within a fraction of a millimetre of it, slivers
+// that smoothing spreads out and, on the thin hands, folds over one another.
+// The zero set moves by about this much there, and smoothing projects every
+// vertex back onto the true surface.
+constexpr double near_node = 0.1 * grid_spacing;
+constexpr double fold_radius = 2.0 * grid_spacing; // m: the nodes kept from zero around a fold
 
 // The zero set of the piecewise-linear interpolant of the field on the
 // Freudenthal subdivision of a regular grid (six tetrahedra per cube around
@@ -329,7 +339,13 @@ constexpr double grid_spacing = 0.02; // m; sets the triangle count (about 36k)
 // tetrahedra around its grid edge. Triangles are wound so that their normal
 // points from the negative (inside) corners to the positive ones.
 BodyMesh marching_tetrahedra(const Design& design, const Eigen::Vector3d& lower,
-                             const Eigen::Vector3d& upper) {
+                             const Eigen::Vector3d& upper,
+                             const std::vector<Eigen::Vector3d>& folds) {
+  const auto near_fold = [&folds](const Eigen::Vector3d& p) {
+    return std::any_of(folds.begin(), folds.end(), [&p](const Eigen::Vector3d& fold) {
+      return (p - fold).norm() < fold_radius;
+    });
+  };
   // Shifted off round numbers so that no node lies on the sole plane z = 0.
   const Eigen::Vector3d origin = lower - Eigen::Vector3d::Constant(0.37 * grid_spacing);
   std::array<long, 3> n;
@@ -346,7 +362,10 @@ BodyMesh marching_tetrahedra(const Design& design, const Eigen::Vector3d& lower,
     for (long j = 0; j < n[1]; ++j)
       for (long i = 0; i < n[0]; ++i) {
         const double f = body_field<Derivatives::none>(design, position(i, j, k)).value;
-        value[static_cast<std::size_t>(node(i, j, k))] = f == 0.0 ? 1e-12 : f;
+        const bool kept = std::abs(f) < near_node && near_fold(position(i, j, k));
+        value[static_cast<std::size_t>(node(i, j, k))] = kept       ? std::copysign(near_node, f)
+                                                         : f == 0.0 ? 1e-12
+                                                                    : f;
       }
 
   BodyMesh mesh;
@@ -1147,8 +1166,23 @@ Mannequin MannequinModel::generate() const {
   const Design& d = posed_->design;
   const auto [lower, upper] = polygonising_box(d);
   Mannequin mannequin;
-  mannequin.mesh = marching_tetrahedra(d, lower, upper);
+  mannequin.mesh = marching_tetrahedra(d, lower, upper, {});
   relax(d, mannequin.mesh, 4);
+  // Smoothing can fold the thin hands' triangles over one another: polygonised
+  // again with the nodes near the crossing faces kept from zero. The mesh
+  // elsewhere is the same, bit for bit (smoothing reaches four rings).
+  const auto crossing = self_intersecting_faces(mannequin.mesh);
+  if (!crossing.empty()) {
+    std::vector<Eigen::Vector3d> folds;
+    for (const auto& [a, b] : crossing)
+      for (std::size_t f : {a, b})
+        for (int v : mannequin.mesh.faces[f])
+          folds.push_back(mannequin.mesh.vertices[static_cast<std::size_t>(v)]);
+    mannequin.mesh = marching_tetrahedra(d, lower, upper, folds);
+    relax(d, mannequin.mesh, 4);
+    if (!self_intersecting_faces(mannequin.mesh).empty())
+      throw std::logic_error("mannequin: the polygonised surface crosses itself");
+  }
   mannequin.skeleton = sartor::skeleton(d);
   return mannequin;
 }

@@ -72,7 +72,9 @@ INSTANTIATE_TEST_SUITE_P(
                   "unknown_statement.obj:6: unknown OBJ statement 'cstype'"},
         Malformed{"nonmanifold_vertex.obj",
                   "nonmanifold_vertex.obj:10: non-manifold vertex 4: its 6 faces form more than "
-                  "one fan"}),
+                  "one fan"},
+        Malformed{"self_intersecting.obj", "self_intersecting.obj:14: the surface intersects "
+                                           "itself: this face crosses another ("}),
     [](const ::testing::TestParamInfo<Malformed>& param) {
       std::string name = param.param.file;
       return name.substr(0, name.find('.'));

@@ -57,6 +57,20 @@ TEST(Mannequin, IsAClosedOutwardSurfaceOfOnePieceWithoutHandles) {
   EXPECT_GT(m.smallest_angle_deg, 1.0);
 }
 
+// Smoothing folded the polygonised hands over one another; a sized and a
+// posed mannequin are polygonised and checked as the default is, crossing
+// faces included.
+TEST(Mannequin, SizedAndPosedPolygonisationsAreClosedAndDoNotCrossThemselves) {
+  const sartor::MannequinModel sized({{"height", 1900.0}, {"waist", 900.0}});
+  const sartor::MannequinModel posed = sartor::MannequinModel().posed(
+      sartor::contact::parse_pose_history("0:knee_l:60,elbow_r:90").at(0.0));
+  for (const sartor::MannequinModel* model : {&sized, &posed}) {
+    const sartor::Mannequin generated = model->generate();
+    EXPECT_NO_THROW(sartor::check_body_mesh(generated.mesh, "mannequin"));
+    EXPECT_GT(sartor::measure_body(generated.mesh).smallest_angle_deg, 1.0);
+  }
+}
+
 TEST(Mannequin, StandsOnTheFloorAtHumanHeightFacingMinusY) {
   const sartor::BodyMeasures m = sartor::measure_body(mannequin().mesh);
   EXPECT_NEAR(m.lower.z(), 0.0, 1e-9);
