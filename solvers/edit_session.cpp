@@ -500,14 +500,15 @@ void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& mat
       run_->not_converged.push_back(step["folder"].get<std::string>());
     const auto& error = step["error_against_resolved"];
     const auto& cpu = step["cpu_s"];
-    std::string from = step["start"].get<std::string>();
+    std::string others; // the other attempts: "from linear: not converged, ..."
     for (const auto& attempt : step["attempts"])
       if (attempt["start"] != step["start"])
-        from += std::string(from.find('(') == std::string::npos ? " (" : ", ") + "from " +
-                attempt["start"].get<std::string>() + ": " +
-                (attempt["converged"].get<bool>() ? attempt["certificate"].get<std::string>()
-                                                  : "not converged");
-    if (from.find('(') != std::string::npos) from += ")";
+        others += std::string(others.empty() ? "" : ", ") + "from " +
+                  attempt["start"].get<std::string>() + ": " +
+                  (attempt["converged"].get<bool>() ? attempt["certificate"].get<std::string>()
+                                                    : "not converged");
+    const std::string from =
+        step["start"].get<std::string>() + (others.empty() ? "" : " (" + others + ")");
     SartorPetscCall(PetscPrintf(
         base.comm(),
         "sartor edit: %s ('%s'): lowest point %+.1f mm; predictions off by (max) linear %.2f "
