@@ -7,6 +7,8 @@
 #include "fem/forms/bending_forms.hpp"
 
 #include <algorithm>
+#include <functional>
+#include <memory>
 #include <stdexcept>
 
 namespace sartor::fem {
@@ -46,22 +48,38 @@ struct Patch {
   std::array<Eigen::Matrix<double, 1, 6>, 3> slopes;
 };
 
-Patch patch_of(const TriangleMesh& mesh, const std::vector<Across>& across, std::size_t t,
-               const element::BendingRigidity& rigidity) {
-  const auto& corners = mesh.triangles[t];
-  const auto& uv = mesh.material_uv[t];
+using TriangleUV = std::array<Eigen::Vector2d, 3>;
+// The material coordinates of a triangle's corners: the mesh's, or a moved
+// pattern's.
+using UVOf = std::function<TriangleUV(std::size_t triangle)>;
+
+// What the patches are built from besides the material coordinates; kept by
+// the form's rest derivative, which rebuilds them on moved patterns.
+struct PatchGeometry {
+  const TriangleMesh& mesh;
+  std::vector<Across> across;
+  // A triangle of fixed vertices (a clamp) has a prescribed curvature: it
+  // stores nothing the unknowns could change, and it imposes its own
+  // plane's slope on the edges it shares.
+  std::vector<bool> fixed;
+  std::vector<element::BendingRigidity> rigidity; // per triangle
+};
+
+Patch free_patch(const PatchGeometry& g, const UVOf& uv_of, std::size_t t) {
+  const auto& corners = g.mesh.triangles[t];
+  const TriangleUV uv = uv_of(t);
   Patch patch;
   patch.vertices = {corners[0], corners[1], corners[2], corners[0], corners[1], corners[2]};
   std::array<Eigen::Vector2d, 3> nodes;
   std::array<bool, 3> has_node{};
   for (std::size_t k = 0; k < 3; ++k) {
-    const Across& neighbour = across[3 * t + k];
+    const Across& neighbour = g.across[3 * t + k];
     has_node[k] = neighbour.triangle >= 0;
     if (!has_node[k]) continue;
     patch.vertices[3 + k] = neighbour.vertex;
     const std::size_t i = (k + 1) % 3, j = (k + 2) % 3;
-    const auto& other_corners = mesh.triangles[std::size_t(neighbour.triangle)];
-    const auto& other_uv = mesh.material_uv[std::size_t(neighbour.triangle)];
+    const auto& other_corners = g.mesh.triangles[std::size_t(neighbour.triangle)];
+    const TriangleUV other_uv = uv_of(std::size_t(neighbour.triangle));
     const auto other = [&](int vertex) {
       return other_uv[std::size_t(std::find(other_corners.begin(), other_corners.end(), vertex) -
                                   other_corners.begin())];
@@ -69,7 +87,16 @@ Patch patch_of(const TriangleMesh& mesh, const std::vector<Across>& across, std:
     nodes[k] = element::node_across(uv[i], uv[j], uv[k], other(corners[i]), other(corners[j]),
                                     other(neighbour.vertex));
   }
-  patch.slopes = element::midedge_slopes(uv, nodes, has_node, rigidity);
+  patch.slopes = element::midedge_slopes(uv, nodes, has_node, g.rigidity[t]);
+  return patch;
+}
+
+Patch patch_of(const PatchGeometry& g, const UVOf& uv_of, std::size_t t) {
+  if (!g.fixed[t]) return free_patch(g, uv_of, t);
+  const auto& corners = g.mesh.triangles[t];
+  Patch patch;
+  patch.vertices = {corners[0], corners[1], corners[2], corners[0], corners[1], corners[2]};
+  patch.slopes = element::plane_slopes(uv_of(t));
   return patch;
 }
 
@@ -82,73 +109,140 @@ std::size_t slot_of(std::array<int, 12>& stencil, std::size_t& next, int vertex)
   return next++;
 }
 
-// The patch triangles this rank assembles, each with its twelve-node
-// stencil: its own patch and its neighbours' (the edge slopes are the mean
-// of both patches').
-std::unique_ptr<Form> patch_form(const BendingSetUp& setup, element::BendingModel) {
-  const TriangleMesh& mesh = setup.mesh;
-  const std::vector<Across> across = neighbours(mesh);
-  std::vector<Patch> patches(mesh.triangle_count());
-  // A triangle of fixed vertices (a clamp) has a prescribed curvature: it
-  // stores nothing the unknowns could change, and it imposes its own
-  // plane's slope on the edges it shares.
-  std::vector<bool> fixed(mesh.triangle_count());
-  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-    const auto& corners = mesh.triangles[t];
-    fixed[t] = std::all_of(corners.begin(), corners.end(),
-                           [&](int v) { return setup.is_pinned[std::size_t(v)]; });
-    if (fixed[t]) {
-      patches[t].vertices = {corners[0], corners[1], corners[2],
-                             corners[0], corners[1], corners[2]};
-      patches[t].slopes = element::plane_slopes(mesh.material_uv[t]);
-    } else {
-      patches[t] = patch_of(mesh, across, t, setup.material(t).patch_rigidity());
+// A patch triangle's twelve-node stencil (its own patch's nodes, then each
+// neighbour's further nodes; unused slots repeat corner 0 with weight zero)
+// and its edges' outward normal slopes over it: the mean of both patches'
+// (the neighbour's outward normal is this triangle's inward one), or a
+// clamp's own.
+struct Stencil {
+  std::array<int, 12> vertices;
+  std::array<Eigen::Matrix<double, 1, 12>, 3> slopes;
+};
+
+Stencil stencil_of(const PatchGeometry& g, const std::function<const Patch&(std::size_t)>& patch,
+                   std::size_t t) {
+  Stencil stencil;
+  stencil.vertices.fill(g.mesh.triangles[t][0]);
+  const Patch& own = patch(t);
+  std::copy(own.vertices.begin(), own.vertices.end(), stencil.vertices.begin());
+  for (std::size_t k = 0; k < 3; ++k) {
+    auto& slope = stencil.slopes[k];
+    slope.setZero();
+    slope.head<6>() = own.slopes[k];
+    const Across& neighbour = g.across[3 * t + k];
+    if (neighbour.triangle < 0) continue;
+    const double share = g.fixed[std::size_t(neighbour.triangle)] ? 1.0 : 0.5;
+    slope *= 1.0 - share;
+    const Patch& other = patch(std::size_t(neighbour.triangle));
+    const auto& other_corners = g.mesh.triangles[std::size_t(neighbour.triangle)];
+    const auto edge =
+        std::size_t(std::find(other_corners.begin(), other_corners.end(), neighbour.vertex) -
+                    other_corners.begin());
+    std::size_t next = 6 + 2 * k;
+    for (std::size_t n = 0; n < 6; ++n) {
+      const std::size_t s = slot_of(stencil.vertices, next, other.vertices[n]);
+      if (next > 8 + 2 * k) throw std::logic_error("a bending patch with too many nodes");
+      slope(long(s)) -= share * other.slopes[edge](long(n));
     }
   }
+  return stencil;
+}
+
+// Triangle t's rest data on the pattern moved by `step` times `change`
+// (curves, rest curvature and rigidity as the form's).
+element::PatchRest moved_rest(const PatchGeometry& g, std::size_t t, const RestChange& change,
+                              double step) {
+  const UVOf uv_of = [&](std::size_t triangle) {
+    TriangleUV uv = g.mesh.material_uv[triangle];
+    for (std::size_t c = 0; c < 3; ++c)
+      uv[c] += step * change[triangle][c];
+    return uv;
+  };
+  std::vector<std::pair<std::size_t, Patch>> patches{{t, patch_of(g, uv_of, t)}};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const int neighbour = g.across[3 * t + k].triangle;
+    if (neighbour >= 0) patches.emplace_back(neighbour, patch_of(g, uv_of, std::size_t(neighbour)));
+  }
+  const auto patch = [&](std::size_t triangle) -> const Patch& {
+    return std::find_if(patches.begin(), patches.end(),
+                        [&](const auto& entry) { return entry.first == triangle; })
+        ->second;
+  };
+  return element::patch_rest(uv_of(t), stencil_of(g, patch, t).slopes, g.rigidity[t]);
+}
+
+// Relative to the triangle's longest edge, the step of the differences of
+// its rest data (fourth order after extrapolation: truncation ~1e-16, round-off
+// ~1e-12 relative).
+constexpr double relative_step = 1e-4;
+
+// The change of triangle t's rest data (area and curvature weights) when the
+// pattern moves by `change`: the patches rebuilt on the pattern moved by
+// +-h and +-h/2 times it, differenced and extrapolated, (4 D(h/2) - D(h)) / 3.
+element::PatchRestChange rest_change(const PatchGeometry& g, std::size_t t,
+                                     const RestChange& change) {
+  double largest = 0.0;
+  std::vector<std::size_t> involved{t};
+  for (std::size_t k = 0; k < 3; ++k)
+    if (g.across[3 * t + k].triangle >= 0)
+      involved.push_back(std::size_t(g.across[3 * t + k].triangle));
+  for (const std::size_t triangle : involved)
+    for (const Eigen::Vector2d& d : change[triangle])
+      largest = std::max(largest, d.norm());
+  element::PatchRestChange result;
+  if (largest == 0.0) return result;
+  const TriangleUV& uv = g.mesh.material_uv[t];
+  const double edge =
+      std::max({(uv[1] - uv[0]).norm(), (uv[2] - uv[1]).norm(), (uv[0] - uv[2]).norm()});
+  const double h = relative_step * edge / largest;
+  for (const auto& [step, weight] : {std::pair{h, -1.0 / 3.0}, std::pair{0.5 * h, 4.0 / 3.0}}) {
+    const element::PatchRest plus = moved_rest(g, t, change, step);
+    const element::PatchRest minus = moved_rest(g, t, change, -step);
+    const double scale = weight / (2.0 * step);
+    result.area += scale * (plus.area - minus.area);
+    result.weights += scale * (plus.weights - minus.weights);
+  }
+  return result;
+}
+
+// The patch triangles this rank assembles, each with its twelve-node
+// stencil: its own patch and its neighbours'.
+std::unique_ptr<Form> patch_form(const BendingSetUp& setup, element::BendingModel) {
+  const TriangleMesh& mesh = setup.mesh;
+  auto geometry = std::make_shared<PatchGeometry>(PatchGeometry{mesh, neighbours(mesh), {}, {}});
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const auto& corners = mesh.triangles[t];
+    geometry->fixed.push_back(std::all_of(corners.begin(), corners.end(),
+                                          [&](int v) { return setup.is_pinned[std::size_t(v)]; }));
+    geometry->rigidity.push_back(geometry->fixed.back() ? element::BendingRigidity{}
+                                                        : setup.material(t).patch_rigidity());
+  }
+  const UVOf mesh_uv = [&](std::size_t t) { return mesh.material_uv[t]; };
+  std::vector<Patch> patches;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+    patches.push_back(patch_of(*geometry, mesh_uv, t));
+  const auto patch = [&](std::size_t t) -> const Patch& { return patches[t]; };
   std::vector<LocalPatch> local_patches;
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-    if (!setup.triangle_owned[t] || fixed[t]) continue;
-    const auto& corners = mesh.triangles[t];
+    if (!setup.triangle_owned[t] || geometry->fixed[t]) continue;
     const ClothMaterial& material = setup.material(t);
     if (!material.has_bending()) continue;
-    // Stencil: the patch's six nodes, then each neighbour's further nodes;
-    // unused slots repeat corner 0 (weight zero).
-    std::array<int, 12> stencil;
-    stencil.fill(corners[0]);
-    std::copy(patches[t].vertices.begin(), patches[t].vertices.end(), stencil.begin());
-    std::array<Eigen::Matrix<double, 1, 12>, 3> slopes;
-    for (std::size_t k = 0; k < 3; ++k) {
-      slopes[k].setZero();
-      slopes[k].head<6>() = patches[t].slopes[k];
-      const Across& neighbour = across[3 * t + k];
-      if (neighbour.triangle < 0) continue;
-      // The edge's slope is the mean of both patches' (the neighbour's
-      // outward normal is this triangle's inward one), or a clamp's own.
-      const double share = fixed[std::size_t(neighbour.triangle)] ? 1.0 : 0.5;
-      slopes[k] *= 1.0 - share;
-      const Patch& other = patches[std::size_t(neighbour.triangle)];
-      const auto& other_corners = mesh.triangles[std::size_t(neighbour.triangle)];
-      const auto edge =
-          std::size_t(std::find(other_corners.begin(), other_corners.end(), neighbour.vertex) -
-                      other_corners.begin());
-      std::size_t next = 6 + 2 * k;
-      for (std::size_t n = 0; n < 6; ++n) {
-        const std::size_t s = slot_of(stencil, next, other.vertices[n]);
-        if (next > 8 + 2 * k) throw std::logic_error("a bending patch with too many nodes");
-        slopes[k](long(s)) -= share * other.slopes[edge](long(n));
-      }
-    }
+    const Stencil stencil = stencil_of(*geometry, patch, t);
     LocalPatch local;
-    local.dofs = setup.dofs<36>(stencil);
+    local.triangle = int(t);
+    local.dofs = setup.dofs<36>(stencil.vertices);
     local.project = material.project_bending;
     const Eigen::Vector3d rest_curvature =
         material.rest_curvature.empty() ? Eigen::Vector3d::Zero() : material.rest_curvature[t];
-    local.rest =
-        element::patch_rest(mesh.material_uv[t], slopes, material.patch_rigidity(), rest_curvature);
+    local.rest = element::patch_rest(mesh.material_uv[t], stencil.slopes, geometry->rigidity[t],
+                                     rest_curvature);
     local.rest.curves = material.bending_curves;
     local_patches.push_back(local);
   }
-  return std::make_unique<PatchBendingForm>(std::move(local_patches));
+  return std::make_unique<PatchBendingForm>(std::move(local_patches),
+                                            [geometry](int t, const RestChange& change) {
+                                              return rest_change(*geometry, std::size_t(t), change);
+                                            });
 }
 
 } // namespace

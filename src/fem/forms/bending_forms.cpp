@@ -100,6 +100,19 @@ PetscErrorCode PatchBendingForm::add_element_hessians(const FormPoint& at,
   PetscFunctionReturn(0);
 }
 
+// The kernel's exact response to the change of the rest data; the rest
+// data's own change from the patch model (differences of patches rebuilt on
+// the moved pattern: the 3x3 solves of midedge_slopes, shared between
+// neighbours).
+void PatchBendingForm::add_rest_derivative(const FormPoint& at, const RestChange& change,
+                                           PetscScalar* f) const {
+  for (const LocalPatch& p : patches_) {
+    const element::PatchRestChange delta = rest_data_change_(p.triangle, change);
+    scatter_add<36>(
+        f, p.dofs, element::patch_bending_rest_derivative(p.rest, delta, gather<36>(at.x, p.dofs)));
+  }
+}
+
 bool PatchBendingForm::projects() const {
   return std::any_of(patches_.begin(), patches_.end(),
                      [](const LocalPatch& p) { return p.project; });

@@ -6,9 +6,11 @@
 
 #include "element/bending.hpp"
 #include "element/patch_bending.hpp"
+#include "element/rest_derivative.hpp"
 #include "fem/form.hpp"
 
 #include <array>
+#include <functional>
 #include <vector>
 
 namespace sartor::fem {
@@ -49,6 +51,7 @@ private:
 
 // The patch model's triangle: its twelve-node stencil as PatchRest numbers it.
 struct LocalPatch {
+  int triangle = -1; // in the mesh
   std::array<PetscInt, 36> dofs;
   element::PatchRest rest;
   bool project; // PSD-project its Hessian
@@ -56,7 +59,12 @@ struct LocalPatch {
 
 class PatchBendingForm final : public Form {
 public:
-  explicit PatchBendingForm(std::vector<LocalPatch> patches) : patches_(std::move(patches)) {}
+  // The change of a patch triangle's rest data when the pattern moves by a
+  // rest change (the patch model rebuilds them: fem/bending_models/).
+  using RestDataChange =
+      std::function<element::PatchRestChange(int triangle, const RestChange& change)>;
+  PatchBendingForm(std::vector<LocalPatch> patches, RestDataChange rest_data_change)
+      : patches_(std::move(patches)), rest_data_change_(std::move(rest_data_change)) {}
   const char* name() const override { return "patch bending"; }
   EnergyPart part() const override { return EnergyPart::bending; }
   void add_energy(const FormPoint& at, double* sum) const override;
@@ -64,9 +72,13 @@ public:
   PetscErrorCode register_elements(ElementRegistry& registry) const override;
   PetscErrorCode add_element_hessians(const FormPoint& at, ElementHessians& out) const override;
   bool projects() const override;
+  bool has_rest_derivative() const override { return true; }
+  void add_rest_derivative(const FormPoint& at, const RestChange& change,
+                           PetscScalar* f) const override;
 
 private:
   std::vector<LocalPatch> patches_;
+  RestDataChange rest_data_change_;
 };
 
 } // namespace sartor::fem
