@@ -681,6 +681,12 @@ PetscErrorCode ClothProblem::jacobian(Vec x, Mat J) {
   PetscFunctionReturn(0);
 }
 
+bool ClothProblem::has_rest_derivative() const {
+  const auto has = [](const auto* form) { return form->has_rest_derivative(); };
+  const auto all = [&](const auto& forms) { return std::all_of(forms.begin(), forms.end(), has); };
+  return all(enabled(triangle_forms_)) && all(enabled(forms_)) && all(enabled(coupling_forms_));
+}
+
 PetscErrorCode ClothProblem::rest_derivative(Vec x, const RestChange& change, Vec derivative) {
   const PetscScalar* values = nullptr;
   PetscScalar* changes = nullptr;

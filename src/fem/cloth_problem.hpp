@@ -206,6 +206,9 @@ public:
   // PETSC_ERR_SUP) when an enabled form has none: fem/sensitivity.hpp
   // differentiates rebuilt problems instead.
   PetscErrorCode rest_derivative(Vec x, const RestChange& change, Vec derivative);
+  // Whether every enabled form has a rest derivative (in the problem's
+  // present state: seams being sewn have none).
+  bool has_rest_derivative() const;
   // The forms' names, in the order they are summed.
   std::vector<std::string> form_names() const;
   // Leaves the form of that name out of energy, residual and Jacobian, or

@@ -149,8 +149,16 @@ PetscErrorCode DesignSensitivity::residual_of_moved(const RestChange& change, do
   PetscFunctionReturn(0);
 }
 
+bool DesignSensitivity::sums_forms_rest_derivatives() const {
+  return !options_.difference_rest_derivative && problem_.has_rest_derivative();
+}
+
 PetscErrorCode DesignSensitivity::rest_derivative(const RestChange& change, Vec derivative) {
   PetscFunctionBeginUser;
+  if (sums_forms_rest_derivatives()) {
+    PetscCall(problem_.rest_derivative(x_, change, derivative));
+    PetscFunctionReturn(0);
+  }
   const double h = difference_step(change);
   PetscCall(VecZeroEntries(derivative));
   if (h == 0.0) PetscFunctionReturn(0);

@@ -12,11 +12,14 @@
 // dR/dX dX: the residual depends on X only through the rest data the problem
 // builds from the mesh's material coordinates (triangle rest shapes and areas,
 // hinge weights, bending patches, seam springs' stiffnesses and edge
-// parameters, lumped masses, the automatic contact stiffness). The derivative
-// is the central difference of the residual at fixed x between problems built
-// on X + h dX and X - h dX, extrapolated (Richardson) to fourth order in h:
-// each rebuilt problem takes the state of the equilibrium (loads, load factor,
-// contact settings and anchors, creep state) from the problem given.
+// parameters, lumped masses, the automatic contact stiffness). It is the sum
+// of the forms' rest derivatives (ClothProblem::rest_derivative) when every
+// enabled form has one. Otherwise (seams still being sewn, a user's form
+// without one), or with `difference_rest_derivative`, it is the central
+// difference of the residual at fixed x between problems built on X + h dX
+// and X - h dX, extrapolated (Richardson) to fourth order in h: each rebuilt
+// problem takes the state of the equilibrium (loads, load factor, contact
+// settings and anchors, creep state) from the problem given.
 //
 // Stabilisation (SC §7, "Full-rank of sensitivity matrix"): when K cannot be
 // factorised, or the solve does not reproduce its right-hand side, K is taken
@@ -52,6 +55,9 @@ using ProblemFactory = std::function<std::unique_ptr<ClothProblem>(
     MPI_Comm comm, const TriangleMesh& mesh, double min_bending_stiffness)>;
 
 struct SensitivityOptions {
+  // dR/dX dX by differences of rebuilt problems even where the forms have
+  // exact rest derivatives (the check of the forms').
+  bool difference_rest_derivative = false;
   // The difference step h times max |dX| over the mean edge length.
   double relative_step = 1e-4;
   // Relative residual |K dx + b| / |b| above which a solve counts as failed.
@@ -98,6 +104,9 @@ public:
   PetscErrorCode factorise();
   // Collective. dR/dX dX at x, in the layout of the problem's vectors.
   PetscErrorCode rest_derivative(const RestChange& change, Vec derivative);
+  // Whether rest_derivative sums the forms' exact derivatives (or
+  // differences rebuilt problems).
+  bool sums_forms_rest_derivatives() const;
   // Collective. dx = S dX: the linear change of the equilibrium.
   PetscErrorCode apply(const RestChange& change, Vec dx);
 
