@@ -15,6 +15,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 
@@ -233,6 +234,10 @@ ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh,
 }
 
 void ClothProblem::add_form(std::unique_ptr<fem::Form> form) {
+  if (form->part() == fem::EnergyPart::inertia) {
+    throw std::invalid_argument(std::string("the form '") + form->name() +
+                                "' is a time step's inertia, not a term of the cloth");
+  }
   forms_.push_back(std::move(form));
 }
 

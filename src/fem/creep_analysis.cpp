@@ -162,10 +162,10 @@ PetscErrorCode step_equilibrium(CreepStep& step, double factor, CreepReport* rep
   ClothProblem& problem = step.problem;
   if (step.options.dynamic) {
     problem.load_factor = factor;
-    step.system.inertia_weight = 1.0 / (step.h * step.h);
-    step.system.damping_weight = step.options.damping / step.h;
-    PetscCall(VecCopy(step.last, step.system.previous()));
-    PetscCall(VecWAXPY(step.system.predicted(), step.h, step.velocity, step.last));
+    step.system.inertia().inertia_weight = 1.0 / (step.h * step.h);
+    step.system.inertia().damping_weight = step.options.damping / step.h;
+    PetscCall(VecCopy(step.last, step.system.inertia().previous()));
+    PetscCall(VecWAXPY(step.system.inertia().predicted(), step.h, step.velocity, step.last));
     IncrementalSystem::Solve result;
     PetscCall(step.system.solve(step.x, &result));
     step.newton_iterations += result.newton_iterations;

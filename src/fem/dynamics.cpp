@@ -59,7 +59,7 @@ struct DynamicState {
 PetscErrorCode measure(const DynamicState& s, DynamicStepReport* step) {
   ClothEnergy energy;
   PetscFunctionBeginUser;
-  PetscCall(kinetic_energy(s.v, s.system.mass(), s.work, &step->kinetic_energy));
+  PetscCall(kinetic_energy(s.v, s.system.inertia().mass(), s.work, &step->kinetic_energy));
   PetscCall(s.problem.energy(s.x, &energy));
   step->potential_energy = energy.total();
   PetscCall(s.problem.residual(s.x, s.f));
@@ -94,12 +94,12 @@ PetscErrorCode take_step(DynamicState& s, const DynamicOptions& options, double 
       at_output = true;
     }
     const double h = target - t;
-    PetscCall(VecCopy(s.x, system.previous()));
-    PetscCall(VecWAXPY(system.predicted(), h, s.v, s.x));
-    system.inertia_weight = 1.0 / (h * h);
-    system.damping_weight = options.damping / h;
+    PetscCall(VecCopy(s.x, system.inertia().previous()));
+    PetscCall(VecWAXPY(system.inertia().predicted(), h, s.v, s.x));
+    system.inertia().inertia_weight = 1.0 / (h * h);
+    system.inertia().damping_weight = options.damping / h;
     s.problem.time = target;
-    PetscCall(VecCopy(system.predicted(), s.x));
+    PetscCall(VecCopy(system.inertia().predicted(), s.x));
     IncrementalSystem::Solve solve;
     PetscCall(system.solve(s.x, &solve));
     step->newton_iterations += solve.newton_iterations;
@@ -112,13 +112,13 @@ PetscErrorCode take_step(DynamicState& s, const DynamicOptions& options, double 
       step->output = at_output;
       if (options.output_interval > 0.0 && at_output) clock->next_output += options.output_interval;
       // v = (x - x_n) / h
-      PetscCall(VecWAXPY(s.v, -1.0, system.previous(), s.x));
+      PetscCall(VecWAXPY(s.v, -1.0, system.inertia().previous(), s.x));
       PetscCall(VecScale(s.v, 1.0 / h));
       clock->t = target;
       clock->dt = std::min(2.0 * clock->dt, options.time_step);
       break;
     }
-    PetscCall(VecCopy(system.previous(), s.x));
+    PetscCall(VecCopy(system.inertia().previous(), s.x));
     s.problem.time = t;
     if (attempt >= options.max_cutbacks) {
       report->completed = false;
@@ -157,9 +157,9 @@ PetscErrorCode print_dynamic_progress(const ClothProblem& problem, ProgressClock
 PetscErrorCode settle(DynamicState& s, DynamicReport* report) {
   PetscFunctionBeginUser;
   IncrementalSystem& system = s.system;
-  system.inertia_weight = 0.0;
-  system.damping_weight = 0.0;
-  PetscCall(VecCopy(s.x, system.previous())); // the last accepted state, kept on failure
+  system.inertia().inertia_weight = 0.0;
+  system.inertia().damping_weight = 0.0;
+  PetscCall(VecCopy(s.x, system.inertia().previous())); // the last accepted state, kept on failure
   // The time steps of a relaxation may be solved loosely (-snes_rtol); the
   // equilibrium is solved to at least 1e-10 of the settle's first residual.
   PetscReal atol = 0.0, rtol = 0.0, stol = 0.0;
@@ -202,7 +202,7 @@ PetscErrorCode settle(DynamicState& s, DynamicReport* report) {
   if (solve.converged) {
     PetscCall(VecSet(s.v, 0.0)); // solve_static has accepted the state
   } else {
-    PetscCall(VecCopy(system.previous(), s.x));
+    PetscCall(VecCopy(system.inertia().previous(), s.x));
     report->completed = false;
     report->reason = "the static solve after the relaxation failed: SNES " + solve.reason;
   }

@@ -44,9 +44,10 @@ namespace fem {
 
 using Matrix9 = Eigen::Matrix<double, 9, 9>;
 
-// The line of the energy report (ClothEnergy) a form's energy is counted in.
-enum class EnergyPart { membrane, bending, external, contact, seam };
-constexpr int energy_part_count = 5;
+// The line of the energy report (ClothEnergy) a form's energy is counted in;
+// `inertia` is a time step's (fem/forms/inertia_form.hpp), not the cloth's.
+enum class EnergyPart { membrane, bending, external, contact, seam, inertia };
+constexpr int energy_part_count = 5; // the cloth's
 
 // The state forms are evaluated at.
 struct FormPoint {

@@ -44,10 +44,10 @@ IncrementalSystem::IncrementalSystem(ClothProblem& problem, Vec like) : problem_
   SartorPetscCall(set_default_direct_solver(problem.comm()));
   SartorPetscCall(problem.create_jacobian(&jacobian_));
   SartorPetscCall(attach_near_null_space(like, jacobian_));
-  for (Vec* v : {&residual_, &mass_, &predicted_, &previous_, &work_, &switch_point_, &direction_,
-                 &trial_x_, &trial_f_})
+  for (Vec* v : {&residual_, &work_, &switch_point_, &direction_, &trial_x_, &trial_f_})
     SartorPetscCall(VecDuplicate(like, v));
-  SartorPetscCall(problem.lumped_mass(mass_));
+  SartorPetscCall(problem.lumped_mass(work_));
+  inertia_ = std::make_unique<fem::InertiaForm>(work_);
   // Keeps the residual norms of each solve (the first is the initial one).
   norms_.assign(1000, 0.0);
   snes_has_objective_ = problem.has_potential();
@@ -88,8 +88,7 @@ IncrementalSystem::~IncrementalSystem() {
   SNESDestroy(&snes_);
   SNESDestroy(&snes_without_potential_);
   MatDestroy(&jacobian_);
-  for (Vec* v : {&residual_, &mass_, &predicted_, &previous_, &work_, &switch_point_, &direction_,
-                 &trial_x_, &trial_f_})
+  for (Vec* v : {&residual_, &work_, &switch_point_, &direction_, &trial_x_, &trial_f_})
     VecDestroy(v);
 }
 
@@ -217,36 +216,10 @@ PetscErrorCode IncrementalSystem::converged(SNES snes, PetscInt iteration, Petsc
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode IncrementalSystem::extra_energy(Vec x, double* value) {
-  PetscReal inertia = 0.0, damping = 0.0;
-  PetscFunctionBeginUser;
-  if (inertia_weight > 0.0) {
-    PetscCall(VecWAXPY(work_, -1.0, predicted_, x));
-    PetscCall(VecPointwiseMult(work_, work_, work_));
-    PetscCall(VecDot(work_, mass_, &inertia));
-  }
-  if (damping_weight > 0.0) {
-    PetscCall(VecWAXPY(work_, -1.0, previous_, x));
-    PetscCall(VecPointwiseMult(work_, work_, work_));
-    PetscCall(VecDot(work_, mass_, &damping));
-  }
-  *value = 0.5 * (inertia_weight * inertia + damping_weight * damping);
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode IncrementalSystem::residual(Vec x, Vec f) {
   PetscFunctionBeginUser;
   PetscCall(problem_.residual(x, f));
-  if (inertia_weight > 0.0) {
-    PetscCall(VecWAXPY(work_, -1.0, predicted_, x));
-    PetscCall(VecPointwiseMult(work_, work_, mass_));
-    PetscCall(VecAXPY(f, inertia_weight, work_));
-  }
-  if (damping_weight > 0.0) {
-    PetscCall(VecWAXPY(work_, -1.0, previous_, x));
-    PetscCall(VecPointwiseMult(work_, work_, mass_));
-    PetscCall(VecAXPY(f, damping_weight, work_));
-  }
+  PetscCall(inertia_->add_gradient(x, f));
   PetscCall(problem_.replace_held_rows(x, f)); // the inertia's share of them too
   PetscFunctionReturn(0);
 }
@@ -254,11 +227,8 @@ PetscErrorCode IncrementalSystem::residual(Vec x, Vec f) {
 PetscErrorCode IncrementalSystem::jacobian(Vec x, Mat J) {
   PetscFunctionBeginUser;
   PetscCall(problem_.jacobian(x, J));
-  const double weight = inertia_weight + damping_weight;
-  if (weight > 0.0) {
-    PetscCall(VecCopy(mass_, work_));
-    PetscCall(VecScale(work_, weight));
-    PetscCall(MatDiagonalSet(J, work_, ADD_VALUES));
+  if (inertia_->active()) {
+    PetscCall(inertia_->add_hessian(J));
     PetscCall(problem_.replace_held_rows(J));
   }
   PetscFunctionReturn(0);
@@ -269,7 +239,7 @@ PetscErrorCode IncrementalSystem::objective(Vec x, PetscReal* value) {
   double extra = 0.0;
   PetscFunctionBeginUser;
   PetscCall(problem_.energy(x, &energy));
-  PetscCall(extra_energy(x, &extra));
+  PetscCall(inertia_->energy(x, &extra));
   *value = energy.total() + extra;
   PetscFunctionReturn(0);
 }

@@ -22,10 +22,12 @@
 // backtracking line search on Phi (docs/drape.md#the-static-minimiser).
 
 #include "fem/cloth_problem.hpp"
+#include "fem/forms/inertia_form.hpp"
 
 #include <petscsnes.h>
 
 #include <chrono>
+#include <memory>
 
 #include <string>
 #include <vector>
@@ -44,11 +46,10 @@ public:
   // The SNES the next solve uses: with the line search on Phi while the
   // problem has a potential.
   SNES snes();
-  Vec mass() const { return mass_; }
-  Vec predicted() const { return predicted_; }
-  Vec previous() const { return previous_; }
-  double inertia_weight = 0.0; // a, 1/s^2
-  double damping_weight = 0.0; // b, 1/s^2
+  // The inertia and damping terms (a, b, x_pred, x_prev and M above): set
+  // their weights to 0 for statics.
+  fem::InertiaForm& inertia() { return *inertia_; }
+  const fem::InertiaForm& inertia() const { return *inertia_; }
 
   struct Solve {
     bool converged = false;
@@ -87,8 +88,6 @@ public:
   // Whether solve() uses the minimiser for the system as it is now.
   bool minimises() const;
 
-  // Phi - E + f.x at x: the inertia and damping terms alone.
-  PetscErrorCode extra_energy(Vec x, double* value);
   PetscErrorCode residual(Vec x, Vec f);
   PetscErrorCode jacobian(Vec x, Mat J);
   PetscErrorCode objective(Vec x, PetscReal* value);
@@ -134,9 +133,7 @@ private:
   SNES snes_without_potential_ = nullptr; // made when first needed
   Mat jacobian_ = nullptr;
   Vec residual_ = nullptr;
-  Vec mass_ = nullptr;
-  Vec predicted_ = nullptr;
-  Vec previous_ = nullptr;
+  std::unique_ptr<fem::InertiaForm> inertia_;
   Vec work_ = nullptr;
   Vec switch_point_ = nullptr;   // where the line search on Phi handed over to Newton
   std::vector<PetscReal> norms_; // residual norms of the last SNES solve

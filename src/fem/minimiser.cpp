@@ -45,8 +45,7 @@ struct IncrementalSystem::Trial {
 };
 
 bool IncrementalSystem::minimises() const {
-  return minimise_statics && inertia_weight == 0.0 && damping_weight == 0.0 &&
-         problem_.has_potential();
+  return minimise_statics && !inertia_->active() && problem_.has_potential();
 }
 
 // mu's floor: 1e-8 of the largest ratio of the Hessian's diagonal to the
@@ -56,7 +55,7 @@ bool IncrementalSystem::minimises() const {
 PetscErrorCode IncrementalSystem::regularisation_scale(double* scale) {
   PetscFunctionBeginUser;
   PetscCall(MatGetDiagonal(jacobian_, work_));
-  PetscCall(VecPointwiseDivide(work_, work_, mass_));
+  PetscCall(VecPointwiseDivide(work_, work_, inertia_->mass()));
   PetscReal largest = 0.0;
   PetscCall(VecMax(work_, nullptr, &largest));
   *scale = 1e-8 * std::max(PetscReal(1.0), largest);
@@ -73,7 +72,7 @@ PetscErrorCode IncrementalSystem::newton_direction(Vec x, Vec gradient, double m
   PetscFunctionBeginUser;
   PetscCall(jacobian(x, jacobian_));
   if (mu > 0.0) {
-    PetscCall(VecCopy(mass_, work_));
+    PetscCall(VecCopy(inertia_->mass(), work_));
     PetscCall(VecScale(work_, mu));
     PetscCall(MatDiagonalSet(jacobian_, work_, ADD_VALUES));
   }
@@ -119,7 +118,7 @@ PetscErrorCode IncrementalSystem::line_search(Vec x, Vec gradient, Vec direction
     ClothEnergy energy;
     double extra = 0.0;
     PetscCall(problem_.energy(trial_x_, &energy));
-    PetscCall(extra_energy(trial_x_, &extra));
+    PetscCall(inertia_->energy(trial_x_, &extra));
     const double value = energy.total() + extra;
     if (!std::isfinite(value)) continue;
     const double predicted = length * slope; // < 0

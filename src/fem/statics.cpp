@@ -33,13 +33,13 @@ PetscErrorCode newton(IncrementalSystem& system, Vec x, LoadStepReport* step, bo
 // inertia about the last pseudo-step's state, 1/dt^2 M.
 PetscErrorCode continuation(IncrementalSystem& system, Vec x, const StaticOptions& options,
                             LoadStepReport* step, bool* converged) {
-  Vec anchor = system.predicted();
+  Vec anchor = system.inertia().predicted();
   PetscFunctionBeginUser;
   *converged = false;
   double dt = options.initial_pseudo_step;
   PetscCall(VecCopy(x, anchor));
   for (int k = 0; k < options.max_pseudo_steps && dt > 1e-12; ++k) {
-    system.inertia_weight = 1.0 / (dt * dt);
+    system.inertia().inertia_weight = 1.0 / (dt * dt);
     bool stepped = false;
     PetscCall(newton(system, x, step, &stepped));
     if (!stepped) {
@@ -56,13 +56,13 @@ PetscErrorCode continuation(IncrementalSystem& system, Vec x, const StaticOption
     dt *= 2.0;
     // Near rest, or every tenth step, try the undamped problem.
     if (motion < 1e-3 * size || k % 10 == 9) {
-      system.inertia_weight = 0.0;
+      system.inertia().inertia_weight = 0.0;
       PetscCall(newton(system, x, step, converged));
       if (*converged) break;
       PetscCall(VecCopy(anchor, x));
     }
   }
-  system.inertia_weight = 0.0;
+  system.inertia().inertia_weight = 0.0;
   PetscFunctionReturn(0);
 }
 
@@ -268,8 +268,8 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
   ClothProblem& problem = system.problem();
   PetscFunctionBeginUser;
   const auto started = std::chrono::steady_clock::now();
-  system.inertia_weight = 0.0;
-  system.damping_weight = 0.0;
+  system.inertia().inertia_weight = 0.0;
+  system.inertia().damping_weight = 0.0;
   system.minimise_statics = options.minimise;
   system.minimiser_statistics = {};
   if (options.resume) {

@@ -9,6 +9,7 @@
 #include "common/error.hpp"
 #include "contact/analytic_shapes.hpp"
 #include "fem/cloth_problem.hpp"
+#include "fem/forms/inertia_form.hpp"
 #include "fem/sensitivity.hpp"
 #include "fem/statics.hpp"
 #include "mesh/generators.hpp"
@@ -151,6 +152,77 @@ TEST(Forms, EachFormsGradientAndHessianMatchDifferences) {
     VecDestroy(&x);
     VecDestroy(&v);
   }
+}
+
+// A time step's inertia and damping (fem/forms/inertia_form.hpp): its
+// gradient against central differences of its energy, its Hessian against
+// differences of its gradient, and nothing at zero weights; ClothProblem
+// refuses a form that says it is a time step's inertia.
+TEST(Forms, InertiaFormsGradientAndHessianMatchDifferences) {
+  Scene s = scene(element::BendingModel::discrete_shell);
+  ClothProblem& problem = *s.problem;
+  Vec x = nullptr, mass = nullptr, g = nullptr, g_up = nullptr, g_down = nullptr, u = nullptr,
+      shifted = nullptr;
+  ASSERT_EQ(problem.create_solution(&x), 0);
+  for (Vec* w : {&mass, &g, &g_up, &g_down, &u, &shifted})
+    VecDuplicate(x, w);
+  ASSERT_EQ(problem.lumped_mass(mass), 0);
+  fem::InertiaForm form(mass);
+  form.inertia_weight = 400.0; // 1/s^2: a step of 50 ms
+  form.damping_weight = 3.0;
+  Vec v = random_direction(x);
+  VecWAXPY(form.predicted(), 0.01, v, x);
+  VecWAXPY(form.previous(), -0.02, v, x);
+  VecPointwiseMult(u, v, v); // another direction
+  VecShift(u, -0.3);
+  const double h = 1e-6;
+  double up = 0.0, down = 0.0;
+  VecWAXPY(shifted, h, u, x);
+  ASSERT_EQ(form.energy(shifted, &up), 0);
+  VecSet(g_up, 0.0);
+  ASSERT_EQ(form.add_gradient(shifted, g_up), 0);
+  VecWAXPY(shifted, -h, u, x);
+  ASSERT_EQ(form.energy(shifted, &down), 0);
+  VecSet(g_down, 0.0);
+  ASSERT_EQ(form.add_gradient(shifted, g_down), 0);
+  VecSet(g, 0.0);
+  ASSERT_EQ(form.add_gradient(x, g), 0);
+  PetscScalar slope = 0.0;
+  VecDot(g, u, &slope);
+  ASSERT_NE(slope, 0.0);
+  EXPECT_LT(std::abs((up - down) / (2.0 * h) - slope), 1e-6 * std::abs(slope));
+  Mat J = nullptr;
+  ASSERT_EQ(problem.create_jacobian(&J), 0);
+  MatZeroEntries(J);
+  ASSERT_EQ(form.add_hessian(J), 0);
+  MatMult(J, u, g);
+  VecAXPY(g_up, -1.0, g_down);
+  VecScale(g_up, 1.0 / (2.0 * h));
+  PetscReal scale = 0.0, error = 0.0;
+  VecNorm(g, NORM_2, &scale);
+  VecAXPY(g_up, -1.0, g);
+  VecNorm(g_up, NORM_2, &error);
+  EXPECT_GT(scale, 0.0);
+  EXPECT_LT(error, 1e-6 * scale);
+  // Zero weights: no energy, no force.
+  form.inertia_weight = form.damping_weight = 0.0;
+  double none = 1.0;
+  ASSERT_EQ(form.energy(x, &none), 0);
+  EXPECT_EQ(none, 0.0);
+  VecSet(g, 0.0);
+  ASSERT_EQ(form.add_gradient(x, g), 0);
+  VecNorm(g, NORM_INFINITY, &error);
+  EXPECT_EQ(error, 0.0);
+  struct TimeStepTerm final : fem::Form {
+    const char* name() const override { return "a time step's term"; }
+    fem::EnergyPart part() const override { return fem::EnergyPart::inertia; }
+    void add_energy(const fem::FormPoint&, double*) const override {}
+    void add_gradient(const fem::FormPoint&, PetscScalar*) const override {}
+  };
+  EXPECT_THROW(problem.add_form(std::make_unique<TimeStepTerm>()), std::invalid_argument);
+  MatDestroy(&J);
+  for (Vec* w : {&x, &mass, &g, &g_up, &g_down, &u, &shifted, &v})
+    VecDestroy(w);
 }
 
 // The volume under a piecewise-linear surface whose boundary lies in z = 0:
