@@ -339,18 +339,15 @@ std::unique_ptr<Attempt> EditSession::resolve_from(Design& last, ClothProblem& p
   const StaticOptions solve = static_options();
   IncrementalSystem system(problem, attempt->x);
   if (const long cap = options_.integer_in("edit-max-newton", 0, 1000000000); cap > 0) {
-    PetscReal atol = 0.0, rtol = 0.0, stol = 0.0;
-    PetscInt max_iterations = 0, max_evaluations = 0;
-    SartorPetscCall(
-        SNESGetTolerances(system.snes(), &atol, &rtol, &stol, &max_iterations, &max_evaluations));
-    SartorPetscCall(
-        SNESSetTolerances(system.snes(), atol, rtol, stol, PetscInt(cap), max_evaluations));
+    SnesTolerances capped;
+    SartorPetscCall(SnesTolerances::of(system.snes(), &capped));
+    capped.max_iterations = PetscInt(cap);
+    SartorPetscCall(capped.apply(system.snes()));
   }
   SartorPetscCall(solve_static(system, attempt->x, solve, &attempt->report));
   attempt->certified = certify_case(options_, problem, attempt->x, &solve, &attempt->report);
   attempt->cpu = process_cpu_seconds() - started;
-  SartorPetscCall(problem.gather_anchors(&attempt->anchors));
-  SartorPetscCall(broadcast_anchors(problem.comm(), &attempt->anchors));
+  SartorPetscCall(problem.anchors_everywhere(&attempt->anchors));
   attempt->contact = problem.contact;
   return attempt;
 }

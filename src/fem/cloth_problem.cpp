@@ -941,6 +941,19 @@ PetscErrorCode ClothProblem::gather_anchors(std::vector<AnchorRow>* rows) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ClothProblem::anchors_everywhere(std::vector<AnchorRow>* rows) {
+  PetscFunctionBeginUser;
+  PetscCall(gather_anchors(rows));
+  auto count = static_cast<unsigned long>(rows->size());
+  PetscCallMPI(MPI_Bcast(&count, 1, MPI_UNSIGNED_LONG, 0, comm_));
+  rows->resize(count);
+  if (count > 0)
+    PetscCallMPI(MPI_Bcast(rows->data()->data(),
+                           PetscMPIInt(std::tuple_size<AnchorRow>::value * count), MPI_DOUBLE, 0,
+                           comm_));
+  PetscFunctionReturn(0);
+}
+
 void ClothProblem::restore_anchors(const std::vector<AnchorRow>& rows) {
   contact_form_->restore_anchors(rows);
 }

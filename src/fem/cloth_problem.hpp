@@ -251,6 +251,9 @@ public:
   // ranks' on rank 0, for checkpoints; restore_anchors takes the same rows on
   // every rank.
   PetscErrorCode gather_anchors(std::vector<AnchorRow>* rows);
+  // Collective. All ranks' anchor rows on every rank (to restore them on
+  // another problem, or later on this one).
+  PetscErrorCode anchors_everywhere(std::vector<AnchorRow>* rows);
   void restore_anchors(const std::vector<AnchorRow>& rows);
   // Sum over all vertices of the force the pins exert on the cloth, N.
   PetscErrorCode pin_reaction(Vec x, Eigen::Vector3d* reaction);

@@ -162,12 +162,11 @@ PetscErrorCode settle(DynamicState& s, DynamicReport* report) {
   PetscCall(VecCopy(s.x, system.inertia().previous())); // the last accepted state, kept on failure
   // The time steps of a relaxation may be solved loosely (-snes_rtol); the
   // equilibrium is solved to at least 1e-10 of the settle's first residual.
-  PetscReal atol = 0.0, rtol = 0.0, stol = 0.0;
-  PetscInt max_iterations = 0, max_evaluations = 0;
-  PetscCall(
-      SNESGetTolerances(system.snes(), &atol, &rtol, &stol, &max_iterations, &max_evaluations));
-  PetscCall(SNESSetTolerances(system.snes(), atol, std::min(rtol, PetscReal(1e-10)), stol,
-                              max_iterations, max_evaluations));
+  SnesTolerances saved;
+  PetscCall(SnesTolerances::of(system.snes(), &saved));
+  SnesTolerances settling = saved;
+  settling.rtol = std::min(saved.rtol, PetscReal(1e-10));
+  PetscCall(settling.apply(system.snes()));
   // Statics' own solve, so that the settle of a potential ends as a static
   // drape does: contact rounds until the friction anchors' update leaves
   // the state in equilibrium (fem/statics.hpp), the adaptive penalty off.
@@ -178,7 +177,7 @@ PetscErrorCode settle(DynamicState& s, DynamicReport* report) {
   options.max_cutbacks = 0; // the load is already whole: a retry would repeat the solve
   StaticReport solve;
   PetscCall(solve_static(system, s.x, options, &solve));
-  PetscCall(SNESSetTolerances(system.snes(), atol, rtol, stol, max_iterations, max_evaluations));
+  PetscCall(saved.apply(system.snes()));
   report->newton_iterations += solve.newton_iterations;
   report->linear_iterations += solve.linear_iterations;
   report->settle_newton_iterations = solve.newton_iterations;

@@ -40,6 +40,15 @@ PetscErrorCode attach_near_null_space(Vec x, Mat J) {
 
 } // namespace
 
+PetscErrorCode SnesTolerances::of(SNES snes, SnesTolerances* t) {
+  return SNESGetTolerances(snes, &t->atol, &t->rtol, &t->stol, &t->max_iterations,
+                           &t->max_evaluations);
+}
+
+PetscErrorCode SnesTolerances::apply(SNES snes) const {
+  return SNESSetTolerances(snes, atol, rtol, stol, max_iterations, max_evaluations);
+}
+
 IncrementalSystem::IncrementalSystem(ClothProblem& problem, Vec like) : problem_(problem) {
   SartorPetscCall(set_default_direct_solver(problem.comm()));
   SartorPetscCall(problem.create_jacobian(&jacobian_));
@@ -158,15 +167,17 @@ PetscErrorCode IncrementalSystem::finish_with_newton(SNES snes, Vec x, Solve* re
   SNESLineSearchType type = nullptr;
   PetscCall(SNESLineSearchGetType(line_search, &type));
   const std::string line_search_type = type;
-  PetscReal atol = 0.0, rtol = 0.0, stol = 0.0;
-  PetscInt max_iterations = 0, max_evaluations = 0;
-  PetscCall(SNESGetTolerances(snes, &atol, &rtol, &stol, &max_iterations, &max_evaluations));
+  SnesTolerances saved;
+  PetscCall(SnesTolerances::of(snes, &saved));
   // The tolerance of the whole solve: rtol relative to the first residual.
   PetscCall(SNESLineSearchSetType(line_search, SNESLINESEARCHBASIC));
-  PetscCall(SNESSetTolerances(snes, std::max(atol, rtol * first_norm_), 0.0, stol,
-                              newton_finish_iterations, max_evaluations));
+  SnesTolerances finish = saved;
+  finish.atol = std::max(saved.atol, saved.rtol * first_norm_);
+  finish.rtol = 0.0;
+  finish.max_iterations = newton_finish_iterations;
+  PetscCall(finish.apply(snes));
   PetscCall(run_snes(snes, x, result));
-  PetscCall(SNESSetTolerances(snes, atol, rtol, stol, max_iterations, max_evaluations));
+  PetscCall(saved.apply(snes));
   PetscCall(SNESLineSearchSetType(line_search, line_search_type.c_str()));
   PetscCall(SNESLineSearchSetFromOptions(line_search)); // the type's own options again
   result->newton_iterations += first.newton_iterations;

@@ -34,6 +34,15 @@
 
 namespace sartor {
 
+// A SNES's tolerances (SNESGetTolerances), to change some of them for a
+// solve and put them back.
+struct SnesTolerances {
+  PetscReal atol = 0.0, rtol = 0.0, stol = 0.0;
+  PetscInt max_iterations = 0, max_evaluations = 0;
+  static PetscErrorCode of(SNES snes, SnesTolerances* tolerances);
+  PetscErrorCode apply(SNES snes) const;
+};
+
 class IncrementalSystem {
 public:
   // Collective. `like` is a solution vector of `problem`.

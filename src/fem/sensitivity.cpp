@@ -58,18 +58,6 @@ TriangleMesh moved_rest(const TriangleMesh& mesh, const RestChange& change, doub
   return moved;
 }
 
-PetscErrorCode broadcast_anchors(MPI_Comm comm, std::vector<AnchorRow>* rows) {
-  PetscFunctionBeginUser;
-  auto count = static_cast<unsigned long>(rows->size());
-  PetscCallMPI(MPI_Bcast(&count, 1, MPI_UNSIGNED_LONG, 0, comm));
-  rows->resize(count);
-  if (count > 0)
-    PetscCallMPI(MPI_Bcast(rows->data()->data(),
-                           PetscMPIInt(std::tuple_size<AnchorRow>::value * count), MPI_DOUBLE, 0,
-                           comm));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode copy_problem_state(ClothProblem& from, ClothProblem& to) {
   PetscFunctionBeginUser;
   to.loads = from.loads;
@@ -87,8 +75,7 @@ PetscErrorCode copy_problem_state(ClothProblem& from, ClothProblem& to) {
   to.sewing_end_time = from.sewing_end_time;
   to.sewing_stage = from.sewing_stage;
   std::vector<AnchorRow> anchors;
-  PetscCall(from.gather_anchors(&anchors));
-  PetscCall(broadcast_anchors(from.comm(), &anchors));
+  PetscCall(from.anchors_everywhere(&anchors));
   to.restore_anchors(anchors);
   PetscFunctionReturn(0);
 }

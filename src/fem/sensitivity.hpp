@@ -78,9 +78,6 @@ struct SensitivityOptions {
 // by set_pin_position are not carried over (their places come from the
 // mesh, pin_motion and pin_groups). Collective.
 PetscErrorCode copy_problem_state(ClothProblem& from, ClothProblem& to);
-// Rank 0's anchor rows (ClothProblem::gather_anchors) on every rank, as
-// restore_anchors takes them. Collective.
-PetscErrorCode broadcast_anchors(MPI_Comm comm, std::vector<AnchorRow>* rows);
 
 // Collective. Copies a vector of three values per vertex (positions,
 // forces, changes) from the layout of one problem to that of another on a
