@@ -181,11 +181,18 @@ constexpr double relative_step = 1e-4;
 // +-h and +-h/2 times it, differenced and extrapolated, (4 D(h/2) - D(h)) / 3.
 element::PatchRestChange rest_change(const PatchGeometry& g, std::size_t t,
                                      const RestChange& change) {
-  double largest = 0.0;
+  // The patches of t and its neighbours reach the triangles across the
+  // neighbours' edges: two rings.
   std::vector<std::size_t> involved{t};
-  for (std::size_t k = 0; k < 3; ++k)
-    if (g.across[3 * t + k].triangle >= 0)
-      involved.push_back(std::size_t(g.across[3 * t + k].triangle));
+  for (std::size_t ring = 0, first = 0; ring < 2; ++ring) {
+    const std::size_t last = involved.size();
+    for (std::size_t i = first; i < last; ++i)
+      for (std::size_t k = 0; k < 3; ++k)
+        if (const int other = g.across[3 * involved[i] + k].triangle; other >= 0)
+          involved.push_back(std::size_t(other));
+    first = last;
+  }
+  double largest = 0.0;
   for (const std::size_t triangle : involved)
     for (const Eigen::Vector2d& d : change[triangle])
       largest = std::max(largest, d.norm());
