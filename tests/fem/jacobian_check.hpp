@@ -10,21 +10,22 @@
 
 namespace sartor::testing {
 
-// |J v - (F(x + h v) - F(x - h v)) / (2 h)| / |J v| in `norm`; -1 when an
-// assembly call fails.
-inline double directional_jacobian_error(ClothProblem& problem, Vec x, Vec direction, double h,
-                                         NormType norm) {
+// |J v - (F(x + h v) - F(x - h v)) / (2 h)| / |J v| in `norm`, for a residual
+// `residual(y, F)` and a Jacobian `jacobian(y, J)` assembled into J (made
+// by the caller); -1 when a call fails.
+template <class Residual, class Jacobian>
+double directional_derivative_error(Mat J, Vec x, Vec direction, double h, NormType norm,
+                                    const Residual& residual, const Jacobian& jacobian) {
   Vec shifted = nullptr, up = nullptr, down = nullptr, jv = nullptr;
-  Mat J = nullptr;
   for (Vec* w : {&shifted, &up, &down, &jv})
     VecDuplicate(x, w);
   double error = -1.0;
-  if (problem.create_jacobian(&J) == 0 && problem.jacobian(x, J) == 0) {
+  if (jacobian(x, J) == 0) {
     MatMult(J, direction, jv);
     VecWAXPY(shifted, h, direction, x);
-    const PetscErrorCode plus = problem.residual(shifted, up);
+    const PetscErrorCode plus = residual(shifted, up);
     VecWAXPY(shifted, -h, direction, x);
-    const PetscErrorCode minus = problem.residual(shifted, down);
+    const PetscErrorCode minus = residual(shifted, down);
     if (plus == 0 && minus == 0) {
       VecAXPY(up, -1.0, down);
       VecScale(up, 1.0 / (2.0 * h));
@@ -37,6 +38,19 @@ inline double directional_jacobian_error(ClothProblem& problem, Vec x, Vec direc
   }
   for (Vec* w : {&shifted, &up, &down, &jv})
     VecDestroy(w);
+  return error;
+}
+
+// The same for an assembled cloth problem, its Jacobian made by create_jacobian.
+inline double directional_jacobian_error(ClothProblem& problem, Vec x, Vec direction, double h,
+                                         NormType norm) {
+  Mat J = nullptr;
+  double error = -1.0;
+  if (problem.create_jacobian(&J) == 0) {
+    error = directional_derivative_error(
+        J, x, direction, h, norm, [&](Vec y, Vec f) { return problem.residual(y, f); },
+        [&](Vec y, Mat A) { return problem.jacobian(y, A); });
+  }
   MatDestroy(&J);
   return error;
 }

@@ -147,6 +147,16 @@ void difference_of_equilibria(const Case& c, const Equilibrium& base, const Rest
   }
 }
 
+double distance(Vec a, Vec b) {
+  Vec d = nullptr;
+  VecDuplicate(a, &d);
+  VecWAXPY(d, -1.0, b, a);
+  PetscReal norm = 0.0;
+  VecNorm(d, NORM_2, &norm);
+  VecDestroy(&d);
+  return norm;
+}
+
 // The sensitivity's dR/dX dX, the sum of the forms' exact rest derivatives,
 // against the differences of rebuilt problems, at the case's equilibrium.
 void check_forms_rest_derivative(const Case& c, const Equilibrium& base,
@@ -161,10 +171,9 @@ void check_forms_rest_derivative(const Case& c, const Equilibrium& base,
   VecDuplicate(base.x, &difference);
   EXPECT_EQ(sensitivity.rest_derivative(change, exact), 0);
   EXPECT_EQ(differenced.rest_derivative(change, difference), 0);
-  PetscReal scale = 0.0, error = 0.0;
+  PetscReal scale = 0.0;
   VecNorm(difference, NORM_2, &scale);
-  VecAXPY(difference, -1.0, exact);
-  VecNorm(difference, NORM_2, &error);
+  const double error = distance(exact, difference);
   VecDestroy(&exact);
   VecDestroy(&difference);
   std::cout << name << ": dR/dX dX, forms against differences of rebuilt problems, relative "
@@ -194,10 +203,9 @@ double sensitivity_error(const Case& c, const std::vector<Eigen::Vector2d>& delt
   // in X) and no vertex crosses the contact offset.
   const double size = (c.mesh.material_uv[0][1] - c.mesh.material_uv[0][0]).norm();
   difference_of_equilibria(c, base, change, 1e-4 * size / largest(change), measured);
-  PetscReal scale = 0.0, error = 0.0;
+  PetscReal scale = 0.0;
   VecNorm(measured, NORM_2, &scale);
-  VecAXPY(predicted, -1.0, measured);
-  VecNorm(predicted, NORM_2, &error);
+  const double error = distance(predicted, measured);
   VecDestroy(&predicted);
   VecDestroy(&measured);
   std::cout << name << ": |S dX - dx_fd| / |dx_fd| = " << error / scale << " (|dx_fd| = " << scale
@@ -386,16 +394,6 @@ TEST(DesignSensitivity, SheetOnBallContact) {
     EXPECT_GE(report.at(0).contacting_vertices, 12);
   };
   EXPECT_LT(sensitivity_error(c, delta, "sheet on ball"), 1e-3);
-}
-
-double distance(Vec a, Vec b) {
-  Vec d = nullptr;
-  VecDuplicate(a, &d);
-  VecWAXPY(d, -1.0, b, a);
-  PetscReal norm = 0.0;
-  VecNorm(d, NORM_2, &norm);
-  VecDestroy(&d);
-  return norm;
 }
 
 double cpu_seconds() {
