@@ -220,6 +220,10 @@ const std::vector<OptionSpec>& time_option_specs() {
       {"kinetic-damping", "", "", "dynamic: zero every velocity at each kinetic-energy peak"},
       {"rest-tolerance", "R", "0",
        "dynamic: stop once the static residual is below R times its initial value (0: never)"},
+      {"dynamic-solver", "KIND", "snes",
+       "dynamic: snes (PETSc's SNES from the predicted positions) or minimise (drape's static "
+       "minimiser on each step's incremental potential, from the last state, with the contact "
+       "step bound; docs/drape.md#time-steps-by-the-minimiser)"},
       {"settle", "", "",
        "dynamic: finish (at rest or at --time-end) with a static solve from the last state, with "
        "the static solve's contact rounds (friction made consistent)"},
@@ -772,6 +776,11 @@ DynamicOptions dynamic_options(const Options& options) {
   check_time_divisions(dynamic.time_end, "time-end", dynamic.time_step, "time-step");
   check_time_divisions(dynamic.time_end, "time-end", dynamic.output_interval, "output-interval");
   dynamic.settle = options.flag("settle");
+  const std::string solver = options.text("dynamic-solver");
+  if (solver != "minimise" && solver != "snes") {
+    throw InputError("option --dynamic-solver: unknown solver '" + solver + "' (minimise, snes)");
+  }
+  dynamic.minimise = solver == "minimise";
   dynamic.print_progress = true;
   if (dynamic.time_step > 1.0 || dynamic.time_end > 600.0) {
     print_warnings({"--time-step " + options.text("time-step") + " s, --time-end " +

@@ -99,7 +99,9 @@ PetscErrorCode take_step(DynamicState& s, const DynamicOptions& options, double 
     system.inertia().inertia_weight = 1.0 / (h * h);
     system.inertia().damping_weight = options.damping / h;
     s.problem.time = target;
-    PetscCall(VecCopy(system.inertia().predicted(), s.x));
+    // SNES starts from the prediction; the minimiser from the last state,
+    // which is outside the bodies, so that its step bound keeps it there.
+    if (!options.minimise) PetscCall(VecCopy(system.inertia().predicted(), s.x));
     IncrementalSystem::Solve solve;
     PetscCall(system.solve(s.x, &solve));
     step->newton_iterations += solve.newton_iterations;
@@ -224,6 +226,7 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
   const double tiny = 1e-9 * std::min(options.time_step, span);
   problem.pins_follow_time = true;
   IncrementalSystem system(problem, x);
+  system.minimise_time_steps = options.minimise;
   PetscCall(VecDuplicate(x, &f));
   PetscCall(VecDuplicate(x, &work));
   DynamicState state{problem, system, x, v, f, work};

@@ -49,6 +49,9 @@ struct DynamicOptions {
   double rest_tolerance = 0.0;  // 0: run to time_end
   bool print_progress = false;  // a line on rank 0 every 10 s of wall time (ProgressClock)
   bool settle = false;          // finish with a static solve (solve_static)
+  // Each step by the static minimiser on the incremental potential
+  // (IncrementalSystem::minimise_time_steps) instead of SNES.
+  bool minimise = false;
 };
 
 struct DynamicStepReport {

@@ -246,12 +246,10 @@ PetscErrorCode IncrementalSystem::jacobian(Vec x, Mat J) {
 }
 
 PetscErrorCode IncrementalSystem::objective(Vec x, PetscReal* value) {
-  ClothEnergy energy;
-  double extra = 0.0;
+  double potential = 0.0, scale = 0.0;
   PetscFunctionBeginUser;
-  PetscCall(problem_.energy(x, &energy));
-  PetscCall(inertia_->energy(x, &extra));
-  *value = energy.total() + extra;
+  PetscCall(incremental_potential(x, &potential, &scale));
+  *value = potential;
   PetscFunctionReturn(0);
 }
 

@@ -17,9 +17,10 @@
 //
 // Statics of a potential (a = b = 0, no pressure on a free edge, no pin held by
 // equations) go to `minimise` instead (fem/minimiser.cpp) unless
-// `minimise_statics` is off: Newton on Phi with a Levenberg-style
-// regularisation mu M, a step bound from the bodies' signed distances and a
-// backtracking line search on Phi (docs/drape.md#the-static-minimiser).
+// `minimise_statics` is off, and so do time steps with `minimise_time_steps`:
+// Newton on Phi with a Levenberg-style regularisation mu M, a step bound from
+// the bodies' signed distances and a backtracking line search on Phi
+// (docs/drape.md#the-static-minimiser).
 
 #include "fem/cloth_problem.hpp"
 #include "fem/forms/inertia_form.hpp"
@@ -77,6 +78,12 @@ public:
   // `loose_rtol` instead of rtol when that is larger (the continuation
   // stages of sewing, fem/statics.hpp).
   bool minimise_statics = true;
+  // The same minimiser for the time steps of dynamics (backward Euler's
+  // incremental potential, inertia and damping included), in place of SNES:
+  // the contact step bound keeps every vertex outside the bodies within a
+  // step, and the unprojected Hessian near the step's solution gives
+  // Newton's quadratic convergence where compressed membranes wrinkle.
+  bool minimise_time_steps = false;
   double loose_rtol = 0.0;
   PetscInt loose_max_iterations = 0; // with loose_rtol: at most this many (0: max_it)
   struct MinimiserStatistics {
@@ -121,6 +128,7 @@ private:
                                   PetscInt* linear_iterations);
   PetscErrorCode line_search(Vec x, Vec gradient, Vec direction, double first_length, Trial* trial);
   PetscErrorCode regularisation_scale(double* scale);
+  PetscErrorCode incremental_potential(Vec x, double* value, double* scale);
   struct Regularisation;
   PetscErrorCode search_direction(Vec x, PetscInt iteration, Regularisation* regularisation,
                                   PetscInt* linear_iterations, bool* solved, bool* exact);

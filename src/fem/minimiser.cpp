@@ -45,7 +45,8 @@ struct IncrementalSystem::Trial {
 };
 
 bool IncrementalSystem::minimises() const {
-  return minimise_statics && !inertia_->active() && problem_.has_potential();
+  if (!problem_.has_potential()) return false;
+  return inertia_->active() ? minimise_time_steps : minimise_statics;
 }
 
 // mu's floor: 1e-8 of the largest ratio of the Hessian's diagonal to the
@@ -115,15 +116,12 @@ PetscErrorCode IncrementalSystem::line_search(Vec x, Vec gradient, Vec direction
   double length = first_length;
   for (int k = 0; k <= max_halvings; ++k, length *= 0.5) {
     PetscCall(VecWAXPY(trial_x_, length, direction, x));
-    ClothEnergy energy;
-    double extra = 0.0;
-    PetscCall(problem_.energy(trial_x_, &energy));
-    PetscCall(inertia_->energy(trial_x_, &extra));
-    const double value = energy.total() + extra;
+    double value = 0.0, value_scale = 0.0;
+    PetscCall(incremental_potential(trial_x_, &value, &value_scale));
     if (!std::isfinite(value)) continue;
     const double predicted = length * slope; // < 0
     bool accept = false;
-    const bool resolved = -predicted > energy_resolution * std::max(scale, magnitude(energy));
+    const bool resolved = -predicted > energy_resolution * std::max(scale, value_scale);
     if (resolved) {
       accept = value - potential <= armijo_fraction * predicted;
       if (accept) PetscCall(residual(trial_x_, trial_f_));
@@ -138,11 +136,24 @@ PetscErrorCode IncrementalSystem::line_search(Vec x, Vec gradient, Vec direction
     if (!accept) continue;
     trial->length = length;
     trial->potential = value;
-    trial->potential_scale = magnitude(energy);
+    trial->potential_scale = value_scale;
     PetscCall(VecNorm(trial_f_, NORM_2, &trial->residual_norm));
     PetscFunctionReturn(0);
   }
   trial->length = 0.0;
+  PetscFunctionReturn(0);
+}
+
+// Phi at x, the step's inertia and damping included, and the sum of the
+// magnitudes of its parts (its round-off scales with that sum).
+PetscErrorCode IncrementalSystem::incremental_potential(Vec x, double* value, double* scale) {
+  ClothEnergy energy;
+  double inertia = 0.0;
+  PetscFunctionBeginUser;
+  PetscCall(problem_.energy(x, &energy));
+  PetscCall(inertia_->energy(x, &inertia));
+  *value = energy.total() + inertia;
+  *scale = magnitude(energy) + std::abs(inertia);
   PetscFunctionReturn(0);
 }
 
@@ -230,12 +241,7 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
   PetscCall(VecNorm(residual_, NORM_2, &initial_norm));
   Trial current;
   current.residual_norm = initial_norm;
-  {
-    ClothEnergy energy;
-    PetscCall(problem_.energy(x, &energy));
-    current.potential = energy.total();
-    current.potential_scale = magnitude(energy);
-  }
+  PetscCall(incremental_potential(x, &current.potential, &current.potential_scale));
   const PetscReal tolerance = std::max(atol, rtol * initial_norm);
   result->tolerance = tolerance;
   // Every solve starts regularised at mu's floor, and leaves it for mu = 0

@@ -1,6 +1,7 @@
 // Implicit dynamics and prescribed pin motions: the exact backward-Euler
 // recurrence of a free fall, energy decay with damping, settling onto the
-// static solution (damped and by kinetic damping), pin histories in time and
+// static solution (damped and by kinetic damping), each by both solvers of
+// the time steps, pin histories in time and
 // in load factor, and results independent of the number of MPI ranks.
 
 #include "common/error.hpp"
@@ -14,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace sartor {
 namespace {
@@ -98,12 +100,29 @@ DynamicRun run_dynamic(MPI_Comm comm, const TriangleMesh& mesh, const ClothMater
   return run;
 }
 
-TEST(Dynamics, FreeFallFollowsTheBackwardEulerRecurrence) {
+// Each dynamics test runs with both solvers of the time steps: SNES from the
+// predicted positions, and the static minimiser on the step's incremental
+// potential from the last state (DynamicOptions::minimise).
+class Dynamics : public ::testing::TestWithParam<bool> {
+protected:
+  DynamicOptions options_with_solver() const {
+    DynamicOptions options;
+    options.minimise = GetParam();
+    return options;
+  }
+};
+
+INSTANTIATE_TEST_SUITE_P(BothSolvers, Dynamics, ::testing::Values(false, true),
+                         [](const ::testing::TestParamInfo<bool>& info) {
+                           return std::string(info.param ? "Minimiser" : "Snes");
+                         });
+
+TEST_P(Dynamics, FreeFallFollowsTheBackwardEulerRecurrence) {
   // An unpinned flat sheet falls without straining: every vertex obeys
   // v_{n+1} = (v_n + dt g) / (1 + alpha dt), x_{n+1} = x_n + dt v_{n+1}.
   const TriangleMesh mesh = mesh::rectangle(0.5, 0.4, 4, 3, mesh::RectanglePattern::perturbed);
   for (double alpha : {0.0, 3.0}) {
-    DynamicOptions options;
+    DynamicOptions options = options_with_solver();
     options.time_step = 0.01;
     options.time_end = 0.2;
     options.damping = alpha;
@@ -124,10 +143,10 @@ TEST(Dynamics, FreeFallFollowsTheBackwardEulerRecurrence) {
   }
 }
 
-TEST(Dynamics, DampedTotalEnergyDecreasesMonotonically) {
+TEST_P(Dynamics, DampedTotalEnergyDecreasesMonotonically) {
   std::vector<int> pins;
   const TriangleMesh mesh = hanging_sheet(6, &pins);
-  DynamicOptions options;
+  DynamicOptions options = options_with_solver();
   options.time_step = 0.005;
   options.time_end = 0.15;
   options.damping = 2.0;
@@ -149,7 +168,7 @@ TEST(Dynamics, DampedTotalEnergyDecreasesMonotonically) {
   EXPECT_LT(previous, steps.front().potential_energy); // it did dissipate
 }
 
-TEST(Dynamics, DampedHangingSheetSettlesOnTheStaticSolution) {
+TEST_P(Dynamics, DampedHangingSheetSettlesOnTheStaticSolution) {
   // Released from its flat placement, the sheet sags in its plane; strong
   // mass damping (alpha = 50/s) kills the motion. The remaining distance to
   // the static solution is bounded by |F| / k_min with F the static residual;
@@ -157,7 +176,7 @@ TEST(Dynamics, DampedHangingSheetSettlesOnTheStaticSolution) {
   std::vector<int> pins;
   const TriangleMesh mesh = hanging_sheet(6, &pins);
   const auto reference = static_solution(PETSC_COMM_WORLD, mesh, cotton(1e-5), pins);
-  DynamicOptions options;
+  DynamicOptions options = options_with_solver();
   options.time_step = 0.01;
   options.time_end = 1.0;
   options.damping = 50.0;
@@ -166,11 +185,11 @@ TEST(Dynamics, DampedHangingSheetSettlesOnTheStaticSolution) {
   EXPECT_LT(largest_difference(run.positions, reference), 1e-6 * sag) << "sag " << sag << " m";
 }
 
-TEST(Dynamics, KineticDampingReachesTheStaticEquilibrium) {
+TEST_P(Dynamics, KineticDampingReachesTheStaticEquilibrium) {
   std::vector<int> pins;
   const TriangleMesh mesh = hanging_sheet(6, &pins);
   const auto reference = static_solution(PETSC_COMM_WORLD, mesh, cotton(1e-5), pins);
-  DynamicOptions options;
+  DynamicOptions options = options_with_solver();
   options.time_step = 0.01;
   options.time_end = 5.0;
   options.kinetic_damping = true;
