@@ -101,7 +101,7 @@ const std::vector<std::string>& drape_flags(bool dynamic) {
 const std::vector<std::string>& time_stepping_options() {
   static const std::vector<std::string> names{
       "time-end",        "time-step", "damping",        "kinetic-damping", "rest-tolerance",
-      "output-interval", "settle",    "sewing-tension", "sewing-time", "dynamic-solver"};
+      "output-interval", "settle",    "sewing-tension", "sewing-time",     "dynamic-solver"};
   return names;
 }
 

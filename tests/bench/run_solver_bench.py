@@ -36,6 +36,7 @@ COLUMNS = (
     "series", "size", "size_unit", "ranks", "status", "exit_status", "wall_s", "cpu_s",
     "peak_rss_mb", "vertices", "triangles", "bytes_per_vertex", "newton_iterations",
     "linear_iterations", "settle_newton_iterations", "converged", "certificate",
+    "drape_coefficient",
 )
 
 
@@ -135,6 +136,8 @@ def summary_figures(path):
         "settle_newton_iterations": settle.get("newton_iterations"),
         "converged": summary.get("drape", {}).get("converged", summary.get("converged")),
         "certificate": certificate.get("verdict"),
+        # The Cusick runs' result, for their mesh convergence (else empty).
+        "drape_coefficient": (summary.get("contact") or {}).get("drape", {}).get("coefficient"),
         "timing_s": summary.get("timing_s"),
     }
     # Per level of a coarse-to-fine solve, when the run reports levels.

@@ -13,7 +13,10 @@ shift 2
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 rm -rf "$out"
 mkdir -p "$out"
-unset OPENBLAS_CORETYPE
+# "Native" is the kernels this machine's OpenBLAS runs as the environment
+# sets it up: where OPENBLAS_CORETYPE is set, it is kept, since OpenBLAS
+# 0.3.21 misdetects some processors (an AMD EPYC as Cooperlake) and their
+# kernels then round differently from any real machine's, or fail.
 "$sartor" "$@" --no-plot --output "$out/native" > "$out/native.log" 2>&1 ||
   { cat "$out/native.log"; echo "prescott.sh: the native run failed"; exit 1; }
 OPENBLAS_CORETYPE=Prescott "$sartor" "$@" --no-plot --output "$out/prescott" > "$out/prescott.log" 2>&1 ||

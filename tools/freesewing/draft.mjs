@@ -4,7 +4,7 @@
 // and the measurements (mm) in the body developer's measurement-file format.
 //
 //   node draft.mjs DESIGN (--model NAME | --measurements FILE.json) --outdir DIR
-//                  [--sa MM] [--option KEY=VALUE ...]
+//                  [--sa MM] [--option KEY=VALUE ...] [--date YYYY-MM-DD]
 //
 // DESIGN is penelope, bella, aaron or teagan; NAME one of @freesewing/models'
 // sets (e.g. cisFemaleAdult36). The files are DIR/DESIGN_NAME.svg and
@@ -22,7 +22,7 @@ const designs = { penelope: Penelope, bella: Bella, aaron: Aaron, teagan: Teagan
 function usage(message) {
   if (message) console.error(`draft.mjs: ${message}`)
   ;(message ? console.error : console.log)(
-    'usage: node draft.mjs DESIGN (--model NAME | --measurements FILE.json) --outdir DIR [--sa MM] [--option KEY=VALUE ...]\n' +
+    'usage: node draft.mjs DESIGN (--model NAME | --measurements FILE.json) --outdir DIR [--sa MM] [--option KEY=VALUE ...] [--date YYYY-MM-DD]\n' +
       `  DESIGN: ${Object.keys(designs).join(', ')}\n` +
       '  NAME: a measurement set of @freesewing/models, e.g. cisFemaleAdult36'
   )
@@ -30,7 +30,7 @@ function usage(message) {
 }
 
 function parseArguments(argv) {
-  const args = { options: {}, sa: 0 }
+  const args = { options: {}, sa: 0, date: '2026-11-24' }
   for (let i = 0; i < argv.length; ++i) {
     const a = argv[i]
     const value = () => {
@@ -42,6 +42,7 @@ function parseArguments(argv) {
     else if (a === '--measurements') args.measurementsFile = value()
     else if (a === '--outdir') args.outdir = value()
     else if (a === '--sa') args.sa = Number(value())
+    else if (a === '--date') args.date = value()
     else if (a === '--option') {
       const [key, v] = value().split('=')
       args.options[key] = v === 'true' ? true : v === 'false' ? false : isNaN(Number(v)) ? v : Number(v)
@@ -70,7 +71,26 @@ function loadMeasurements(args) {
   return { name: file.name, measurements: file.measurements }
 }
 
+// FreeSewing's title blocks print the day of drafting (new Date() in
+// @freesewing/plugin-annotations' title macro). It is pinned to the day the
+// committed files were drafted, so that they regenerate byte for byte on any
+// day; give another with --date YYYY-MM-DD.
+function pinDraftingDate(day) {
+  const pinned = Date.parse(`${day}T12:00:00Z`)
+  if (Number.isNaN(pinned)) usage(`--date ${day} is not a date YYYY-MM-DD`)
+  const SystemDate = Date
+  globalThis.Date = class extends SystemDate {
+    constructor(...when) {
+      super(...(when.length > 0 ? when : [pinned]))
+    }
+    static now() {
+      return pinned
+    }
+  }
+}
+
 const args = parseArguments(process.argv.slice(2))
+pinDraftingDate(args.date)
 const set = loadMeasurements(args)
 const pattern = new designs[args.design]({
   measurements: set.measurements,
