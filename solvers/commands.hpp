@@ -73,12 +73,17 @@ void make_plot(const std::string& script, const std::string& directory);
 // Rank 0 writes; everybody waits, and learns of a failure.
 bool is_root();
 
-// The comma-separated numbers of option --NAME; `count` of them unless it is
-// 0. Throws InputError naming the option and the item that is not a number.
 // "warning: TEXT" on rank 0's standard error for each (plausibility
 // warnings of the fabric readers).
 void print_warnings(const std::vector<std::string>& warnings);
+// The comma-separated numbers of option --NAME; `count` of them unless it is
+// 0. Throws InputError naming the option and the item that is not a number.
 std::vector<double> option_numbers(const Options& options, const std::string& name,
                                    std::size_t count);
+
+// Whether option --NAME (--static-solver, --dynamic-solver) chooses the
+// minimiser: "minimise" or "snes"; throws InputError naming the option
+// for anything else.
+bool minimiser_chosen(const Options& options, const std::string& name);
 
 } // namespace sartor

@@ -307,7 +307,7 @@ void EditSession::predict_gmls(const Eigen::VectorXd& query, ClothProblem& to, V
 // The drape's last stage again: sewn, loaded, with its contact rounds.
 StaticOptions EditSession::static_options() const {
   StaticOptions solve;
-  solve.minimise = options_.text("static-solver") == "minimise";
+  solve.minimise = minimiser_chosen(options_, "static-solver");
   solve.max_offset_depth = options_.nonnegative_real("contact-max-depth");
   if (solve.max_offset_depth == 0.0) solve.max_contact_rounds = 0;
   solve.start_load_factor = 1.0;

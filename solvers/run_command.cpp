@@ -744,11 +744,7 @@ void add_edge_force(const Options& options, const TriangleMesh& mesh, ClothLoads
 StaticOptions static_options(const Options& options, const ClothProblem& problem) {
   StaticOptions solve;
   solve.load_steps = count_option(options, "load-steps", 1);
-  const std::string solver = options.text("static-solver");
-  if (solver != "minimise" && solver != "snes") {
-    throw InputError("option --static-solver: unknown solver '" + solver + "' (minimise, snes)");
-  }
-  solve.minimise = solver == "minimise";
+  solve.minimise = minimiser_chosen(options, "static-solver");
   solve.sewing_stages = count_option(options, "sewing-stages", 1);
   if (solve.sewing_stages > 1 && !problem.seam_coupling()) {
     throw InputError("option --sewing-stages: the case has no seams to sew (or they are merged)");
@@ -776,11 +772,7 @@ DynamicOptions dynamic_options(const Options& options) {
   check_time_divisions(dynamic.time_end, "time-end", dynamic.time_step, "time-step");
   check_time_divisions(dynamic.time_end, "time-end", dynamic.output_interval, "output-interval");
   dynamic.settle = options.flag("settle");
-  const std::string solver = options.text("dynamic-solver");
-  if (solver != "minimise" && solver != "snes") {
-    throw InputError("option --dynamic-solver: unknown solver '" + solver + "' (minimise, snes)");
-  }
-  dynamic.minimise = solver == "minimise";
+  dynamic.minimise = minimiser_chosen(options, "dynamic-solver");
   dynamic.print_progress = true;
   if (dynamic.time_step > 1.0 || dynamic.time_end > 600.0) {
     print_warnings({"--time-step " + options.text("time-step") + " s, --time-end " +

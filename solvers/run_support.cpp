@@ -20,6 +20,14 @@ void print_warnings(const std::vector<std::string>& warnings) {
     PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "warning: %s\n", warning.c_str());
 }
 
+bool minimiser_chosen(const Options& options, const std::string& name) {
+  const std::string solver = options.text(name);
+  if (solver != "minimise" && solver != "snes") {
+    throw InputError("option --" + name + ": unknown solver '" + solver + "' (minimise, snes)");
+  }
+  return solver == "minimise";
+}
+
 std::vector<double> option_numbers(const Options& options, const std::string& name,
                                    std::size_t count) {
   const std::string text = options.text(name);

@@ -119,8 +119,7 @@ WearOptions wear_options(const Options& options) {
                      "' (staggered, monolithic)");
   }
   wear.wear.print_progress = true;
-  const std::string solver = options.text("static-solver");
-  wear.wear.equilibrium.minimise = solver == "minimise";
+  wear.wear.equilibrium.minimise = minimiser_chosen(options, "static-solver");
   // No contact rounds within a wear step: the friction anchors are lagged by
   // one step (updated when it is accepted), and the contact penalty stays
   // where the drape left it, so that it does not depend on the step size.
