@@ -113,8 +113,8 @@ protected:
 };
 
 INSTANTIATE_TEST_SUITE_P(BothSolvers, Dynamics, ::testing::Values(false, true),
-                         [](const ::testing::TestParamInfo<bool>& info) {
-                           return std::string(info.param ? "Minimiser" : "Snes");
+                         [](const ::testing::TestParamInfo<bool>& solver) {
+                           return std::string(solver.param ? "Minimiser" : "Snes");
                          });
 
 TEST_P(Dynamics, FreeFallFollowsTheBackwardEulerRecurrence) {

@@ -8,8 +8,8 @@
 # dynamic drape (the skirt sewn in time), and a static drape worn for 40 s
 # on 2 ranks (killed once within the wear after its first take-off) are
 # each run once uninterrupted, then again with checkpoints, killed with
-# SIGKILL a few times at moments drawn from a fixed seed (the first after its
-# first checkpoint appeared), resumed with --restart into the same output
+# SIGKILL a few times, shortly after checkpoints drawn from a fixed seed (the
+# first after its first checkpoint), resumed with --restart into the same output
 # folder each time, and finally let finish. The final positions, and the
 # states of series.h5 and dynamics.csv, must equal the uninterrupted run's
 # within 1e-6 m (the drapes' solver tolerance is 1e-6 of the weight in
@@ -27,8 +27,44 @@ python=/usr/bin/python3
 rm -rf "$work" && mkdir -p "$work"
 RANDOM=18 # the seed of the kill moments
 
+# new_checkpoints OUT PID COUNT: waits until OUT/checkpoint.h5 has held COUNT
+# states other than the one it held at the start (none, or the one resumed);
+# fails when the run ends first. The kills wait on the run's progress, not on
+# the clock: a faster machine ends the runs sooner, never before their kills.
+new_checkpoints() {
+  "$python" - "$1/checkpoint.h5" "$2" "$3" <<'PY'
+import os, sys, time
+import h5py
+path, pid, count = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+
+def state():
+    try:
+        with h5py.File(path, "r") as f:
+            return f["state"][()].tobytes()
+    except (OSError, KeyError):
+        return None  # not written yet, or being replaced
+
+seen = [state()]
+for _ in range(6000):  # up to 5 min on a loaded machine
+    current = state()
+    if current is not None and current != seen[-1]:
+        seen.append(current)
+        if len(seen) > count:
+            sys.exit(0)
+    try:
+        os.kill(pid, 0)
+    except OSError:
+        sys.exit(1)  # the run ended first
+    time.sleep(0.02)
+sys.exit(1)
+PY
+}
+
 # interrupted NAME KILLS ARGS...: runs ARGS into $work/NAME with checkpoints,
 # killing it KILLS times; every start after a kill resumes the last checkpoint.
+# Each kill comes 0 to 90 ms after the run's first to third new checkpoint
+# (the first kill after its first), drawn from the seed: within a step, or
+# while a checkpoint is being written.
 interrupted() {
   local name=$1 kills=$2
   shift 2
@@ -37,38 +73,30 @@ interrupted() {
     "$sartor" "$@" "${restart[@]}" --output "$out" >> "$log" 2>&1 &
     local pid=$!
     if [ "$attempt" -lt "$kills" ]; then
-      if [ "$attempt" -eq 0 ]; then
-        for _ in $(seq 1 6000); do # the first checkpoint, up to 2 min on a loaded machine
-          [ -s "$out/checkpoint.h5" ] && break
-          kill -0 "$pid" 2> /dev/null || break
-          sleep 0.02
-        done
-      fi
-      # 0.1 to 2.1 s: within the runs (3 to 6 s of wall time here).
-      local delay
-      delay=$(printf '%d.%02d' $((RANDOM % 2)) $((RANDOM % 100)))
-      sleep "$delay"
-      sleep 0.1
-      if kill -9 "$pid" 2> /dev/null; then
-        kill_count=$((kill_count + 1))
-        echo "$name: killed after ${delay} s (kill $kill_count)" | tee -a "$log"
+      local checkpoints=$((attempt == 0 ? 1 : 1 + RANDOM % 3)) delay
+      delay=0.0$((RANDOM % 10))
+      if new_checkpoints "$out" "$pid" "$checkpoints"; then
+        sleep "$delay"
+        if kill -9 "$pid" 2> /dev/null; then
+          kill_count=$((kill_count + 1))
+          echo "$name: killed $delay s after its ${checkpoints}. new checkpoint (kill $kill_count)" |
+            tee -a "$log"
+        fi
       fi
       wait "$pid" 2> /dev/null || true
-      [ -s "$out/checkpoint.h5" ] || { echo "$name: no checkpoint before the kill" >&2; exit 1; }
+      [ -s "$out/checkpoint.h5" ] || { cat "$log" >&2; echo "$name: no checkpoint before the kill" >&2; exit 1; }
       restart=(--restart "$out/checkpoint.h5")
       [ -e "$out/summary.json" ] && break # it finished before the kill
     else
       wait "$pid" || { cat "$log" >&2; echo "$name: the resumed run failed" >&2; exit 1; }
     fi
   done
-  [ "$kill_count" -gt 0 ] || { echo "$name: every run ended before its kill" >&2; exit 1; }
+  [ "$kill_count" -gt 0 ] || { cat "$log" >&2; echo "$name: every run ended before its kill" >&2; exit 1; }
   grep -q "resuming from" "$log" || { echo "$name: never resumed" >&2; exit 1; }
 }
 
-# The patch model on 12 x 12 cells: its swing lasts long enough (about 4 s
-# of wall time here) for the kills; on 8 x 8 it took 2 s once the patch
-# Hessian's projection became cheaper, and ended before its first kill.
-# About 7 s of wall time in 40 load steps, a checkpoint after each.
+# The plate: 40 load steps, a checkpoint after each. The sheet: the patch
+# model on 12 x 12 cells, a checkpoint every 0.05 s of its 1.5 s swing.
 plate=("$project/cases/fe/slit_annular_plate.yaml" --no-plot)
 sheet=("$project/cases/fe/hanging_sheet_dynamic.yaml" --mesh-nx 12 --mesh-ny 12 --time-end 1.5
   --bending-model patch --output-interval 0.1 --no-plot)
