@@ -3,7 +3,9 @@
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
+#include "contact/body_spec.hpp"
 #include "fem/petsc_call.hpp"
+#include "fem/posed_mannequin.hpp"
 #include "material/fabric.hpp"
 #include "solvers/commands.hpp"
 #include "solvers/creep_case.hpp"
@@ -43,6 +45,12 @@ const std::vector<OptionSpec>& wear_option_specs() {
        "step, drape's penalty kept, and the states not in equilibrium)"},
       {"no-step-certificate", "", "",
        "(wear) do not certify every wear step (the final states are certified)"},
+      {"wear-poses", "T:POSE;...", "",
+       "(wear) the mannequin moves through these poses over the wear, joint angles interpolated "
+       "between keyframes (e.g. \"0:;600:hip_l:90,hip_r:90,knee_l:90,knee_r:90;7800:;8400:\"); "
+       "its pose at 0 s must be the draped one (--body's pose=)"},
+      {"wear-pose-step", "DEG", "5",
+       "(wear) while the body moves, steps end where no joint has turned by more than DEG degrees"},
   };
   return specs;
 }
@@ -216,12 +224,67 @@ private:
   WearRestart restart_; // points into resume_
 };
 
+// --wear-poses: the mannequin of --body following the pose history, its
+// pose at 0 s the draped one; nullptr without the option.
+std::shared_ptr<const PosedMannequin> wear_poses(const Options& options) {
+  if (!options.is_set("wear-poses")) return nullptr;
+  const std::optional<MannequinModel> model =
+      contact::spec_mannequin(options.text("body"), "option --body");
+  if (!model) {
+    throw InputError("option --wear-poses: the body must be the mannequin (--body \"mannequin "
+                     "[measurements=FILE.json] [pose=...] ...\"), got '" +
+                     options.text("body") + "'");
+  }
+  contact::PoseHistory history;
+  try {
+    history = contact::parse_pose_history(options.text("wear-poses"));
+  } catch (const InputError& error) {
+    throw InputError(std::string("option --wear-poses: ") + error.what());
+  }
+  const Pose start = history.at(0.0);
+  for (const JointRange& joint : pose_joints()) {
+    if (start.angle(joint.name) != model->pose().angle(joint.name)) {
+      throw InputError("option --wear-poses: at 0 s " + joint.name + " is at " +
+                       format_number(start.angle(joint.name)) +
+                       " deg, but the garment is draped "
+                       "with it at " +
+                       format_number(model->pose().angle(joint.name)) +
+                       " deg (--body's pose=): the wear starts from the draped pose");
+    }
+  }
+  try {
+    return std::make_shared<const PosedMannequin>(*model, history,
+                                                  options.positive_real("wear-pose-step"));
+  } catch (const InputError& error) {
+    throw InputError(std::string("option --wear-poses: ") + error.what());
+  }
+}
+
+// The worn problem's --body, made to follow `poses` on the problem's clock
+// (its friction, pivot and rigid motion kept).
+void follow_poses(const Options& options, const std::shared_ptr<const PosedMannequin>& poses,
+                  ClothProblem& problem) {
+  const std::string name =
+      contact::parse_body(options.text("body"), "option --body", "body").name();
+  for (contact::Body& body : problem.bodies) {
+    if (body.name() != name) continue;
+    contact::Body moving(name, std::make_shared<ShapeOnClock>(poses, &problem.time), body.pivot());
+    moving.motion = body.motion;
+    moving.friction = body.friction;
+    body = std::move(moving);
+    return;
+  }
+  throw InputError("option --wear-poses: the worn problem has no body named '" + name + "'");
+}
+
 } // namespace
 
 void attach_wear(const Options& options, const std::string& directory,
                  const ClothOutputLabels& labels, CaseCloth* cloth,
                  const std::shared_ptr<WearRun>& run) {
-  const WearOptions settings = wear_options(options);
+  const std::shared_ptr<const PosedMannequin> poses = wear_poses(options);
+  WearOptions settings = wear_options(options);
+  if (poses) settings.landings = poses->knots();
   run->scheme = options.text("creep-scheme");
   run->fabrics = cloth->fabrics;
   const std::vector<CreepMaterial> creep = wear_creep_materials(options, cloth->fabrics);
@@ -230,11 +293,11 @@ void attach_wear(const Options& options, const std::string& directory,
   auto resume = std::make_shared<std::optional<WearResume>>();
   if (!checkpointing.restart_file.empty())
     *resume = read_wear_checkpoint(checkpointing.restart_file);
-  cloth->after_statics = [&options, settings, creep, gravity, directory, labels, run, checkpointing,
-                          resume](ClothProblem& problem,
-                                  const std::vector<ClothMaterial>& materials,
-                                  const std::vector<SeamSpring>& springs, Vec x,
-                                  const std::shared_ptr<const RunCheckpoint>& drape) {
+  cloth->after_statics = [&options, settings, poses, creep, gravity, directory, labels, run,
+                          checkpointing, resume](
+                             ClothProblem& problem, const std::vector<ClothMaterial>& materials,
+                             const std::vector<SeamSpring>& springs, Vec x,
+                             const std::shared_ptr<const RunCheckpoint>& drape) {
     const double cpu_start = process_cpu_seconds();
     WearGarment garment;
     garment.materials = materials;
@@ -259,6 +322,7 @@ void attach_wear(const Options& options, const std::string& directory,
                                 "at take-off, %zu hem vertices\n",
                                 settings.wear.time_end, run->scheme.c_str(), garment.held.size(),
                                 garment.hem.size()));
+    if (poses) follow_poses(options, poses, problem);
     const WearCheckpoints checkpoints(checkpointing, std::move(*resume), problem, drape, run.get());
     SartorPetscCall(solve_wear(problem, x, garment, settings, &run->report,
                                wear_series(directory, labels, checkpoints.resumed_time()),

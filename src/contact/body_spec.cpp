@@ -296,6 +296,19 @@ Body parse_body(const std::string& spec, const std::string& where,
   return body;
 }
 
+std::optional<MannequinModel> spec_mannequin(const std::string& spec, const std::string& where) {
+  if (spec == "default") return MannequinModel();
+  Fields fields(spec, where);
+  if (fields.kind() != "mannequin") return std::nullopt;
+  try {
+    return mannequin_model(fields);
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    if (message.rfind(where, 0) == 0) throw;
+    fields.fail(message);
+  }
+}
+
 GarmentBody garment_body(const std::string& spec, const std::string& where) {
   if (spec == "default") return garment_body("mannequin", where);
   Fields fields(spec, where);

@@ -26,6 +26,7 @@
 #include "contact/mannequin.hpp"
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,5 +50,10 @@ struct GarmentBody {
   std::vector<std::string> notes;
 };
 GarmentBody garment_body(const std::string& spec, const std::string& where);
+
+// The mannequin `spec` names ("default" or "mannequin [measurements=...]
+// [pose=...] ..."), sized and posed; nullopt for any other body. Throws
+// InputError naming `where` for a bad measurement file or pose.
+std::optional<MannequinModel> spec_mannequin(const std::string& spec, const std::string& where);
 
 } // namespace sartor::contact

@@ -314,14 +314,19 @@ PetscErrorCode solve_wear(ClothProblem& worn, Vec x, const WearGarment& garment,
                               &report->fresh_converged));
   report->fresh_hem_height = mean_height(report->fresh_positions, garment.hem);
 
-  // The steps land on the take-off times (a load history of factor 1 with
-  // knots there) and on the knots of the bodies' shapes (set by the caller
-  // as the bodies' motion knots).
+  // The steps land on the take-off times and the moving bodies' knots (a
+  // load history of factor 1 with knots there; the bodies' rigid motions
+  // add their own).
   CreepOptions wear = options.wear;
+  std::vector<double> landings = options.take_off_times;
+  for (double t : options.landings)
+    if (t > 0.0 && t < options.wear.time_end) landings.push_back(t);
+  std::sort(landings.begin(), landings.end());
+  landings.erase(std::unique(landings.begin(), landings.end()), landings.end());
   std::vector<LoadKnot> knots;
-  for (double t : options.take_off_times)
+  for (double t : landings)
     knots.push_back({t, 1.0});
-  if (!knots.empty()) wear.load = LoadHistory(knots, "wear: take-off times");
+  if (!knots.empty()) wear.load = LoadHistory(knots, "wear: take-off times and body knots");
   CreepCoupling creep(worn, garment.creep);
   if (restart.resume) resume_report(restart, worn, report);
   std::size_t next_take_off = report->take_offs.size();

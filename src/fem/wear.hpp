@@ -43,6 +43,11 @@ class TimedShape {
 public:
   virtual ~TimedShape() = default;
   virtual contact::SurfaceQuery query(const Eigen::Vector3d& p, double time) const = 0;
+  // Only what `needs` asks for, as contact::Shape::partial_query.
+  virtual contact::SurfaceQuery partial_query(const Eigen::Vector3d& p, double time,
+                                              contact::QueryNeeds /*needs*/) const {
+    return query(p, time);
+  }
   virtual std::string describe() const = 0;
   virtual double slope_bound() const { return 1.0; }
   // Times where the shape's history has knots: the wear steps land on them.
@@ -58,6 +63,10 @@ public:
       : shape_(std::move(shape)), clock_(clock) {}
   contact::SurfaceQuery query(const Eigen::Vector3d& p) const override {
     return shape_->query(p, *clock_);
+  }
+  contact::SurfaceQuery partial_query(const Eigen::Vector3d& p,
+                                      contact::QueryNeeds needs) const override {
+    return shape_->partial_query(p, *clock_, needs);
   }
   std::string describe() const override { return shape_->describe(); }
   double slope_bound() const override { return shape_->slope_bound(); }
@@ -105,6 +114,8 @@ struct WearOptions {
   std::vector<double> take_off_times; // s, increasing, within (0, wear.time_end]
   double recovery_time = 3600.0;      // s
   bool certify_steps = true;          // certify every accepted wear step (no inertia check)
+  // More times the steps land on: a moving body's knots (TimedShape::knots).
+  std::vector<double> landings;
 };
 
 // One take-off: the garment after `recovery_time` hanging, against the fresh one.

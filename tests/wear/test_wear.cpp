@@ -13,13 +13,16 @@
 //    converges at first order in the time step; the monolithic one at
 //    second, to the same height.
 
+#include "common/error.hpp"
 #include "contact/analytic_shapes.hpp"
 #include "contact/body.hpp"
+#include "fem/posed_mannequin.hpp"
 #include "fem/wear.hpp"
 #include "mesh/generators.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -231,6 +234,52 @@ TEST(BentLimb, FollowsItsAngleOnTheProblemsClock) {
   const Eigen::Vector3d half(0.25 * std::sqrt(0.5), 0.25 * std::sqrt(0.5), 0.0);
   EXPECT_NEAR(shape.query(half).distance, -0.04, 1e-12);
   EXPECT_EQ(limb->knots(), (std::vector<double>{0.0, 10.0}));
+}
+
+TEST(WearPoses, BendTheKneeOnTheProblemsClock) {
+  // The left knee bent from straight to 90 degrees over 10 s: the foot
+  // swings backwards (+y) about the knee's transverse axis (x). Halfway (45
+  // degrees) the middle of the shin is where neither the straight nor the
+  // right-angled shin is.
+  const auto poses = std::make_shared<PosedMannequin>(
+      MannequinModel(), contact::parse_pose_history("0:;10:knee_l:90"), 5.0);
+  const std::vector<Bone> rest = MannequinModel().skeleton();
+  const auto shin = std::find_if(rest.begin(), rest.end(),
+                                 [](const Bone& bone) { return bone.name == "shin_l"; });
+  ASSERT_NE(shin, rest.end());
+  const double half_length = 0.5 * (shin->end - shin->start).norm();
+  const Eigen::Vector3d middle_at_45 =
+      shin->start + half_length * Eigen::Vector3d(0.0, std::sqrt(0.5), -std::sqrt(0.5));
+  double clock = 0.0;
+  const ShapeOnClock shape(poses, &clock);
+  EXPECT_GT(shape.query(middle_at_45).distance, 0.02);
+  clock = 5.0;
+  EXPECT_LT(shape.query(middle_at_45).distance, 0.0);
+  EXPECT_EQ(shape.partial_query(middle_at_45, contact::QueryNeeds::distance).distance,
+            shape.query(middle_at_45).distance);
+  clock = 10.0;
+  EXPECT_GT(shape.query(middle_at_45).distance, 0.02);
+}
+
+TEST(WearPoses, StepsLandWhereNoJointTurnedMoreThanTheLargestTurn) {
+  // Sit (hips and knees to 90 degrees over 10 s), stay, stand up (10 s):
+  // 18 pieces of 5 degrees each way, the keyframes among the knots.
+  const PosedMannequin poses(
+      MannequinModel(),
+      contact::parse_pose_history("0:;10:hip_l:90,knee_l:90;20:hip_l:90,knee_l:90;30:"), 5.0);
+  const std::vector<double> knots = poses.knots();
+  ASSERT_EQ(knots.size(), 38u);
+  for (double keyframe : {0.0, 10.0, 20.0, 30.0})
+    EXPECT_NE(std::find(knots.begin(), knots.end(), keyframe), knots.end()) << keyframe;
+  for (std::size_t k = 1; k < knots.size(); ++k) {
+    ASSERT_GT(knots[k], knots[k - 1]);
+    const double turn = std::abs(poses.history().at(knots[k]).angle("knee_l") -
+                                 poses.history().at(knots[k - 1]).angle("knee_l"));
+    EXPECT_LE(turn, 5.0 + 1e-9) << "between " << knots[k - 1] << " and " << knots[k] << " s";
+  }
+  EXPECT_THROW(
+      PosedMannequin(MannequinModel(), contact::parse_pose_history("0:;10:knee_l:300"), 5.0),
+      InputError);
 }
 
 } // namespace
