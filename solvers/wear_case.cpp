@@ -127,6 +127,7 @@ WearOptions wear_options(const Options& options) {
                      "' (staggered, monolithic)");
   }
   wear.wear.print_progress = true;
+  wear.wear.equilibrium.progress_interval = 10.0; // a step's solve that runs long says so
   wear.wear.equilibrium.minimise = minimiser_chosen(options, "static-solver");
   // No contact rounds within a wear step: the friction anchors are lagged by
   // one step (updated when it is accepted), and the contact penalty stays

@@ -61,6 +61,26 @@ Eigen::Vector3d Body::direction_to_body(const Eigen::Vector3d& direction, double
   return rotation(time).transpose() * direction;
 }
 
+Eigen::Vector3d Body::anchor_from_world(const Eigen::Vector3d& x, double time) const {
+  return shape_->to_reference(to_body(x, time));
+}
+
+Eigen::Vector3d Body::anchor_to_world(const Eigen::Vector3d& point, double time) const {
+  return to_world(shape_->from_reference(point), time);
+}
+
+Eigen::Vector3d Body::anchor_direction_from_world(const Eigen::Vector3d& x,
+                                                  const Eigen::Vector3d& direction,
+                                                  double time) const {
+  return shape_->direction_to_reference(to_body(x, time), direction_to_body(direction, time));
+}
+
+Eigen::Vector3d Body::anchor_direction_to_world(const Eigen::Vector3d& point,
+                                                const Eigen::Vector3d& direction,
+                                                double time) const {
+  return direction_to_world(shape_->direction_from_reference(point, direction), time);
+}
+
 SurfaceQuery Body::query(const Eigen::Vector3d& x, double time) const {
   return query(x, time, QueryNeeds::curvature);
 }

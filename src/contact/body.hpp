@@ -82,6 +82,15 @@ public:
   // A body-frame direction (e.g. a normal) in the world at time t.
   Eigen::Vector3d direction_to_world(const Eigen::Vector3d& direction, double time) const;
   Eigen::Vector3d direction_to_body(const Eigen::Vector3d& direction, double time) const;
+  // A friction anchor's place: a world point on the surface at time t as a
+  // point of the shape's reference frame (Shape::to_reference), and back;
+  // the anchor's plane normal likewise (`point`: the anchor's reference point).
+  Eigen::Vector3d anchor_from_world(const Eigen::Vector3d& x, double time) const;
+  Eigen::Vector3d anchor_to_world(const Eigen::Vector3d& point, double time) const;
+  Eigen::Vector3d anchor_direction_from_world(const Eigen::Vector3d& x,
+                                              const Eigen::Vector3d& direction, double time) const;
+  Eigen::Vector3d anchor_direction_to_world(const Eigen::Vector3d& point,
+                                            const Eigen::Vector3d& direction, double time) const;
   // "NAME: shape ..., mu_s=..., mu_k=..." for logs.
   std::string describe() const;
 

@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -254,6 +255,17 @@ Limbs mirrored(const Limbs& left) {
   return right;
 }
 
+// x -> rotation x + shift.
+struct RigidMotion {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+  Eigen::Vector3d operator()(const Eigen::Vector3d& p) const { return rotation * p + shift; }
+  // This motion after `inner`.
+  RigidMotion after(const RigidMotion& inner) const {
+    return {rotation * inner.rotation, rotation * inner.shift + shift};
+  }
+};
+
 struct Design {
   Joints joints;
   Ellipsoid head{{0.0, -0.005, 1.64}, {0.077, 0.098, 0.11}};
@@ -268,6 +280,8 @@ struct Design {
   Limbs right = mirrored(left);
   // The default body is polygonised in a fixed box; others in their bounds.
   bool is_default = true;
+  // Posed: each moved bone's motion from the unposed body (skeleton() names).
+  std::map<std::string, RigidMotion> bone_motions;
 };
 
 const Design& default_design() {
@@ -787,17 +801,6 @@ Design sized_design(const Measurements& m) {
 
 // --- posing ------------------------------------------------------------------
 
-// x -> rotation x + shift.
-struct RigidMotion {
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
-  Eigen::Vector3d operator()(const Eigen::Vector3d& p) const { return rotation * p + shift; }
-  // This motion after `inner`.
-  RigidMotion after(const RigidMotion& inner) const {
-    return {rotation * inner.rotation, rotation * inner.shift + shift};
-  }
-};
-
 // A turn by `degrees` about the axis through `joint` that swings `segment`
 // (a direction) towards `towards`.
 RigidMotion flexion(const Eigen::Vector3d& joint, const Eigen::Vector3d& segment,
@@ -826,7 +829,8 @@ void move(const RigidMotion& m, Sole& s) {
 
 const Eigen::Vector3d forward(0.0, -1.0, 0.0);
 
-void pose_limbs(Limbs& l, const Pose& pose, const std::string& side) {
+void pose_limbs(Limbs& l, const Pose& pose, const std::string& side,
+                std::map<std::string, RigidMotion>& motions) {
   const RigidMotion shoulder =
       flexion(l.upper_arm.a, l.upper_arm.unit, forward, pose.angle("shoulder" + side));
   const RigidMotion elbow =
@@ -838,6 +842,10 @@ void pose_limbs(Limbs& l, const Pose& pose, const std::string& side) {
   const RigidMotion hip = flexion(l.thigh.a, l.thigh.unit, forward, pose.angle("hip" + side));
   const RigidMotion knee =
       hip.after(flexion(l.shin.a, l.shin.unit, -forward, pose.angle("knee" + side)));
+  for (const auto& [bone, motion] :
+       {std::pair{"upper_arm", shoulder}, std::pair{"forearm", elbow}, std::pair{"hand", elbow},
+        std::pair{"thigh", hip}, std::pair{"shin", knee}, std::pair{"foot", knee}})
+    motions[bone + side] = motion;
   move(hip, l.thigh);
   move(knee, l.shin);
   move(knee, l.calf);
@@ -849,12 +857,14 @@ void pose_limbs(Limbs& l, const Pose& pose, const std::string& side) {
 Design posed_design(const Design& rest, const Pose& pose) {
   Design d = rest;
   d.is_default = false;
-  pose_limbs(d.left, pose, "_l");
-  pose_limbs(d.right, pose, "_r");
+  pose_limbs(d.left, pose, "_l", d.bone_motions);
+  pose_limbs(d.right, pose, "_r", d.bone_motions);
   const RigidMotion neck = flexion(d.joints.neck_base, d.neck.unit, forward, pose.angle("neck"));
   for (Ellipsoid* e : {&d.head, &d.jaw, &d.nose})
     move(neck, *e);
   move(neck, d.neck);
+  d.bone_motions["neck"] = neck;
+  d.bone_motions["head"] = neck;
   d.joints.skull_base = neck(d.joints.skull_base);
   d.joints.crown = neck(d.joints.crown);
   return d;
@@ -1189,6 +1199,19 @@ Mannequin MannequinModel::generate() const {
 
 std::vector<Bone> MannequinModel::skeleton() const {
   return sartor::skeleton(posed_->design);
+}
+
+std::vector<BoneMotion> MannequinModel::bone_motions() const {
+  std::vector<BoneMotion> motions;
+  for (const Bone& bone : skeleton()) {
+    const auto moved = posed_->design.bone_motions.find(bone.name);
+    if (moved == posed_->design.bone_motions.end()) {
+      motions.push_back({bone.name, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero()});
+    } else {
+      motions.push_back({bone.name, moved->second.rotation, moved->second.shift});
+    }
+  }
+  return motions;
 }
 
 bool MannequinModel::is_default() const {

@@ -106,6 +106,14 @@ Pose parse_pose(const std::string& text);
 // Throws InputError for an unknown joint or an angle out of its range.
 void check_pose(const Pose& pose);
 
+// A bone's rigid motion from the unposed (sized) body to a pose: a point of
+// the bone's flesh at x in the unposed body is at rotation x + shift.
+struct BoneMotion {
+  std::string bone; // skeleton() name
+  Eigen::Matrix3d rotation;
+  Eigen::Vector3d shift;
+};
+
 // The mannequin sized to a measurement set and posed. Sizing fits the
 // pieces' radii until each girth, measured on the body, is within 0.2 % of
 // the request (a few tenths of a second); posing turns the limbs about their
@@ -130,6 +138,9 @@ public:
   // Polygonised as default_mannequin() is (about 0.4 s).
   Mannequin generate() const;
   std::vector<Bone> skeleton() const;
+  // Per bone of skeleton(), in its order: its motion from the unposed body
+  // (the identity for bones no joint moves).
+  std::vector<BoneMotion> bone_motions() const;
   bool is_default() const;
   const Pose& pose() const;
   // The measurements it was sized to (defaults filled in), mm.

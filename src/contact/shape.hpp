@@ -43,6 +43,22 @@ public:
   // A bound on |normal| outside the body: the distance falls by at most this
   // much per metre moved. 1 for an exact distance.
   virtual double slope_bound() const { return 1.0; }
+  // Friction anchors ride on the surface: a point p on it (shape frame) as a
+  // point of the shape's reference frame, which moves with the surface, and
+  // back; a direction at p (a tangent plane's normal) likewise. A rigid
+  // shape's surface does not move in its frame (the identity); one that
+  // changes with time (a mannequin bending its knees) carries each point
+  // with the piece of the body it lies on.
+  virtual Eigen::Vector3d to_reference(const Eigen::Vector3d& p) const { return p; }
+  virtual Eigen::Vector3d from_reference(const Eigen::Vector3d& q) const { return q; }
+  virtual Eigen::Vector3d direction_to_reference(const Eigen::Vector3d& /*p*/,
+                                                 const Eigen::Vector3d& d) const {
+    return d;
+  }
+  virtual Eigen::Vector3d direction_from_reference(const Eigen::Vector3d& /*q*/,
+                                                   const Eigen::Vector3d& d) const {
+    return d;
+  }
 };
 
 } // namespace sartor::contact

@@ -23,6 +23,26 @@ double largest_change(const Pose& a, const Pose& b) {
   return change;
 }
 
+// The bone whose flesh p is nearest: the distance to its segment less its
+// radius there (interpolated along it).
+std::size_t nearest_bone(const std::vector<Bone>& bones, const Eigen::Vector3d& p) {
+  std::size_t nearest = 0;
+  double least = INFINITY;
+  for (std::size_t b = 0; b < bones.size(); ++b) {
+    const Eigen::Vector3d axis = bones[b].end - bones[b].start;
+    const double length2 = axis.squaredNorm();
+    const double s =
+        length2 > 0.0 ? std::clamp((p - bones[b].start).dot(axis) / length2, 0.0, 1.0) : 0.0;
+    const double radius = (1.0 - s) * bones[b].start_radius + s * bones[b].end_radius;
+    const double distance = (p - (bones[b].start + s * axis)).norm() - radius;
+    if (distance < least) {
+      least = distance;
+      nearest = b;
+    }
+  }
+  return nearest;
+}
+
 } // namespace
 
 PosedMannequin::PosedMannequin(MannequinModel model, contact::PoseHistory history,
@@ -37,25 +57,52 @@ PosedMannequin::PosedMannequin(MannequinModel model, contact::PoseHistory histor
     check_pose(pose);
     slope_bound_ = std::max(slope_bound_, model_.posed(pose).slope_bound());
   }
-  shape_time_ = history_.keyframes().front().first;
-  shape_ = contact::make_posed_mannequin_shape(model_, history_.at(shape_time_));
+  unposed_bones_ = model_.posed(Pose{}).skeleton();
+  posed_at(history_.keyframes().front().first);
 }
 
-const contact::Shape& PosedMannequin::shape_at(double time) const {
-  if (time != shape_time_) {
-    shape_ = contact::make_posed_mannequin_shape(model_, history_.at(time));
-    shape_time_ = time;
+const PosedMannequin::Posed& PosedMannequin::posed_at(double time) const {
+  if (!posed_.shape || time != posed_.time) {
+    const MannequinModel posed = model_.posed(history_.at(time));
+    posed_.shape = contact::make_posed_mannequin_shape(posed, posed.pose());
+    posed_.bones = posed.skeleton();
+    posed_.motions = posed.bone_motions();
+    posed_.time = time;
   }
-  return *shape_;
+  return posed_;
 }
 
 contact::SurfaceQuery PosedMannequin::query(const Eigen::Vector3d& p, double time) const {
-  return shape_at(time).query(p);
+  return posed_at(time).shape->query(p);
 }
 
 contact::SurfaceQuery PosedMannequin::partial_query(const Eigen::Vector3d& p, double time,
                                                     contact::QueryNeeds needs) const {
-  return shape_at(time).partial_query(p, needs);
+  return posed_at(time).shape->partial_query(p, needs);
+}
+
+Eigen::Vector3d PosedMannequin::to_reference(const Eigen::Vector3d& p, double time) const {
+  const Posed& posed = posed_at(time);
+  const BoneMotion& m = posed.motions[nearest_bone(posed.bones, p)];
+  return m.rotation.transpose() * (p - m.shift);
+}
+
+Eigen::Vector3d PosedMannequin::from_reference(const Eigen::Vector3d& q, double time) const {
+  const BoneMotion& m = posed_at(time).motions[nearest_bone(unposed_bones_, q)];
+  return m.rotation * q + m.shift;
+}
+
+Eigen::Vector3d PosedMannequin::direction_to_reference(const Eigen::Vector3d& p,
+                                                       const Eigen::Vector3d& d,
+                                                       double time) const {
+  const Posed& posed = posed_at(time);
+  return posed.motions[nearest_bone(posed.bones, p)].rotation.transpose() * d;
+}
+
+Eigen::Vector3d PosedMannequin::direction_from_reference(const Eigen::Vector3d& q,
+                                                         const Eigen::Vector3d& d,
+                                                         double time) const {
+  return posed_at(time).motions[nearest_bone(unposed_bones_, q)].rotation * d;
 }
 
 std::string PosedMannequin::describe() const {

@@ -11,6 +11,11 @@
 // little from (a knee swung 90 degrees in one step would land the shin metres
 // of cloth away from where it was, and the penalty would push the cloth out
 // on the wrong side).
+//
+// Its reference frame (friction anchors) is the unposed body's: a point is
+// carried by the bone whose flesh it is nearest (the distance to the bone's
+// segment less its radius there), so that cloth sticking to a shin swings
+// with it.
 
 #include "contact/mannequin.hpp"
 #include "contact/mannequin_surface.hpp"
@@ -34,20 +39,32 @@ public:
   std::string describe() const override;
   double slope_bound() const override { return slope_bound_; }
   std::vector<double> knots() const override;
+  Eigen::Vector3d to_reference(const Eigen::Vector3d& p, double time) const override;
+  Eigen::Vector3d from_reference(const Eigen::Vector3d& q, double time) const override;
+  Eigen::Vector3d direction_to_reference(const Eigen::Vector3d& p, const Eigen::Vector3d& d,
+                                         double time) const override;
+  Eigen::Vector3d direction_from_reference(const Eigen::Vector3d& q, const Eigen::Vector3d& d,
+                                           double time) const override;
   const contact::PoseHistory& history() const { return history_; }
 
 private:
-  // The shape at `time`, rebuilt when the time differs from the last asked
+  struct Posed {
+    double time = 0.0;
+    std::unique_ptr<contact::Shape> shape;
+    std::vector<Bone> bones;
+    std::vector<BoneMotion> motions; // per bone, from the unposed body
+  };
+  // The body at `time`, rebuilt when the time differs from the last asked
   // for (posing takes microseconds; the contact queries of one solve all
   // come at one time). Not for concurrent use.
-  const contact::Shape& shape_at(double time) const;
+  const Posed& posed_at(double time) const;
 
   MannequinModel model_;
   contact::PoseHistory history_;
   double largest_turn_;
   double slope_bound_ = 1.0;
-  mutable double shape_time_ = 0.0;
-  mutable std::unique_ptr<contact::Shape> shape_;
+  std::vector<Bone> unposed_bones_;
+  mutable Posed posed_;
 };
 
 } // namespace sartor

@@ -50,6 +50,23 @@ public:
   }
   virtual std::string describe() const = 0;
   virtual double slope_bound() const { return 1.0; }
+  // The surface's reference frame at `time`, as contact::Shape's (the
+  // identity unless the surface moves in the shape's frame).
+  virtual Eigen::Vector3d to_reference(const Eigen::Vector3d& p, double /*time*/) const {
+    return p;
+  }
+  virtual Eigen::Vector3d from_reference(const Eigen::Vector3d& q, double /*time*/) const {
+    return q;
+  }
+  virtual Eigen::Vector3d direction_to_reference(const Eigen::Vector3d& /*p*/,
+                                                 const Eigen::Vector3d& d, double /*time*/) const {
+    return d;
+  }
+  virtual Eigen::Vector3d direction_from_reference(const Eigen::Vector3d& /*q*/,
+                                                   const Eigen::Vector3d& d,
+                                                   double /*time*/) const {
+    return d;
+  }
   // Times where the shape's history has knots: the wear steps land on them.
   virtual std::vector<double> knots() const { return {}; }
 };
@@ -70,6 +87,20 @@ public:
   }
   std::string describe() const override { return shape_->describe(); }
   double slope_bound() const override { return shape_->slope_bound(); }
+  Eigen::Vector3d to_reference(const Eigen::Vector3d& p) const override {
+    return shape_->to_reference(p, *clock_);
+  }
+  Eigen::Vector3d from_reference(const Eigen::Vector3d& q) const override {
+    return shape_->from_reference(q, *clock_);
+  }
+  Eigen::Vector3d direction_to_reference(const Eigen::Vector3d& p,
+                                         const Eigen::Vector3d& d) const override {
+    return shape_->direction_to_reference(p, d, *clock_);
+  }
+  Eigen::Vector3d direction_from_reference(const Eigen::Vector3d& q,
+                                           const Eigen::Vector3d& d) const override {
+    return shape_->direction_from_reference(q, d, *clock_);
+  }
 
 private:
   std::shared_ptr<const TimedShape> shape_;

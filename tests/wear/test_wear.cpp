@@ -261,6 +261,38 @@ TEST(WearPoses, BendTheKneeOnTheProblemsClock) {
   EXPECT_GT(shape.query(middle_at_45).distance, 0.02);
 }
 
+TEST(WearPoses, CarryAPointOnTheShinWithIt) {
+  // Friction anchors ride on the surface: a point on the front of the left
+  // shin, taken to the reference frame standing and back with the knee bent
+  // 90 degrees, turned with the shin about the knee: as far from the knee,
+  // on the bent shin's surface, its normal the surface's there.
+  const auto poses = std::make_shared<PosedMannequin>(
+      MannequinModel(), contact::parse_pose_history("0:;10:knee_l:90"), 5.0);
+  const std::vector<Bone> rest = MannequinModel().skeleton();
+  const auto shin = std::find_if(rest.begin(), rest.end(),
+                                 [](const Bone& bone) { return bone.name == "shin_l"; });
+  ASSERT_NE(shin, rest.end());
+  const Eigen::Vector3d knee = shin->start;
+  double clock = 0.0;
+  const ShapeOnClock shape(poses, &clock);
+  const Eigen::Vector3d front = 0.5 * (shin->start + shin->end) + Eigen::Vector3d(0.0, -0.2, 0.0);
+  const contact::SurfaceQuery standing = shape.query(shape.query(front).closest);
+  const Eigen::Vector3d on_shin = shape.query(front).closest;
+  ASSERT_LT(std::abs(standing.distance), 1e-3);
+  const Eigen::Vector3d point = shape.to_reference(on_shin);
+  const Eigen::Vector3d normal =
+      shape.direction_to_reference(on_shin, standing.normal.normalized());
+  clock = 10.0;
+  const Eigen::Vector3d carried = shape.from_reference(point);
+  EXPECT_NEAR((carried - knee).norm(), (on_shin - knee).norm(), 1e-12);
+  EXPECT_GT((carried - on_shin).norm(), 0.1);
+  const contact::SurfaceQuery bent = shape.query(carried);
+  EXPECT_LT(std::abs(bent.distance), 1e-3);
+  EXPECT_GT(shape.direction_from_reference(point, normal).dot(bent.normal.normalized()),
+            std::cos(M_PI / 180.0));
+  EXPECT_LT((shape.to_reference(carried) - point).norm(), 1e-12);
+}
+
 TEST(WearPoses, StepsLandWhereNoJointTurnedMoreThanTheLargestTurn) {
   // Sit (hips and knees to 90 degrees over 10 s), stay, stand up (10 s):
   // 18 pieces of 5 degrees each way, the keyframes among the knots.

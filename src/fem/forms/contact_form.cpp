@@ -103,8 +103,8 @@ void ContactForm::add_rest_derivative(const FormPoint& at, const RestChange& cha
       if (anchors_.size() == bodies().size() && anchors_[b][std::size_t(v)].active) {
         const FrictionAnchor& anchor = anchors_[b][std::size_t(v)];
         d_force += d_k * contact::anchor_spring_stiffness_derivative(
-                             k, x, body.to_world(anchor.point, clock()),
-                             body.direction_to_world(anchor.normal, clock()),
+                             k, x, body.anchor_to_world(anchor.point, clock()),
+                             body.anchor_direction_to_world(anchor.point, anchor.normal, clock()),
                              friction_bound(anchor, body.friction, settings().bounded_friction));
       }
       for (int d = 0; d < 3; ++d)
@@ -152,7 +152,8 @@ contact::PointResult ContactForm::vertex_contact(std::size_t body, int vertex,
     const FrictionAnchor& anchor = anchors_[body][std::size_t(vertex)];
     if (anchor.active) {
       const contact::PointResult spring = contact::anchor_spring(
-          k, x, b.to_world(anchor.point, clock()), b.direction_to_world(anchor.normal, clock()),
+          k, x, b.anchor_to_world(anchor.point, clock()),
+          b.anchor_direction_to_world(anchor.point, anchor.normal, clock()),
           friction_bound(anchor, b.friction, settings().bounded_friction), want);
       result.energy += spring.energy;
       result.gradient += spring.gradient;
@@ -306,12 +307,14 @@ PetscErrorCode ContactForm::accept_step(const FormPoint& at) {
         continue;
       }
       if (!anchor.active) { // a new contact sticks where it touched
-        anchor = {true, body.to_body(q.closest, clock()), body.direction_to_body(normal, clock()),
-                  normal_force, false};
+        anchor = {true, body.anchor_from_world(q.closest, clock()),
+                  body.anchor_direction_from_world(q.closest, normal, clock()), normal_force,
+                  false};
         continue;
       }
-      const Eigen::Vector3d held = body.to_world(anchor.point, clock());
-      const Eigen::Vector3d plane = body.direction_to_world(anchor.normal, clock());
+      const Eigen::Vector3d held = body.anchor_to_world(anchor.point, clock());
+      const Eigen::Vector3d plane =
+          body.anchor_direction_to_world(anchor.point, anchor.normal, clock());
       // Coulomb's law on the force the solve applied (in its tangent plane),
       // against the cone of the normal force now.
       const contact::AnchorUpdate update = contact::slide_anchor(
@@ -332,8 +335,8 @@ PetscErrorCode ContactForm::accept_step(const FormPoint& at) {
       // slides again by round-off. It moves (continuously), but counts as
       // sliding only when it moved by more than sliding_margin of its reach.
       if ((place - held).norm() > sliding_margin * reach) ++sliding_[b];
-      anchor.point = body.to_body(place, clock());
-      anchor.normal = body.direction_to_body(normal, clock());
+      anchor.point = body.anchor_from_world(place, clock());
+      anchor.normal = body.anchor_direction_from_world(place, normal, clock());
     }
   }
   PetscFunctionReturn(0);
@@ -365,10 +368,10 @@ PetscErrorCode ContactForm::report(const PetscScalar* values,
       if (solved_anchors_.size() == bodies().size() && solved_anchors_[b][std::size_t(v)].active) {
         const FrictionAnchor& anchor = solved_anchors_[b][std::size_t(v)];
         const Eigen::Vector3d spring =
-            contact::anchor_spring(k, p, body.to_world(anchor.point, clock()),
-                                   body.direction_to_world(anchor.normal, clock()),
-                                   friction_bound(anchor, body.friction, solved_bounded_),
-                                   element::Want::gradient)
+            contact::anchor_spring(
+                k, p, body.anchor_to_world(anchor.point, clock()),
+                body.anchor_direction_to_world(anchor.point, anchor.normal, clock()),
+                friction_bound(anchor, body.friction, solved_bounded_), element::Want::gradient)
                 .gradient;
         for (int d = 0; d < 3; ++d)
           sums[3 + d] -= spring[d];
@@ -591,10 +594,10 @@ void ContactForm::add_vertex_loads(const PetscScalar* x, PetscScalar* per_vertex
         continue;
       const FrictionAnchor& anchor = solved_anchors_[b][std::size_t(v)];
       per_vertex[offset + 1] +=
-          contact::anchor_spring(k, p, body.to_world(anchor.point, clock()),
-                                 body.direction_to_world(anchor.normal, clock()),
-                                 friction_bound(anchor, body.friction, solved_bounded_),
-                                 element::Want::gradient)
+          contact::anchor_spring(
+              k, p, body.anchor_to_world(anchor.point, clock()),
+              body.anchor_direction_to_world(anchor.point, anchor.normal, clock()),
+              friction_bound(anchor, body.friction, solved_bounded_), element::Want::gradient)
               .gradient.norm();
     }
   }
