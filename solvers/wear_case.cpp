@@ -129,9 +129,9 @@ WearOptions wear_options(const Options& options) {
   wear.wear.print_progress = true;
   wear.wear.equilibrium.progress_interval = 10.0; // a step's solve that runs long says so
   wear.wear.equilibrium.minimise = minimiser_chosen(options, "static-solver");
-  // No contact rounds within a wear step: the friction anchors are lagged by
-  // one step (updated when it is accepted), and the contact penalty stays
-  // where the drape left it, so that it does not depend on the step size.
+  // Contact rounds within each wear step (8 by default) make the friction
+  // consistent with the anchors the state ends with; 0 lags the anchors by
+  // one step and keeps the drape's penalty (docs/wear.md).
   wear.wear.equilibrium.max_contact_rounds = int(options.integer_in("wear-contact-rounds", 0, 100));
   wear.recovery_time = options.positive_real("recovery-time");
   if (options.is_set("take-off-times")) {
