@@ -27,30 +27,42 @@ python=/usr/bin/python3
 rm -rf "$work" && mkdir -p "$work"
 RANDOM=18 # the seed of the kill moments
 
-# new_checkpoints OUT PID COUNT: waits until OUT/checkpoint.h5 has held COUNT
-# states other than the one it held at the start (none, or the one resumed);
-# fails when the run ends first. The kills wait on the run's progress, not on
-# the clock: a faster machine ends the runs sooner, never before their kills.
-new_checkpoints() {
-  "$python" - "$1/checkpoint.h5" "$2" "$3" <<'PY'
-import os, sys, time
+# await_checkpoint OUT PID changes COUNT: waits until OUT/checkpoint.h5 has
+# held COUNT states other than the one it held at the start (none, or the
+# one resumed). await_checkpoint OUT PID state CONDITION: until its /state
+# makes CONDITION (a Python expression of `state`, the parsed JSON) true.
+# Fails when the run ends first. The kills wait on the run's progress, not
+# on the clock: a faster machine ends the runs sooner, never before their
+# kills.
+await_checkpoint() {
+  "$python" - "$1/checkpoint.h5" "$2" "$3" "$4" <<'PY'
+import json, os, sys, time
 import h5py
-path, pid, count = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+path, pid, kind, argument = sys.argv[1], int(sys.argv[2]), sys.argv[3], sys.argv[4]
 
-def state():
+def text():
     try:
         with h5py.File(path, "r") as f:
             return f["state"][()].tobytes()
     except (OSError, KeyError):
         return None  # not written yet, or being replaced
 
-seen = [state()]
-for _ in range(6000):  # up to 5 min on a loaded machine
-    current = state()
-    if current is not None and current != seen[-1]:
-        seen.append(current)
-        if len(seen) > count:
-            sys.exit(0)
+def reached(current, seen):
+    if kind == "changes":
+        if current != seen[-1]:
+            seen.append(current)
+        return len(seen) > int(argument)
+    try:
+        return bool(eval(argument, {}, {"state": json.loads(current.decode())}))
+    except (KeyError, ValueError):
+        return False  # not a whole state yet, or not one the condition reads
+
+seen = [text()]
+deadline = time.monotonic() + 300  # 5 min on a loaded machine
+while time.monotonic() < deadline:
+    current = text()
+    if current is not None and reached(current, seen):
+        sys.exit(0)
     try:
         os.kill(pid, 0)
     except OSError:
@@ -75,7 +87,7 @@ interrupted() {
     if [ "$attempt" -lt "$kills" ]; then
       local checkpoints=$((attempt == 0 ? 1 : 1 + RANDOM % 3)) delay
       delay=0.0$((RANDOM % 10))
-      if new_checkpoints "$out" "$pid" "$checkpoints"; then
+      if await_checkpoint "$out" "$pid" changes "$checkpoints"; then
         sleep "$delay"
         if kill -9 "$pid" 2> /dev/null; then
           kill_count=$((kill_count + 1))
@@ -115,35 +127,13 @@ interrupted skirt_levels 2 drape "${skirt_levels[@]}" --checkpoint-interval 1
 # Within the finer level of a drape on two levels: killed once the first
 # checkpoint within level 2 is written (/state's drape_level), resumed from
 # there (static: after a sewing stage; dynamic: at a multiple of 0.02 s).
-checkpoint_state() { # OUT PID CONDITION: waits until OUT/checkpoint.h5's /state makes
-  # CONDITION (a Python expression of `state`, the parsed JSON) true
-  "$python" - "$1/checkpoint.h5" "$2" "$3" <<'PY'
-import json, os, sys, time
-import h5py
-path, pid, condition = sys.argv[1], int(sys.argv[2]), sys.argv[3]
-for _ in range(6000):  # up to 5 min on a loaded machine
-    try:
-        with h5py.File(path, "r") as f:
-            state = json.loads(f["state"][()].tobytes().decode())
-        if eval(condition, {}, {"state": state}):
-            sys.exit(0)
-    except (OSError, KeyError, ValueError):
-        pass  # not written yet
-    try:
-        os.kill(pid, 0)
-    except OSError:
-        sys.exit(1)  # the run ended first
-    time.sleep(0.05)
-sys.exit(1)
-PY
-}
 # killed_in_level2 NAME ARGS...: drape ARGS into $work/NAME, killed within level 2, resumed.
 killed_in_level2() {
   local name=$1 out="$work/$1"
   shift
   "$sartor" drape "$@" --output "$out" > "$out.log" 2>&1 &
   local pid=$!
-  checkpoint_state "$out" "$pid" 'state.get("drape_level", {}).get("level") == 1' ||
+  await_checkpoint "$out" "$pid" state 'state.get("drape_level", {}).get("level") == 1' ||
     { cat "$out.log" >&2; echo "$name: no checkpoint within level 2" >&2; exit 1; }
   kill -9 "$pid" && wait "$pid" 2> /dev/null || true
   "$sartor" drape "$@" --restart "$out/checkpoint.h5" --output "$out" >> "$out.log" 2>&1 ||
@@ -182,7 +172,7 @@ out="$work/skirt_wear"
 "${on_two_ranks[@]}" "$sartor" drape "${skirt_wear[@]}" --checkpoint-interval 1 --output "$out" \
   > "$out.log" 2>&1 &
 pid=$!
-checkpoint_state "$out" "$pid" 'state.get("kind") == "wear" and len(state["take_offs"]) >= 1' ||
+await_checkpoint "$out" "$pid" state 'state.get("kind") == "wear" and len(state["take_offs"]) >= 1' ||
   { cat "$out.log" >&2; echo "skirt_wear: no checkpoint within the wear" >&2; exit 1; }
 pkill -9 -f -- "--output $out\$" || true # the ranks, as a node failure would
 kill -9 "$pid" 2> /dev/null || true

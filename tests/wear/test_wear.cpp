@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 namespace sartor {
@@ -236,20 +237,29 @@ TEST(BentLimb, FollowsItsAngleOnTheProblemsClock) {
   EXPECT_EQ(limb->knots(), (std::vector<double>{0.0, 10.0}));
 }
 
+// The default mannequin bending its left knee from straight to 90 degrees
+// over 10 s, and its left shin standing.
+std::shared_ptr<const PosedMannequin> left_knee_bending() {
+  return std::make_shared<PosedMannequin>(MannequinModel(),
+                                          contact::parse_pose_history("0:;10:knee_l:90"), 5.0);
+}
+
+Bone standing_left_shin() {
+  for (const Bone& bone : MannequinModel().skeleton())
+    if (bone.name == "shin_l") return bone;
+  throw std::logic_error("the mannequin has no bone shin_l");
+}
+
 TEST(WearPoses, BendTheKneeOnTheProblemsClock) {
   // The left knee bent from straight to 90 degrees over 10 s: the foot
   // swings backwards (+y) about the knee's transverse axis (x). Halfway (45
   // degrees) the middle of the shin is where neither the straight nor the
   // right-angled shin is.
-  const auto poses = std::make_shared<PosedMannequin>(
-      MannequinModel(), contact::parse_pose_history("0:;10:knee_l:90"), 5.0);
-  const std::vector<Bone> rest = MannequinModel().skeleton();
-  const auto shin = std::find_if(rest.begin(), rest.end(),
-                                 [](const Bone& bone) { return bone.name == "shin_l"; });
-  ASSERT_NE(shin, rest.end());
-  const double half_length = 0.5 * (shin->end - shin->start).norm();
+  const auto poses = left_knee_bending();
+  const Bone shin = standing_left_shin();
+  const double half_length = 0.5 * (shin.end - shin.start).norm();
   const Eigen::Vector3d middle_at_45 =
-      shin->start + half_length * Eigen::Vector3d(0.0, std::sqrt(0.5), -std::sqrt(0.5));
+      shin.start + half_length * Eigen::Vector3d(0.0, std::sqrt(0.5), -std::sqrt(0.5));
   double clock = 0.0;
   const ShapeOnClock shape(poses, &clock);
   EXPECT_GT(shape.query(middle_at_45).distance, 0.02);
@@ -266,18 +276,14 @@ TEST(WearPoses, CarryAPointOnTheShinWithIt) {
   // shin, taken to the reference frame standing and back with the knee bent
   // 90 degrees, turned with the shin about the knee: as far from the knee,
   // on the bent shin's surface, its normal the surface's there.
-  const auto poses = std::make_shared<PosedMannequin>(
-      MannequinModel(), contact::parse_pose_history("0:;10:knee_l:90"), 5.0);
-  const std::vector<Bone> rest = MannequinModel().skeleton();
-  const auto shin = std::find_if(rest.begin(), rest.end(),
-                                 [](const Bone& bone) { return bone.name == "shin_l"; });
-  ASSERT_NE(shin, rest.end());
-  const Eigen::Vector3d knee = shin->start;
+  const auto poses = left_knee_bending();
+  const Bone shin = standing_left_shin();
+  const Eigen::Vector3d knee = shin.start;
   double clock = 0.0;
   const ShapeOnClock shape(poses, &clock);
-  const Eigen::Vector3d front = 0.5 * (shin->start + shin->end) + Eigen::Vector3d(0.0, -0.2, 0.0);
-  const contact::SurfaceQuery standing = shape.query(shape.query(front).closest);
+  const Eigen::Vector3d front = 0.5 * (shin.start + shin.end) + Eigen::Vector3d(0.0, -0.2, 0.0);
   const Eigen::Vector3d on_shin = shape.query(front).closest;
+  const contact::SurfaceQuery standing = shape.query(on_shin);
   ASSERT_LT(std::abs(standing.distance), 1e-3);
   const Eigen::Vector3d point = shape.to_reference(on_shin);
   const Eigen::Vector3d normal =
