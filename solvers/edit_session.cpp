@@ -82,36 +82,16 @@ double lowest_point(ClothProblem& problem, Vec x) {
   return lowest;
 }
 
-// The thesis' penetration handling before a solve (ch. 4, Alg. 1, without
-// its spatial index): every vertex of the start inside a body is pushed out
-// along the body's normal to the middle of the contact offset layer (where
-// the penalty holds the drape's vertices). A prediction is linear and may
-// run through the body where the drape wraps round it; the minimiser's
-// steps are bounded by the distances, so it cannot leave the body's inside
-// by itself. Returns the vertices pushed and the deepest, m (every rank).
+// The thesis' penetration handling before a solve (ClothProblem::
+// push_out_of_bodies): a prediction is linear and may run through the body
+// where the drape wraps round it; the minimiser's steps are bounded by the
+// distances, so it cannot leave the body's inside by itself. Returns the
+// vertices pushed and the deepest, m (every rank).
 std::pair<long, double> push_out_of_bodies(ClothProblem& problem, Vec x) {
-  std::vector<Eigen::Vector3d> positions = gathered(problem, x);
-  double counts[2] = {0.0, 0.0};
-  const double offset = problem.contact.offset;
-  for (Eigen::Vector3d& p : positions) {
-    bool pushed = false;
-    for (const contact::Body& body : problem.bodies) {
-      const contact::SurfaceQuery q = body.query(p, problem.load_factor);
-      if (q.distance >= 0.0 || q.normal.norm() == 0.0) continue;
-      counts[1] = std::max(counts[1], -q.distance);
-      p += (0.5 * offset - q.distance) * q.normal.normalized();
-      pushed = true;
-    }
-    counts[0] += pushed ? 1.0 : 0.0;
-  }
-  SartorPetscCall(MPI_Bcast(counts, 2, MPI_DOUBLE, 0, problem.comm()));
-  unsigned long size = positions.size();
-  SartorPetscCall(MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG, 0, problem.comm()));
-  positions.resize(size);
-  SartorPetscCall(
-      MPI_Bcast(positions.data()->data(), int(3 * size), MPI_DOUBLE, 0, problem.comm()));
-  SartorPetscCall(problem.set_solution(positions, x));
-  return {long(counts[0]), counts[1]};
+  long pushed = 0;
+  double deepest = 0.0;
+  SartorPetscCall(problem.push_out_of_bodies(x, &pushed, &deepest));
+  return {pushed, deepest};
 }
 
 double residual_norm(ClothProblem& problem, Vec x) {

@@ -4,7 +4,25 @@
 #include "fem/cloth_problem.hpp"
 #include "fem/forms/contact_form.hpp"
 
+#include <algorithm>
+
 namespace sartor {
+
+namespace {
+
+// x from positions in mesh numbering held on rank 0 (gather_positions').
+PetscErrorCode set_gathered_positions(MPI_Comm comm, const ClothProblem& problem,
+                                      std::vector<Eigen::Vector3d>* positions, Vec x) {
+  PetscFunctionBeginUser;
+  unsigned long size = positions->size();
+  PetscCallMPI(MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG, 0, comm));
+  positions->resize(size);
+  PetscCallMPI(MPI_Bcast(positions->data()->data(), int(3 * size), MPI_DOUBLE, 0, comm));
+  PetscCall(problem.set_solution(*positions, x));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
 
 PetscErrorCode ClothProblem::contact_step_bound(Vec x, Vec direction, double* bound) {
   const PetscScalar *values = nullptr, *motions = nullptr;
@@ -21,6 +39,57 @@ PetscErrorCode ClothProblem::contact_step_bound(Vec x, Vec direction, double* bo
   PetscCall(VecRestoreArrayRead(local_x_, &values));
   PetscCall(DMRestoreLocalVector(dm_, &local_direction));
   PetscCallMPI(MPIU_Allreduce(&smallest, bound, 1, MPI_DOUBLE, MPI_MIN, comm_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::push_out_of_bodies(Vec x, long* pushed, double* deepest) {
+  std::vector<Eigen::Vector3d> positions;
+  PetscFunctionBeginUser;
+  PetscCall(gather_positions(x, &positions));
+  double counts[2] = {0.0, 0.0};
+  for (Eigen::Vector3d& p : positions) {
+    bool moved = false;
+    for (const contact::Body& body : bodies) {
+      const contact::SurfaceQuery q = body.query(p, contact_clock());
+      if (q.distance >= 0.0 || q.normal.norm() == 0.0) continue;
+      counts[1] = std::max(counts[1], -q.distance);
+      p += (0.5 * contact.offset - q.distance) * q.normal.normalized();
+      moved = true;
+    }
+    counts[0] += moved ? 1.0 : 0.0;
+  }
+  PetscCallMPI(MPI_Bcast(counts, 2, MPI_DOUBLE, 0, comm_));
+  PetscCall(set_gathered_positions(comm_, *this, &positions, x));
+  *pushed = long(counts[0]);
+  *deepest = counts[1];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ClothProblem::carry_with_bodies(Vec x, double to, double reach) {
+  std::vector<Eigen::Vector3d> positions;
+  PetscFunctionBeginUser;
+  PetscCall(gather_positions(x, &positions));
+  struct Carried {
+    std::size_t vertex, body;
+    double weight;
+    Eigen::Vector3d reference;
+  };
+  std::vector<Carried> carried;
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      const double d = bodies[b].distance(positions[v], contact_clock());
+      if (d >= reach) continue;
+      carried.push_back({v, b, 1.0 - std::max(0.0, d) / reach,
+                         bodies[b].anchor_from_world(positions[v], contact_clock())});
+      break; // the first body within reach carries it
+    }
+  }
+  time = to;
+  for (const Carried& c : carried) {
+    Eigen::Vector3d& p = positions[c.vertex];
+    p += c.weight * (bodies[c.body].anchor_to_world(c.reference, contact_clock()) - p);
+  }
+  PetscCall(set_gathered_positions(comm_, *this, &positions, x));
   PetscFunctionReturn(0);
 }
 

@@ -149,6 +149,21 @@ public:
   // with the body's distance in place of CCD). Vertices already inside a
   // body (d <= 0) do not bound the step: the penalty pushes them out.
   PetscErrorCode contact_step_bound(Vec x, Vec direction, double* bound);
+  // Collective. The thesis' penetration handling before a solve (ch. 4,
+  // Alg. 1): every vertex inside a body at the contact clock is moved out
+  // along the body's normal to the middle of the contact offset layer;
+  // `pushed`, `deepest` (m): how many, and the deepest (every rank). For a
+  // start the bodies have moved into (a limb bending into its trouser leg, a
+  // linear prediction through the body): from inside, the penalty's force
+  // is its stiffness times the depth, far more than the cloth can carry.
+  PetscErrorCode push_out_of_bodies(Vec x, long* pushed, double* deepest);
+  // Collective. Sets `time` to `to`, and carries the cloth near the bodies
+  // along with them: a vertex at distance d from a body moves by 1 - d /
+  // `reach` (none beyond it, all of it on the surface) of the body's motion
+  // of its nearest point's frame (contact::Body::anchor_from_world at the
+  // old time, anchor_to_world at the new). A limb that moves starts the
+  // step's solve with its cloth where it took it, not inside it.
+  PetscErrorCode carry_with_bodies(Vec x, double to, double reach);
 
   // Seam springs (mesh/seams.hpp) between any vertices of the mesh, on any
   // ranks (fem/forms/seam_coupling.hpp). Collective, with the same springs on every
