@@ -285,7 +285,10 @@ void attach_wear(const Options& options, const std::string& directory,
                  const std::shared_ptr<WearRun>& run) {
   const std::shared_ptr<const PosedMannequin> poses = wear_poses(options);
   WearOptions settings = wear_options(options);
-  if (poses) settings.landings = poses->knots();
+  if (poses) {
+    settings.landings = poses->knots();
+    settings.wear.follow_bodies = true;
+  }
   run->scheme = options.text("creep-scheme");
   run->fabrics = cloth->fabrics;
   const std::vector<CreepMaterial> creep = wear_creep_materials(options, cloth->fabrics);

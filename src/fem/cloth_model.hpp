@@ -88,7 +88,8 @@ struct ContactSettings {
   bool project_hessian = false;
   // Friction anchor springs bounded by Coulomb's cone (contact::anchor_spring):
   // a vertex slides within a solve. The static minimiser's contact rounds
-  // turn it on (fem/statics.hpp); plain springs otherwise, whose anchors
+  // turn it on (fem/statics.hpp), and a wear whose bodies move keeps it on
+  // (CreepOptions::follow_bodies); plain springs otherwise, whose anchors
   // slide between solves only.
   bool bounded_friction = false;
   // m: sample points on every edge longer than this, no further apart than

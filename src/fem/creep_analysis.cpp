@@ -199,12 +199,26 @@ PetscErrorCode attempt_creep_step(CreepStep& step, CreepCoupling& creep, double 
   ClothProblem& problem = step.problem;
   const CreepOptions& options = step.options;
   const double h = step.h;
+  if (options.follow_bodies && !options.dynamic) {
+    PetscCall(problem.carry_with_bodies(step.x, t1, options.follow_reach));
+  }
   problem.time = t1;
   bool converged = false;
   if (monolithic) creep.couple(h);
   // Pins let go at t1 still hold at its left limit, like a load jump's.
   const auto& releases = problem.release_times();
   const bool release_at_t1 = std::find(releases.begin(), releases.end(), t1) != releases.end();
+  if (options.follow_bodies && !options.dynamic) {
+    // The carried cloth can still start inside a body (the flesh round a
+    // bending knee is not rigid).
+    long pushed = 0;
+    double deepest = 0.0;
+    PetscCall(problem.push_out_of_bodies(step.x, &pushed, &deepest));
+    PetscCall(PetscInfo(nullptr,
+                        "creep step to %g s: %ld vertices pushed out of the bodies, "
+                        "the deepest from %g m\n",
+                        t1, pushed, deepest));
+  }
   problem.hold_at_release = true;
   PetscCall(step_equilibrium(step, options.load.before(t1), report, &converged));
   problem.hold_at_release = false;

@@ -53,6 +53,15 @@ struct CreepOptions {
   bool dynamic = false;
   double damping = 0.0;        // alpha, 1/s (dynamic)
   bool print_progress = false; // a line on rank 0 every 10 s of wall time (ProgressClock)
+  // The bodies move between the steps (a posed mannequin bending its knees,
+  // docs/wear.md#a-body-that-moves), statics only: each step starts with the
+  // cloth within follow_reach of a body carried along with it
+  // (ClothProblem::carry_with_bodies), what is still inside pushed out
+  // (ClothProblem::push_out_of_bodies), and the friction anchors bounded by
+  // Coulomb's cone from the step's first solve, so that an anchor the body
+  // carried away makes its vertex slide, not pull with the penalty's stiffness.
+  bool follow_bodies = false;
+  double follow_reach = 0.05; // m
 };
 
 struct CreepStepReport {
