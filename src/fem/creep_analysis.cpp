@@ -185,6 +185,23 @@ PetscErrorCode step_equilibrium(CreepStep& step, double factor, CreepReport* rep
   PetscFunctionReturn(0);
 }
 
+// The start of a step to t1 whose bodies move (CreepOptions::follow_bodies):
+// the cloth near them carried along, then what is still inside pushed out
+// (the flesh round a bending knee is not rigid).
+PetscErrorCode start_with_the_bodies(ClothProblem& problem, Vec x, double t1, double reach) {
+  PetscFunctionBeginUser;
+  if (problem.bodies.empty()) PetscFunctionReturn(0); // a take-off's recovery
+  PetscCall(problem.carry_with_bodies(x, t1, reach));
+  long pushed = 0;
+  double deepest = 0.0;
+  PetscCall(problem.push_out_of_bodies(x, &pushed, &deepest));
+  PetscCall(PetscInfo(nullptr,
+                      "creep step to %g s: %ld vertices pushed out of the bodies, the deepest "
+                      "from %g m\n",
+                      t1, pushed, deepest));
+  PetscFunctionReturn(0);
+}
+
 struct StepAttempt {
   bool converged = false;
   bool too_large = false; // the creep increment exceeds twice the tolerance
@@ -200,7 +217,7 @@ PetscErrorCode attempt_creep_step(CreepStep& step, CreepCoupling& creep, double 
   const CreepOptions& options = step.options;
   const double h = step.h;
   if (options.follow_bodies && !options.dynamic) {
-    PetscCall(problem.carry_with_bodies(step.x, t1, options.follow_reach));
+    PetscCall(start_with_the_bodies(problem, step.x, t1, options.follow_reach));
   }
   problem.time = t1;
   bool converged = false;
@@ -208,17 +225,6 @@ PetscErrorCode attempt_creep_step(CreepStep& step, CreepCoupling& creep, double 
   // Pins let go at t1 still hold at its left limit, like a load jump's.
   const auto& releases = problem.release_times();
   const bool release_at_t1 = std::find(releases.begin(), releases.end(), t1) != releases.end();
-  if (options.follow_bodies && !options.dynamic) {
-    // The carried cloth can still start inside a body (the flesh round a
-    // bending knee is not rigid).
-    long pushed = 0;
-    double deepest = 0.0;
-    PetscCall(problem.push_out_of_bodies(step.x, &pushed, &deepest));
-    PetscCall(PetscInfo(nullptr,
-                        "creep step to %g s: %ld vertices pushed out of the bodies, "
-                        "the deepest from %g m\n",
-                        t1, pushed, deepest));
-  }
   problem.hold_at_release = true;
   PetscCall(step_equilibrium(step, options.load.before(t1), report, &converged));
   problem.hold_at_release = false;
@@ -306,6 +312,7 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
   PetscFunctionBeginUser;
   const auto started = std::chrono::steady_clock::now();
   problem.pins_follow_time = true;
+  if (options.follow_bodies) problem.contact.bounded_friction = true;
   const RunCheckpoint* resume = restart.resume;
   if (resume) PetscCall(resume_creep(problem, creep, x, *resume));
   const double start = problem.time;

@@ -306,7 +306,6 @@ PetscErrorCode solve_wear(ClothProblem& worn, Vec x, const WearGarment& garment,
   // The drape's sewing is over: the seams pull with their own stiffness and
   // friction holds from the first step (the creep loop's clock starts at 0).
   worn.sewing_tension = 0.0;
-  if (options.wear.follow_bodies) worn.contact.bounded_friction = true;
   worn.time = 0.0;
   std::vector<Eigen::Vector3d> draped;
   PetscCall(positions_everywhere(worn, x, &draped));
