@@ -39,9 +39,10 @@ const std::vector<OptionSpec>& wear_option_specs() {
        "(wear) the hem: boundary vertices within M of the lowest draped vertex, m"},
       {"bagging-box", "X0,X1,Y0,Y1,Z0,Z1", "",
        "(wear) the bagging height is measured on the vertices draped in this box, m [all]"},
-      {"wear-contact-rounds", "N", "8",
+      {"wear-contact-rounds", "N", "30",
        "(wear) contact rounds of each step's solve, at most (friction anchors updated and the "
-       "penalty adapted within the step until friction is consistent; 0: anchors lagged by a "
+       "penalty adapted within the step until friction is consistent, else the step is retried "
+       "shorter; 0: anchors lagged by a "
        "step, drape's penalty kept, and the states not in equilibrium)"},
       {"no-step-certificate", "", "",
        "(wear) do not certify every wear step (the final states are certified)"},
@@ -129,9 +130,11 @@ WearOptions wear_options(const Options& options) {
   wear.wear.print_progress = true;
   wear.wear.equilibrium.progress_interval = 10.0; // a step's solve that runs long says so
   wear.wear.equilibrium.minimise = minimiser_chosen(options, "static-solver");
-  // Contact rounds within each wear step (8 by default) make the friction
-  // consistent with the anchors the state ends with; 0 lags the anchors by
-  // one step and keeps the drape's penalty (docs/wear.md).
+  // Contact rounds within each wear step (30 by default) make the friction
+  // consistent with the anchors the state ends with, at half the residual
+  // the certificate allows (fem/wear.cpp); a step they leave inconsistent is
+  // retried shorter. 0 lags the anchors by one step and keeps the drape's
+  // penalty (docs/wear.md).
   wear.wear.equilibrium.max_contact_rounds = int(options.integer_in("wear-contact-rounds", 0, 100));
   wear.recovery_time = options.positive_real("recovery-time");
   if (options.is_set("take-off-times")) {

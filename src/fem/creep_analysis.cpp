@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <string>
 
 namespace sartor {
 
@@ -154,6 +155,30 @@ struct CreepStep {
   PetscInt newton_iterations = 0;
 };
 
+// Why a static solve that converged did not settle its contact: its
+// contact rounds ended (ran out, or the last failed) before the friction was
+// consistent with the anchors (StaticOptions::contact_tolerance), or with a
+// vertex deeper in the offset layer than the adaptive penalty allows. Empty
+// where it settled, or where no rounds were asked for (anchors lagged by a
+// step, a choice the caller made).
+std::string contact_unsettled(const ClothProblem& problem, const StaticOptions& solve,
+                              const StaticReport& result) {
+  if (problem.bodies.empty() || !result.minimised || solve.max_contact_rounds == 0) return "";
+  if (!result.friction_consistent) {
+    return std::to_string(result.contact_rounds) + " contact rounds" +
+           (result.contact_round_failed ? " (the last failed)" : "") + " left a residual of " +
+           std::to_string(result.anchored_residual_norm) +
+           " N with the friction anchors updated (consistent at " +
+           std::to_string(result.consistency_tolerance) + " N)";
+  }
+  const double allowed = solve.max_offset_depth * problem.contact.offset;
+  if (allowed > 0.0 && result.deepest_offset_depth > allowed) {
+    return "a vertex ended " + std::to_string(result.deepest_offset_depth) +
+           " m deep in the offset layer (" + std::to_string(allowed) + " m allowed)";
+  }
+  return "";
+}
+
 // Equilibrium at the step's end from the load factor the problem holds to
 // `factor`; dynamic: the backward Euler step from the last accepted state.
 PetscErrorCode step_equilibrium(CreepStep& step, double factor, CreepReport* report,
@@ -182,6 +207,11 @@ PetscErrorCode step_equilibrium(CreepStep& step, double factor, CreepReport* rep
   step.newton_iterations += result.newton_iterations;
   *converged = result.converged;
   if (!*converged) report->reason = result.reason;
+  const std::string unsettled = contact_unsettled(problem, solve, result);
+  if (*converged && !unsettled.empty()) {
+    *converged = false;
+    report->reason = unsettled;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -247,14 +277,34 @@ PetscErrorCode attempt_creep_step(CreepStep& step, CreepCoupling& creep, double 
   PetscFunctionReturn(0);
 }
 
-// Back to the last accepted state at t after a rejected step.
+// What a step's contact rounds change besides the positions: the friction
+// anchors and the adaptive penalty.
+struct ContactState {
+  std::vector<AnchorRow> anchors;
+  double stiffness_scale = 1.0;
+};
+
+PetscErrorCode save_contact(ClothProblem& problem, ContactState* state) {
+  PetscFunctionBeginUser;
+  if (problem.bodies.empty()) PetscFunctionReturn(0);
+  PetscCall(problem.anchors_everywhere(&state->anchors));
+  state->stiffness_scale = problem.contact.stiffness_scale;
+  PetscFunctionReturn(0);
+}
+
+// Back to the last accepted state at t after a rejected step: a retry
+// starts from the anchors and penalty that state was solved with.
 PetscErrorCode roll_back_creep_step(const CreepStep& step, CreepCoupling& creep, double t,
-                                    double factor_before) {
+                                    double factor_before, const ContactState& contact) {
   PetscFunctionBeginUser;
   PetscCall(VecCopy(step.last, step.x));
   creep.roll_back();
   step.problem.time = t;
   step.problem.load_factor = factor_before;
+  if (!step.problem.bodies.empty()) {
+    step.problem.restore_anchors(contact.anchors);
+    step.problem.contact.stiffness_scale = contact.stiffness_scale;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -352,13 +402,18 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
     const double t1 = h == target - t ? target : t + h;
     const double factor_before = problem.load_factor;
     PetscCall(VecCopy(x, last));
+    ContactState contact_before;
+    PetscCall(save_contact(problem, &contact_before));
 
     CreepStep attempt_step{problem, system, options, x, last, velocity, h};
     StepAttempt attempt;
     PetscCall(attempt_creep_step(attempt_step, creep, t1, monolithic, report, &attempt));
     report->newton_iterations += attempt_step.newton_iterations;
     if (!attempt.converged || attempt.too_large) {
-      PetscCall(roll_back_creep_step(attempt_step, creep, t, factor_before));
+      PetscCall(
+          PetscInfo(nullptr, "creep step from %g s to %g s rejected: %s\n", t, t1,
+                    attempt.too_large ? "creep increment too large" : report->reason.c_str()));
+      PetscCall(roll_back_creep_step(attempt_step, creep, t, factor_before, contact_before));
       dt = retry_creep_step(options, h, attempt);
       ++rejected;
       ++report->rejected_steps;

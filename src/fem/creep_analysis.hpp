@@ -12,7 +12,12 @@
 // 0.9 creep_tolerance / (largest non-elastic strain increment), within
 // [0.5, 2] times the last and [min_step, max_step]. A step whose increment
 // exceeds twice the tolerance, or whose equilibrium fails, is rolled back and
-// retried shorter.
+// retried shorter, with the friction anchors and contact penalty of the last
+// accepted state. An equilibrium with bodies fails too where its contact
+// rounds (StaticOptions::max_contact_rounds > 0) end without settling: the
+// residual with the anchors updated is above StaticOptions::contact_tolerance
+// (or the solve's own tolerance), or a vertex is deeper in the offset layer
+// than allowed.
 //
 // At a jump of the load, or where pins let go (ClothProblem release times),
 // the step ends on the left limit, and the second solve is at the right

@@ -207,7 +207,8 @@ PetscErrorCode contact_rounds(IncrementalSystem& system, Vec x, const StaticOpti
   ClothProblem& problem = system.problem();
   PetscFunctionBeginUser;
   if (problem.bodies.empty()) PetscFunctionReturn(0);
-  report->consistency_tolerance = report->steps.empty() ? 0.0 : report->steps.back().tolerance;
+  report->consistency_tolerance = std::max(
+      options.contact_tolerance, report->steps.empty() ? 0.0 : report->steps.back().tolerance);
   PetscCall(measure_contact(problem, x, f, report));
   if (!system.minimises()) PetscFunctionReturn(0);
   // Sliding within a solve from here on; the solved states of the stages

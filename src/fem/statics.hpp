@@ -81,6 +81,10 @@ struct StaticOptions {
   bool converge_stages = false;  // all but the first to the full tolerance
   int max_contact_rounds = 30;
   double max_offset_depth = 0.5; // fraction of the contact offset
+  // N: the friction is consistent once the residual with the anchors
+  // updated is within this (0, or less than the last stage's tolerance:
+  // that tolerance). A wear asks for a fraction of its certificate's.
+  double contact_tolerance = 0.0;
   // The minimiser's progress lines (stage or round, iteration, |F|, elapsed
   // wall time), one every this many seconds; 0: none.
   double progress_interval = 0.0;

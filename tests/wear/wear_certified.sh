@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The skirt worn 6 s (5 steps) and taken off: every wear state is certified
 # (docs/wear.md), with drape's contact rounds within each step (the default
-# --wear-contact-rounds 8: friction anchors updated until consistent). With
+# --wear-contact-rounds 30: friction anchors updated until consistent). With
 # the anchors lagged by a step (--wear-contact-rounds 0) the states are not in
 # equilibrium with the anchors they end with, and the run says so.
 #   wear_certified.sh SARTOR PROJECT_DIR WORKDIR
