@@ -171,10 +171,10 @@ std::string contact_unsettled(const ClothProblem& problem, const StaticOptions& 
            " N with the friction anchors updated (consistent at " +
            std::to_string(result.consistency_tolerance) + " N)";
   }
-  const double allowed = solve.max_offset_depth * problem.contact.offset;
-  if (allowed > 0.0 && result.deepest_offset_depth > allowed) {
+  if (contact_too_deep(problem, solve, result)) {
     return "a vertex ended " + std::to_string(result.deepest_offset_depth) +
-           " m deep in the offset layer (" + std::to_string(allowed) + " m allowed)";
+           " m deep in the offset layer, more than " + std::to_string(solve.max_offset_depth) +
+           " of it";
   }
   return "";
 }

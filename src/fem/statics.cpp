@@ -181,20 +181,12 @@ PetscErrorCode measure_contact(ClothProblem& problem, Vec x, Vec f, StaticReport
   PetscFunctionReturn(0);
 }
 
-// Whether a vertex ended deeper in the offset layer than the adaptive
-// penalty allows.
-bool too_deep(const ClothProblem& problem, const StaticOptions& options,
-              const StaticReport& report) {
-  const double allowed = options.max_offset_depth * problem.contact.offset;
-  return allowed > 0.0 && report.deepest_offset_depth > allowed;
-}
-
 // The adaptive penalty: stiffer contact where a vertex ended deeper than
 // allowed in the offset layer (by the ratio of depths, twice over, at most
 // tenfold). Whether it stiffened.
 bool stiffen_contact(ClothProblem& problem, const StaticOptions& options,
                      const StaticReport& report) {
-  if (!too_deep(problem, options, report)) return false;
+  if (!contact_too_deep(problem, options, report)) return false;
   const double allowed = options.max_offset_depth * problem.contact.offset;
   problem.contact.stiffness_scale *= std::min(10.0, 2.0 * report.deepest_offset_depth / allowed);
   return true;
@@ -217,7 +209,7 @@ PetscErrorCode contact_rounds(IncrementalSystem& system, Vec x, const StaticOpti
   const bool bounded = problem.contact.bounded_friction;
   problem.contact.bounded_friction = true;
   while (report->converged && report->contact_rounds < options.max_contact_rounds) {
-    if (report->friction_consistent && !too_deep(problem, options, *report)) break;
+    if (report->friction_consistent && !contact_too_deep(problem, options, *report)) break;
     const double scale = problem.contact.stiffness_scale;
     stiffen_contact(problem, options, *report);
     ++report->contact_rounds;
@@ -254,6 +246,12 @@ PetscErrorCode contact_rounds(IncrementalSystem& system, Vec x, const StaticOpti
 }
 
 } // namespace
+
+bool contact_too_deep(const ClothProblem& problem, const StaticOptions& options,
+                      const StaticReport& report) {
+  const double allowed = options.max_offset_depth * problem.contact.offset;
+  return allowed > 0.0 && report.deepest_offset_depth > allowed;
+}
 
 PetscErrorCode solve_static(ClothProblem& problem, Vec x, const StaticOptions& options,
                             StaticReport* report) {

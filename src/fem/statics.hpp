@@ -162,6 +162,11 @@ struct StaticReport {
   double smallest_distance = 0.0; // m: smallest signed distance to a body (< 0: inside)
 };
 
+// Whether the solve's deepest vertex or edge sample ended deeper in the
+// offset layer than the adaptive penalty allows (options.max_offset_depth).
+bool contact_too_deep(const ClothProblem& problem, const StaticOptions& options,
+                      const StaticReport& report);
+
 // Solves in place (the seam springs of a sewing stage do not change the
 // problem: problem.sewing_stage is back at 1 on return): `x` holds the start and, on return, the
 // last converged state.
