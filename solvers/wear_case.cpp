@@ -448,6 +448,11 @@ void print_wear(const WearRun& run) {
             << " s: " << first->verdict << " (wear.csv's column certificate; docs/wear.md)";
     print_warnings({warning.str()});
   }
+  if (!report.take_offs.empty() && !report.fresh_converged) {
+    print_warnings({"the fresh garment's hanging equilibrium, which hem drop and bagging height "
+                    "are measured against, did not converge: they compare with a garment that is "
+                    "not at rest and mean nothing (docs/wear.md#take-off)"});
+  }
   for (const TakeOffReport& t : report.take_offs) {
     SartorPetscCall(PetscPrintf(
         PETSC_COMM_WORLD,

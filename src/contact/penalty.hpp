@@ -57,12 +57,42 @@ PointResult penalty(double stiffness, double offset, const SurfaceQuery& query, 
 PointResult anchor_spring(double stiffness, const Eigen::Vector3d& x, const Eigen::Vector3d& anchor,
                           const Eigen::Vector3d& normal, double bound, element::Want want);
 
+// The same spring in the body's tangent plane at x rather than a frozen one:
+// with m(x) = n / |n| the unit normal of the query at x (n its gradient of
+// the distance) and r = x - a,
+//     u = P(x) r = r - m (m . r),    J = du/dx = P - m (M^T r)^T - (m . r) M,
+//     M = dm/dx = (I - m m^T) H / |n|,
+// E as above in |u|; gradient J^T (k u or F u/|u|), exact. The Hessian is
+// exact but for one term, (m . r) times the body's third derivative (which
+// no shape provides): exact on a flat body and wherever the anchor sits at
+// the vertex's level (m . r = 0), as the wear's anchors do. A vertex
+// sliding over a curved body is then pulled along the surface where it is,
+// so the anchor update after a solve finds the force the solve applied
+// (the frozen plane's force pointed along the plane where the anchor was
+// placed, and each update turned it: the fixed point converged at about one
+// half per round on a bending knee). `query` must hold the curvature for the
+// gradient and the Hessian, the normal for the energy.
+PointResult surface_anchor_spring(double stiffness, const Eigen::Vector3d& x,
+                                  const Eigen::Vector3d& anchor, const SurfaceQuery& query,
+                                  double bound, element::Want want);
+
+// The query fields surface_anchor_spring's level `want` reads.
+inline QueryNeeds surface_anchor_needs(element::Want want) {
+  return want == element::Want::energy ? QueryNeeds::normal : QueryNeeds::curvature;
+}
+
 // d(anchor_spring's gradient)/d(stiffness) at fixed bound: the tangential
 // stretch while the spring sticks (its force is linear in the stiffness),
 // zero once it slides (the force is the bound).
 Eigen::Vector3d anchor_spring_stiffness_derivative(double stiffness, const Eigen::Vector3d& x,
                                                    const Eigen::Vector3d& anchor,
                                                    const Eigen::Vector3d& normal, double bound);
+
+// The same for surface_anchor_spring: J^T u while it sticks, zero once it slides.
+Eigen::Vector3d surface_anchor_spring_stiffness_derivative(double stiffness,
+                                                           const Eigen::Vector3d& x,
+                                                           const Eigen::Vector3d& anchor,
+                                                           const SurfaceQuery& query, double bound);
 
 // Coulomb's law on an anchor spring at an accepted state: when the spring's
 // tangential force k_t |P (x - a)| exceeds mu_s * normal_force, the anchor

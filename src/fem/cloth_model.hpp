@@ -92,6 +92,12 @@ struct ContactSettings {
   // (CreepOptions::follow_bodies); plain springs otherwise, whose anchors
   // slide between solves only.
   bool bounded_friction = false;
+  // The anchor springs in the body's tangent plane at the vertex
+  // (contact::surface_anchor_spring) instead of the plane frozen at the
+  // anchor, and anchors placed at the vertex's level: the wear turns it on
+  // (fem/wear.hpp), where cloth slides over a bending knee and the frozen
+  // plane's force turned at every update.
+  bool friction_plane_at_vertex = false;
   // m: sample points on every edge longer than this, no further apart than
   // it, carry the penalty too (fem/cloth_edge_contact.cpp), so that edges do
   // not cut through curved bodies between vertices; 0: vertices only

@@ -576,6 +576,16 @@ PetscErrorCode ClothProblem::update_contact(Vec x) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ClothProblem::level_friction_anchors(Vec x) {
+  const PetscScalar* values = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(to_local(x));
+  PetscCall(VecGetArrayRead(local_x_, &values));
+  contact_form_->level_anchors(values);
+  PetscCall(VecRestoreArrayRead(local_x_, &values));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ClothProblem::energy(Vec x, ClothEnergy* result) {
   const PetscScalar* values = nullptr;
   PetscFunctionBeginUser;

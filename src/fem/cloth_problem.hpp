@@ -133,6 +133,12 @@ public:
   // vertices that left contact lose theirs. Part of accept_step; statics also
   // call it at the start, to anchor what touches a body there.
   PetscErrorCode update_contact(Vec x);
+  // Moves every friction anchor to its vertex's level at x, keeping its
+  // spring's tangential stretch: how anchors are placed once
+  // contact.friction_plane_at_vertex is on (anchors placed on the surface
+  // below a vertex held off it, 5 mm under the coarse skirt's hips, would
+  // change their force by the plane's turn over that height).
+  PetscErrorCode level_friction_anchors(Vec x);
   // Per body, the forces on the cloth and the contact state at x, the
   // friction forces from the anchors the solve used (before the last update).
   PetscErrorCode contact_report(Vec x, std::vector<BodyContact>* report);

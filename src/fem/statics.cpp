@@ -305,7 +305,7 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
     system.loose_max_iterations = options.stage_max_iterations;
     if (!(resumes_ramp && stage == first_stage)) {
       // Friction anchors for what touches a body now (none while sewing).
-      PetscCall(problem.update_contact(x));
+      if (stage > 0 || options.update_anchors_at_start) PetscCall(problem.update_contact(x));
       if (stage == 0) {
         PetscCall(problem.residual(x, f));
         PetscCall(VecNorm(f, NORM_2, &report->initial_residual_norm));

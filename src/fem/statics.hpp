@@ -85,6 +85,15 @@ struct StaticOptions {
   // updated is within this (0, or less than the last stage's tolerance:
   // that tolerance). A wear asks for a fraction of its certificate's.
   double contact_tolerance = 0.0;
+  // Update the friction anchors at the state the solve starts from (new
+  // contacts anchored, Coulomb's law applied, normal forces measured there).
+  // A wear step starts from the last accepted state, whose anchors its
+  // contact rounds made consistent, carried with a moving body: updated at
+  // that unsettled start, the penalty's forces there (tens of kN where the
+  // carry left cloth deep in the offset layer, against a few hundred N at
+  // equilibrium) bounded the first solve's friction, and the rounds after it
+  // started 200 N out.
+  bool update_anchors_at_start = true;
   // The minimiser's progress lines (stage or round, iteration, |F|, elapsed
   // wall time), one every this many seconds; 0: none.
   double progress_interval = 0.0;

@@ -324,6 +324,10 @@ PetscErrorCode solve_wear(ClothProblem& worn, Vec x, const WearGarment& garment,
   // friction holds from the first step (the creep loop's clock starts at 0).
   worn.sewing_tension = 0.0;
   worn.time = 0.0;
+  // Cloth slides over the body for hours, over bending joints: the friction
+  // springs pull in the tangent plane where each vertex is.
+  worn.contact.friction_plane_at_vertex = true;
+  PetscCall(worn.level_friction_anchors(x));
   std::vector<Eigen::Vector3d> draped;
   PetscCall(positions_everywhere(worn, x, &draped));
   Hanger hanger(worn.comm(), worn.mesh(), draped, garment);
@@ -336,6 +340,9 @@ PetscErrorCode solve_wear(ClothProblem& worn, Vec x, const WearGarment& garment,
   // add their own).
   CreepOptions wear = options.wear;
   PetscCall(consistent_at_half_the_certified_residual(worn, x, &wear));
+  // Each step starts from the last accepted state's anchors (consistent
+  // there), not from anchors measured at the step's unsettled start.
+  wear.equilibrium.update_anchors_at_start = false;
   std::vector<double> landings = options.take_off_times;
   for (double t : options.landings)
     if (t > 0.0 && t < options.wear.time_end) landings.push_back(t);

@@ -8,6 +8,7 @@
 #include "contact/penalty.hpp"
 #include "tests/element/finite_difference.hpp"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <limits>
@@ -111,6 +112,74 @@ TEST(Penalty, BoundedAnchorSpringSlidesAtItsBound) {
   EXPECT_NEAR(held.gradient.norm(), 0.5 * bound, 1e-9 * bound);
   EXPECT_LT((held.hessian - k * (Eigen::Matrix3d::Identity() - normal * normal.transpose())).norm(),
             1e-9 * k);
+}
+
+// The spring in the tangent plane at the vertex, on a ball and a rounded
+// box moving on the clock: its gradient is the energy's (central
+// differences); its force lies in the plane at the vertex and, sliding,
+// has the bound's size; with the anchor at the vertex's level (m . r = 0,
+// where the one term left out of the Hessian vanishes) the Hessian is the
+// gradient's derivative on curved and flat parts alike, sticking or sliding.
+TEST(Penalty, SurfaceAnchorSpringPullsInThePlaneAtTheVertex) {
+  Body ball("ball", std::make_shared<Sphere>(Vector3d(0, 0, 0), 0.3), Vector3d::Zero());
+  ball.motion.angle.add(0.0, 0.0);
+  ball.motion.angle.add(1.0, 0.5);
+  Body table("table", std::make_shared<Box>(Vector3d::Zero(), Vector3d(1, 1, 0.1), 0.02),
+             Vector3d::Zero());
+  const double k = 3e3, clock = 0.7;
+  int sticking = 0, sliding = 0;
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  for (const Body* body : {&ball, &table}) {
+    for (int i = 0; i < 40; ++i) {
+      const Vector3d direction =
+          Vector3d(uniform(random), uniform(random), uniform(random)).normalized();
+      const SurfaceQuery at_surface = body->query(2.0 * direction, clock);
+      const Vector3d normal = at_surface.normal.normalized();
+      // The vertex 1 mm off the surface; the anchor at its level, 0 to 3 cm
+      // away along the surface's tangent (sticking for the small ones).
+      const Vector3d x = at_surface.closest + 1e-3 * normal;
+      Vector3d tangent = normal.cross(Vector3d(uniform(random), uniform(random), uniform(random)));
+      tangent.normalize();
+      const Vector3d anchor = x + 0.015 * (uniform(random) + 1.0) * tangent;
+      const double bound = 12.0; // reach 4 mm
+      const auto energy = [&](const Vector3d& y) {
+        return surface_anchor_spring(k, y, anchor, body->query(y, clock), bound, Want::energy)
+            .energy;
+      };
+      const auto gradient = [&](const Vector3d& y) {
+        return surface_anchor_spring(k, y, anchor, body->query(y, clock), bound, Want::gradient)
+            .gradient;
+      };
+      const SurfaceQuery here = body->query(x, clock);
+      const PointResult exact = surface_anchor_spring(k, x, anchor, here, bound, Want::hessian);
+      const double force = exact.gradient.norm();
+      EXPECT_LT((numeric_gradient<3>(energy, x, 1e-7) - exact.gradient).norm(), 1e-6 * force);
+      EXPECT_LT(std::abs(exact.gradient.dot(here.normal.normalized())), 1e-9 * force);
+      const double slip = (anchor - x).norm();
+      if (k * slip > bound) {
+        EXPECT_NEAR(force, bound, 1e-9 * bound);
+        ++sliding;
+      } else {
+        ++sticking;
+      }
+      // The force's derivative in the stiffness at a fixed bound.
+      const auto force_at = [&](double stiffness) {
+        return surface_anchor_spring(stiffness, x, anchor, here, bound, Want::gradient).gradient;
+      };
+      const Vector3d by_stiffness = (force_at(1.001 * k) - force_at(0.999 * k)) / (0.002 * k);
+      if (std::abs(k * slip / bound - 1.0) > 0.01)
+        EXPECT_LT(
+            (surface_anchor_spring_stiffness_derivative(k, x, anchor, here, bound) - by_stiffness)
+                .norm(),
+            1e-9 * force / k);
+      const Eigen::Matrix3d differenced = numeric_jacobian<3, 3>(gradient, x, 1e-7);
+      EXPECT_LT((differenced - exact.hessian).norm(), 1e-6 * differenced.norm())
+          << body->name() << " slip " << slip;
+    }
+  }
+  EXPECT_GT(sticking, 5);
+  EXPECT_GT(sliding, 5);
 }
 
 TEST(Penalty, CoulombAnchorUpdate) {

@@ -102,10 +102,16 @@ void ContactForm::add_rest_derivative(const FormPoint& at, const RestChange& cha
               .gradient;
       if (anchors_.size() == bodies().size() && anchors_[b][std::size_t(v)].active) {
         const FrictionAnchor& anchor = anchors_[b][std::size_t(v)];
-        d_force += d_k * contact::anchor_spring_stiffness_derivative(
-                             k, x, body.anchor_to_world(anchor.point, clock()),
+        const Eigen::Vector3d held = body.anchor_to_world(anchor.point, clock());
+        const double bound = friction_bound(anchor, body.friction, settings().bounded_friction);
+        d_force +=
+            d_k * (settings().friction_plane_at_vertex
+                       ? contact::surface_anchor_spring_stiffness_derivative(
+                             k, x, held, body.query(x, clock()), bound)
+                       : contact::anchor_spring_stiffness_derivative(
+                             k, x, held,
                              body.anchor_direction_to_world(anchor.point, anchor.normal, clock()),
-                             friction_bound(anchor, body.friction, settings().bounded_friction));
+                             bound));
       }
       for (int d = 0; d < 3; ++d)
         changes[offset + d] += d_force[d];
@@ -142,25 +148,42 @@ contact::PointResult ContactForm::vertex_contact(std::size_t body, int vertex,
                                                  element::Want want) const {
   const contact::Body& b = bodies()[body];
   const double k = stiffness(vertex);
+  const FrictionAnchor* anchor =
+      anchors_.size() == bodies().size() && anchors_[body][std::size_t(vertex)].active
+          ? &anchors_[body][std::size_t(vertex)]
+          : nullptr;
+  // The spring in the plane at the vertex reads the query there, near or not.
+  const bool plane_here = anchor && settings().friction_plane_at_vertex;
   contact::PointResult result;
-  if (!surely_apart(body, vertex, x)) {
-    const contact::SurfaceQuery query = b.query(x, clock(), contact::query_needs(want));
+  contact::SurfaceQuery query;
+  if (plane_here || !surely_apart(body, vertex, x)) {
+    query = b.query(x, clock(),
+                    plane_here ? contact::surface_anchor_needs(want) : contact::query_needs(want));
     queried_[body][std::size_t(vertex)] = {x, query.distance, clock()};
     result = contact::penalty(k, settings().offset, query, want);
   }
-  if (anchors_.size() == bodies().size()) {
-    const FrictionAnchor& anchor = anchors_[body][std::size_t(vertex)];
-    if (anchor.active) {
-      const contact::PointResult spring = contact::anchor_spring(
-          k, x, b.anchor_to_world(anchor.point, clock()),
-          b.anchor_direction_to_world(anchor.point, anchor.normal, clock()),
-          friction_bound(anchor, b.friction, settings().bounded_friction), want);
-      result.energy += spring.energy;
-      result.gradient += spring.gradient;
-      result.hessian += spring.hessian;
-    }
+  if (anchor) {
+    const contact::PointResult spring =
+        friction_spring(b, *anchor, k, x, query,
+                        friction_bound(*anchor, b.friction, settings().bounded_friction), want);
+    result.energy += spring.energy;
+    result.gradient += spring.gradient;
+    result.hessian += spring.hessian;
   }
   return result;
+}
+
+contact::PointResult ContactForm::friction_spring(const contact::Body& body,
+                                                  const FrictionAnchor& anchor, double stiffness,
+                                                  const Eigen::Vector3d& x,
+                                                  const contact::SurfaceQuery& here, double bound,
+                                                  element::Want want) const {
+  const Eigen::Vector3d held = body.anchor_to_world(anchor.point, clock());
+  if (settings().friction_plane_at_vertex)
+    return contact::surface_anchor_spring(stiffness, x, held, here, bound, want);
+  return contact::anchor_spring(
+      stiffness, x, held, body.anchor_direction_to_world(anchor.point, anchor.normal, clock()),
+      bound, want);
 }
 
 void ContactForm::add_energy(const FormPoint& at, double* sum) const {
@@ -306,15 +329,20 @@ PetscErrorCode ContactForm::accept_step(const FormPoint& at) {
         anchor.active = false; // left the body: released
         continue;
       }
+      // Anchors on the surface, or at the vertex's level for springs in the
+      // plane at the vertex (whose force then has no share of the plane's
+      // turn, surface_anchor_spring).
+      const bool plane_here = settings().friction_plane_at_vertex;
       if (!anchor.active) { // a new contact sticks where it touched
-        anchor = {true, body.anchor_from_world(q.closest, clock()),
-                  body.anchor_direction_from_world(q.closest, normal, clock()), normal_force,
-                  false};
+        const Eigen::Vector3d touched = plane_here ? p : q.closest;
+        anchor = {true, body.anchor_from_world(touched, clock()),
+                  body.anchor_direction_from_world(touched, normal, clock()), normal_force, false};
         continue;
       }
       const Eigen::Vector3d held = body.anchor_to_world(anchor.point, clock());
       const Eigen::Vector3d plane =
-          body.anchor_direction_to_world(anchor.point, anchor.normal, clock());
+          plane_here ? normal
+                     : body.anchor_direction_to_world(anchor.point, anchor.normal, clock());
       // Coulomb's law on the force the solve applied (in its tangent plane),
       // against the cone of the normal force now.
       const contact::AnchorUpdate update = contact::slide_anchor(
@@ -329,8 +357,10 @@ PetscErrorCode ContactForm::accept_step(const FormPoint& at) {
       const Eigen::Vector3d along = (p - update.anchor) - normal.dot(p - update.anchor) * normal;
       const double reach = body.friction.kinetic_coefficient * normal_force / k;
       Eigen::Vector3d place = update.anchor;
-      if (along.norm() > 0.0)
-        place = p - normal.dot(p - q.closest) * normal - reach * along.normalized();
+      if (along.norm() > 0.0) {
+        const Eigen::Vector3d level = plane_here ? p : p - normal.dot(p - q.closest) * normal;
+        place = level - reach * along.normalized();
+      }
       // An anchor that slid last time sits on the cone (mu_k = mu_s): it
       // slides again by round-off. It moves (continuously), but counts as
       // sliding only when it moved by more than sliding_margin of its reach.
@@ -368,10 +398,9 @@ PetscErrorCode ContactForm::report(const PetscScalar* values,
       if (solved_anchors_.size() == bodies().size() && solved_anchors_[b][std::size_t(v)].active) {
         const FrictionAnchor& anchor = solved_anchors_[b][std::size_t(v)];
         const Eigen::Vector3d spring =
-            contact::anchor_spring(
-                k, p, body.anchor_to_world(anchor.point, clock()),
-                body.anchor_direction_to_world(anchor.point, anchor.normal, clock()),
-                friction_bound(anchor, body.friction, solved_bounded_), element::Want::gradient)
+            friction_spring(body, anchor, k, p, q,
+                            friction_bound(anchor, body.friction, solved_bounded_),
+                            element::Want::gradient)
                 .gradient;
         for (int d = 0; d < 3; ++d)
           sums[3 + d] -= spring[d];
@@ -594,10 +623,9 @@ void ContactForm::add_vertex_loads(const PetscScalar* x, PetscScalar* per_vertex
         continue;
       const FrictionAnchor& anchor = solved_anchors_[b][std::size_t(v)];
       per_vertex[offset + 1] +=
-          contact::anchor_spring(
-              k, p, body.anchor_to_world(anchor.point, clock()),
-              body.anchor_direction_to_world(anchor.point, anchor.normal, clock()),
-              friction_bound(anchor, body.friction, solved_bounded_), element::Want::gradient)
+          friction_spring(body, anchor, k, p, q,
+                          friction_bound(anchor, body.friction, solved_bounded_),
+                          element::Want::gradient)
               .gradient.norm();
     }
   }
@@ -605,6 +633,25 @@ void ContactForm::add_vertex_loads(const PetscScalar* x, PetscScalar* per_vertex
     const PetscInt offset = vertex_dof_[std::size_t(v)];
     if (cone[std::size_t(v)] > 0.0)
       per_vertex[offset + 2] = per_vertex[offset + 1] / cone[std::size_t(v)];
+  }
+}
+
+void ContactForm::level_anchors(const PetscScalar* x) {
+  for (auto* anchors : {&anchors_, &solved_anchors_}) {
+    for (std::size_t b = 0; b < anchors->size(); ++b) {
+      const contact::Body& body = bodies()[b];
+      for (int v : vertices_) {
+        FrictionAnchor& anchor = (*anchors)[b][std::size_t(v)];
+        if (!anchor.active) continue;
+        const Eigen::Vector3d p = vertex_position(x, vertex_dof_[std::size_t(v)]);
+        const Eigen::Vector3d held = body.anchor_to_world(anchor.point, clock());
+        const Eigen::Vector3d plane =
+            body.anchor_direction_to_world(anchor.point, anchor.normal, clock());
+        const Eigen::Vector3d level = held + plane.dot(p - held) * plane;
+        anchor.point = body.anchor_from_world(level, clock());
+        anchor.normal = body.anchor_direction_from_world(level, plane, clock());
+      }
+    }
   }
 }
 

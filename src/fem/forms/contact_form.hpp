@@ -75,6 +75,9 @@ public:
                                    std::vector<Eigen::Vector3d>* per_vertex) const;
   // This rank's anchors as checkpoint rows (owned vertices only), and the
   // rows of every rank restored.
+  // ClothProblem::level_friction_anchors, at the local array x (the
+  // anchors of the last solve too, which the reports read).
+  void level_anchors(const PetscScalar* x);
   std::vector<double> anchor_rows() const;
   void restore_anchors(const std::vector<AnchorRow>& rows);
   // m^2: a vertex's share of the material area.
@@ -106,6 +109,13 @@ private:
   std::vector<double> relative_stiffness_changes(const RestChange& change) const;
   contact::PointResult vertex_contact(std::size_t body, int vertex, const Eigen::Vector3d& x,
                                       element::Want want) const;
+  // The anchor spring of `anchor` on vertex x with bound `bound`, in the
+  // plane ContactSettings::friction_plane_at_vertex picks; `here` is the
+  // body's query at x (read only for the plane at the vertex).
+  contact::PointResult friction_spring(const contact::Body& body, const FrictionAnchor& anchor,
+                                       double stiffness, const Eigen::Vector3d& x,
+                                       const contact::SurfaceQuery& here, double bound,
+                                       element::Want want) const;
   double vertex_step_bound(std::size_t body, const Eigen::Vector3d& p,
                            const Eigen::Vector3d& motion) const;
 
