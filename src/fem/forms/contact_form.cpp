@@ -89,29 +89,31 @@ void ContactForm::add_rest_derivative(const FormPoint& at, const RestChange& cha
                                       PetscScalar* changes) const {
   if (bodies().empty()) return;
   const std::vector<double> relative = relative_stiffness_changes(change);
-  const auto needs = contact::query_needs(element::Want::gradient);
+  // The spring in the plane at the vertex reads its curvature too.
+  const auto needs = settings().friction_plane_at_vertex
+                         ? contact::surface_anchor_needs(element::Want::gradient)
+                         : contact::query_needs(element::Want::gradient);
   for (std::size_t b = 0; b < bodies().size(); ++b) {
     const contact::Body& body = bodies()[b];
     for (int v : vertices_) {
       const PetscInt offset = vertex_dof_[std::size_t(v)];
       const Eigen::Vector3d x = vertex_position(at.x, offset);
       const double k = stiffness(v), d_k = k * relative[std::size_t(v)];
+      const contact::SurfaceQuery here = body.query(x, clock(), needs);
       Eigen::Vector3d d_force =
-          contact::penalty(d_k, settings().offset, body.query(x, clock(), needs),
-                           element::Want::gradient)
-              .gradient;
+          contact::penalty(d_k, settings().offset, here, element::Want::gradient).gradient;
       if (anchors_.size() == bodies().size() && anchors_[b][std::size_t(v)].active) {
         const FrictionAnchor& anchor = anchors_[b][std::size_t(v)];
         const Eigen::Vector3d held = body.anchor_to_world(anchor.point, clock());
         const double bound = friction_bound(anchor, body.friction, settings().bounded_friction);
         d_force +=
-            d_k * (settings().friction_plane_at_vertex
-                       ? contact::surface_anchor_spring_stiffness_derivative(
-                             k, x, held, body.query(x, clock()), bound)
-                       : contact::anchor_spring_stiffness_derivative(
-                             k, x, held,
-                             body.anchor_direction_to_world(anchor.point, anchor.normal, clock()),
-                             bound));
+            d_k *
+            (settings().friction_plane_at_vertex
+                 ? contact::surface_anchor_spring_stiffness_derivative(k, x, held, here, bound)
+                 : contact::anchor_spring_stiffness_derivative(
+                       k, x, held,
+                       body.anchor_direction_to_world(anchor.point, anchor.normal, clock()),
+                       bound));
       }
       for (int d = 0; d < 3; ++d)
         changes[offset + d] += d_force[d];
@@ -303,6 +305,10 @@ PetscErrorCode ContactForm::accept_step(const FormPoint& at) {
   solved_anchors_ = anchors_;
   solved_bounded_ = settings().bounded_friction;
   sliding_.assign(bodies().size(), 0);
+  // Anchors on the surface, or at the vertex's level for springs in the
+  // plane at the vertex (whose force then has no share of the plane's turn,
+  // surface_anchor_spring).
+  const bool plane_here = settings().friction_plane_at_vertex;
   for (std::size_t b = 0; b < bodies().size(); ++b) {
     const contact::Body& body = bodies()[b];
     // Panels slide into place while they are sewn: friction starts after.
@@ -329,10 +335,6 @@ PetscErrorCode ContactForm::accept_step(const FormPoint& at) {
         anchor.active = false; // left the body: released
         continue;
       }
-      // Anchors on the surface, or at the vertex's level for springs in the
-      // plane at the vertex (whose force then has no share of the plane's
-      // turn, surface_anchor_spring).
-      const bool plane_here = settings().friction_plane_at_vertex;
       if (!anchor.active) { // a new contact sticks where it touched
         const Eigen::Vector3d touched = plane_here ? p : q.closest;
         anchor = {true, body.anchor_from_world(touched, clock()),

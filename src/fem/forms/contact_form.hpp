@@ -73,11 +73,11 @@ public:
   // forces of `body` on the samples of its edges, shared by the lever rule.
   PetscErrorCode edge_sample_loads(std::size_t body, const PetscScalar* x,
                                    std::vector<Eigen::Vector3d>* per_vertex) const;
-  // This rank's anchors as checkpoint rows (owned vertices only), and the
-  // rows of every rank restored.
   // ClothProblem::level_friction_anchors, at the local array x (the
   // anchors of the last solve too, which the reports read).
   void level_anchors(const PetscScalar* x);
+  // This rank's anchors as checkpoint rows (owned vertices only), and the
+  // rows of every rank restored.
   std::vector<double> anchor_rows() const;
   void restore_anchors(const std::vector<AnchorRow>& rows);
   // m^2: a vertex's share of the material area.
