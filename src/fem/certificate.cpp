@@ -43,7 +43,7 @@ std::vector<bool> free_vertices(const ClothProblem& problem) {
 // body the normal forces of the edge samples shared to their edges' vertices.
 struct VertexForces {
   std::vector<Eigen::Vector3d> positions, residual, needed_contact, applied_contact, load;
-  std::vector<std::vector<Eigen::Vector3d>> sample_loads;
+  std::vector<std::vector<Eigen::Vector3d>> sample_loads, vertex_contact; // per body
   double residual_norm = 0.0;
 };
 
@@ -78,6 +78,7 @@ PetscErrorCode gather_forces(ClothProblem& problem, Vec x, VertexForces* forces)
   PetscCall(VecWAXPY(difference, -1.0, f, other));
   PetscCall(problem.gather_positions(difference, &forces->load));
   PetscCall(problem.gather_edge_sample_loads(x, &forces->sample_loads));
+  PetscCall(problem.gather_vertex_contact_forces(x, &forces->vertex_contact));
   for (Vec* v : {&f, &other, &difference})
     PetscCall(VecDestroy(v));
   PetscFunctionReturn(0);
@@ -136,57 +137,63 @@ void check_geometry(const ClothProblem& problem, const VertexForces& forces,
   }
 }
 
-// Rank 0: Coulomb's law at every vertex a body pushes on.
+// One body's contact with one vertex against Coulomb's law: `f` is what its
+// own contact (penalty and friction anchor) supplies, `samples` the
+// frictionless normal force of its edge samples shared to the vertex, whose
+// normal part counts in the cone, as it bounds the anchor's spring
+// (ContactForm::accept_step).
+void classify_contact(const Eigen::Vector3d& f, const Eigen::Vector3d& samples,
+                      const Eigen::Vector3d& n, const contact::Friction& friction, double tolerance,
+                      double floor, long vertex, CoulombCheck* check) {
+  const double own_normal = f.dot(n);
+  const double tangential = (f - own_normal * n).norm();
+  const double normal = own_normal + std::max(0.0, n.dot(samples));
+  ++check->contacts;
+  if (normal < -tolerance * f.norm() - floor) {
+    ++check->pulling;
+    return;
+  }
+  const double cone = std::max(normal, 0.0) * friction.static_coefficient;
+  const double ratio = tangential / std::max(cone > 0.0 ? cone : normal, floor);
+  if (ratio > check->worst_ratio) {
+    check->worst_ratio = ratio;
+    check->worst_vertex = vertex;
+  }
+  if (tangential > cone * (1.0 + tolerance) + tolerance * std::max(normal, 0.0) + floor) {
+    ++check->outside_cone;
+  } else if (friction.active() &&
+             tangential >= friction.kinetic_coefficient * normal * (1.0 - tolerance)) {
+    ++check->sliding;
+  } else {
+    ++check->sticking;
+  }
+}
+
+// Rank 0: Coulomb's law at every vertex a body pushes on, body by body:
+// each body's anchor at a vertex is bounded by that body's normal force, so
+// a vertex squeezed between two bodies (a specimen clamped between discs)
+// holds the friction of both cones. What equilibrium needs beyond what the
+// contact applies (the residual) is asked of the nearest body.
 void check_coulomb(const ClothProblem& problem, const VertexForces& forces,
                    const std::vector<bool>& free, double floor, Certificate* c) {
   const double clock = body_clock(problem);
-  const double tolerance = c->options.cone_tolerance;
-  CoulombCheck& check = c->coulomb;
+  std::vector<contact::SurfaceQuery> queries(problem.bodies.size());
   for (std::size_t v = 0; v < free.size(); ++v) {
     if (!free[v] || forces.applied_contact[v].norm() <= floor) continue;
-    // The nearest body is the one pushing.
     std::size_t nearest = 0;
-    contact::SurfaceQuery query;
-    query.distance = std::numeric_limits<double>::infinity();
     for (std::size_t b = 0; b < problem.bodies.size(); ++b) {
-      const contact::SurfaceQuery q = problem.bodies[b].query(forces.positions[v], clock);
-      if (q.distance < query.distance) {
-        query = q;
-        nearest = b;
-      }
+      queries[b] = problem.bodies[b].query(forces.positions[v], clock);
+      if (queries[b].distance < queries[nearest].distance) nearest = b;
     }
-    if (query.normal.norm() == 0.0) continue; // no direction (a medial point)
-    const Eigen::Vector3d n = query.normal.normalized();
-    // The edge samples' share is frictionless normal contact along the body
-    // normal at each sample's own point: what the vertex's own contact (its
-    // penalty and friction) must supply is the rest. The samples' normal
-    // force on the vertex counts in its cone, as it bounds its anchor's
-    // spring (ClothProblem::update_contact).
-    Eigen::Vector3d f = forces.needed_contact[v];
-    for (const auto& loads : forces.sample_loads)
-      f -= loads[v];
-    const double own_normal = f.dot(n);
-    const double tangential = (f - own_normal * n).norm();
-    const double normal = own_normal + std::max(0.0, n.dot(forces.sample_loads[nearest][v]));
-    const contact::Friction& friction = problem.bodies[nearest].friction;
-    ++check.contacts;
-    if (normal < -tolerance * f.norm() - floor) {
-      ++check.pulling;
-      continue;
-    }
-    const double cone = std::max(normal, 0.0) * friction.static_coefficient;
-    const double ratio = tangential / std::max(cone > 0.0 ? cone : normal, floor);
-    if (ratio > check.worst_ratio) {
-      check.worst_ratio = ratio;
-      check.worst_vertex = long(v);
-    }
-    if (tangential > cone * (1.0 + tolerance) + tolerance * std::max(normal, 0.0) + floor) {
-      ++check.outside_cone;
-    } else if (friction.active() &&
-               tangential >= friction.kinetic_coefficient * normal * (1.0 - tolerance)) {
-      ++check.sliding;
-    } else {
-      ++check.sticking;
+    const Eigen::Vector3d unbalanced = forces.needed_contact[v] - forces.applied_contact[v];
+    for (std::size_t b = 0; b < problem.bodies.size(); ++b) {
+      Eigen::Vector3d f = forces.vertex_contact[b][v];
+      if (b == nearest) f += unbalanced;
+      const Eigen::Vector3d& samples = forces.sample_loads[b][v];
+      if (b != nearest && (f + samples).norm() <= floor) continue; // b does not touch v
+      if (queries[b].normal.norm() == 0.0) continue;               // no direction (a medial point)
+      classify_contact(f, samples, queries[b].normal.normalized(), problem.bodies[b].friction,
+                       c->options.cone_tolerance, floor, long(v), &c->coulomb);
     }
   }
 }

@@ -58,7 +58,7 @@ struct CertificateOptions {
 };
 
 struct CoulombCheck {
-  long contacts = 0;        // vertices a body pushes on
+  long contacts = 0;        // vertex-body pairs: a body pushes on the vertex
   long sticking = 0;        // |f_t| below mu_k f_n (1 - tolerance)
   long sliding = 0;         // on the cone: between mu_k and mu_s, within the tolerance
   long outside_cone = 0;    // |f_t| > mu_s f_n (1 + tolerance)

@@ -130,4 +130,23 @@ ClothProblem::gather_edge_sample_loads(Vec x, std::vector<std::vector<Eigen::Vec
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode
+ClothProblem::gather_vertex_contact_forces(Vec x,
+                                           std::vector<std::vector<Eigen::Vector3d>>* per_body) {
+  const PetscScalar* values = nullptr;
+  PetscInt size = 0;
+  PetscFunctionBeginUser;
+  PetscCall(to_local(x));
+  PetscCall(VecGetLocalSize(local_x_, &size));
+  per_body->assign(bodies.size(), {});
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    std::vector<PetscScalar> forces(std::size_t(size), 0.0);
+    PetscCall(VecGetArrayRead(local_x_, &values));
+    contact_form_->vertex_contact_forces(b, values, forces.data());
+    PetscCall(VecRestoreArrayRead(local_x_, &values));
+    PetscCall(gather_vertex_triples(forces.data(), &(*per_body)[b]));
+  }
+  PetscFunctionReturn(0);
+}
+
 } // namespace sartor

@@ -145,7 +145,8 @@ public:
   // Collective. Per-vertex loads at x, in mesh numbering, on rank 0 (empty
   // elsewhere), for the result files (fem/cloth_vertex_loads.cpp): with bodies,
   // contact_pressure (Pa), contact_normal_force and friction_force (N) and
-  // friction_utilisation |f_t| / (mu_s |f_n|) (1: on the Coulomb cone); with
+  // friction_utilisation |f_t| / (mu_s |f_n|) (1: on the Coulomb cone; f_n
+  // with the vertex's share of the edge samples' normal force); with
   // seams, seam_force (N).
   PetscErrorCode gather_vertex_loads(Vec x, std::vector<ClothNodeField>* fields);
   // Collective. The largest t in (0, 1] such that no vertex moving from x
@@ -259,6 +260,11 @@ public:
   // elsewhere).
   PetscErrorCode gather_edge_sample_loads(Vec x,
                                           std::vector<std::vector<Eigen::Vector3d>>* per_body);
+  // Per body, the force of its own contact with each vertex at x (penalty
+  // and friction anchor, not the edge samples), in mesh numbering, on rank 0
+  // (empty elsewhere).
+  PetscErrorCode gather_vertex_contact_forces(Vec x,
+                                              std::vector<std::vector<Eigen::Vector3d>>* per_body);
   // Strains and tensions of every triangle, in mesh numbering, on rank 0.
   PetscErrorCode gather_strains(Vec x, std::vector<element::MembraneStrain>* strains);
   // Mesh indices of the triangles this rank assembles.

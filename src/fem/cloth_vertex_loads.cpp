@@ -55,9 +55,12 @@ PetscErrorCode ClothProblem::gather_vertex_loads(Vec x, std::vector<ClothNodeFie
   PetscCall(DMGetLocalVector(dm_, &contact_local));
   PetscCall(VecSet(contact_local, 0.0));
   PetscCall(VecGetArrayRead(local_x_, &values));
+  std::vector<std::vector<Eigen::Vector3d>> sample_loads(bodies.size());
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    PetscCall(contact_form_->edge_sample_loads(b, values, &sample_loads[b]));
   PetscCall(VecGetArray(contact_local, &per_vertex));
   // Per vertex: normal force, friction force, utilisation of the cone.
-  contact_form_->add_vertex_loads(values, per_vertex);
+  contact_form_->add_vertex_loads(values, sample_loads, per_vertex);
   PetscCall(VecRestoreArray(contact_local, &per_vertex));
   PetscCall(VecRestoreArrayRead(local_x_, &values));
   std::vector<Eigen::Vector3d> contact_triples, seam_triples;

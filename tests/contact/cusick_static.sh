@@ -3,7 +3,10 @@
 # static minimiser, 18 rings): a certified equilibrium; the two discs' reactions
 # (each about 14 kN of squeeze) add up to the specimen's weight; the overhang
 # hangs below the support; and the drape coefficient in summary.json matches
-# the test's own one, from final.obj's triangles projected on a grid.
+# the test's own one, from final.obj's triangles projected on a grid. Then on
+# 12 rings, whose rim vertices just outside the discs are pressed by both
+# discs' rims through their edges' samples: certified, Coulomb checked against
+# each disc's cone (every vertex between the discs counts against both).
 #   cusick_static.sh SARTOR CASES_DIR WORKDIR
 set -euo pipefail
 sartor=$1 cases=$2 work=$3
@@ -60,6 +63,30 @@ print(f"drape coefficient {theirs:.4f} (summary.json), {mine:.4f} (this test's g
       f"discs carry {lift:.6f} N of {weight:.6f} N")
 if not 0.0 < theirs < 1.0 or abs(mine - theirs) > 5e-3:
     failures.append(f"drape coefficient {theirs} against the test's {mine}")
+for f in failures:
+    print("FAIL:", f, file=sys.stderr)
+sys.exit(1 if failures else 0)
+PY
+"$sartor" run "$cases/cusick_cotton_twill.yaml" --mesh-rings 12 --no-plot \
+  --output "$work/cusick12" > "$work/cusick12.log"
+tail -1 "$work/cusick12.log"
+/usr/bin/python3 - "$work/cusick12" <<'PY'
+import json, sys
+import numpy as np
+out = sys.argv[1]
+s = json.load(open(f"{out}/summary.json"))
+coulomb = s["certificate"]["coulomb"]
+vertices = np.array([list(map(float, l.split()[1:4])) for l in open(f"{out}/final.obj")
+                     if l.startswith("v ")])
+# Between the discs (radius 0.09 m, 1.5 mm apart): each presses on the vertex.
+clamped = int(np.sum(np.hypot(vertices[:, 0], vertices[:, 1]) < 0.09))
+print(f"12 rings: {s['certificate']['verdict']}; {coulomb['contacts']} contacts, "
+      f"{clamped} vertices between the discs, worst ratio {coulomb['worst_ratio']:.4f}")
+failures = []
+if s["certificate"]["verdict"] != "certified":
+    failures.append(f"12 rings: certificate: {s['certificate']['verdict']}")
+if coulomb["contacts"] < 2 * clamped:
+    failures.append(f"12 rings: {coulomb['contacts']} contacts for {clamped} clamped vertices")
 for f in failures:
     print("FAIL:", f, file=sys.stderr)
 sys.exit(1 if failures else 0)

@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <memory>
+#include <tuple>
 
 namespace sartor {
 namespace {
@@ -130,6 +131,50 @@ TEST(Certificate, SheetOnAFrictionlessSphereIsASaddle) {
   EXPECT_EQ(c.stability.negative, 2);
   EXPECT_EQ(c.stability.zero_modes, 1);
   EXPECT_TRUE(c.saddle());
+}
+
+// A 0.1 m sheet of 4 x 4 cells squeezed between two horizontal plates 1 mm
+// apart, 0.5 mm from each (half into its contact offset), its weight pulling
+// along them (gravity along x). Both plates push every vertex with the same
+// normal force, so its net normal force is zero; the friction of each plate,
+// within that plate's own cone, holds the weight. Coulomb's law is checked
+// plate by plate: the vertex's tangential force against a cone of its net
+// normal force would fail every vertex.
+TEST(Certificate, ClothSqueezedBetweenTwoBodiesIsCheckedAgainstEachBodysCone) {
+  constexpr double side = 0.1, offset = 1e-3, density = 0.2, mu = 0.3;
+  TriangleMesh mesh = mesh::rectangle(side, side, 4, 4);
+  for (auto& p : mesh.positions)
+    p.z() = 0.5 * offset;
+  ClothProblem problem(PETSC_COMM_WORLD, mesh, fabric(3000.0, 1e-5, density), {});
+  problem.loads.gravity = {gravity, 0.0, 0.0};
+  problem.contact.offset = offset;
+  for (const auto& [name, z, up] :
+       {std::tuple{"below", 0.0, 1.0}, std::tuple{"above", offset, -1.0}}) {
+    contact::Body plate(name,
+                        std::make_shared<contact::Plane>(Eigen::Vector3d(0.0, 0.0, z),
+                                                         Eigen::Vector3d(0.0, 0.0, up)),
+                        Eigen::Vector3d::Zero());
+    plate.friction = {mu, mu};
+    problem.bodies.push_back(plate);
+  }
+  Vec x = nullptr;
+  ASSERT_EQ(problem.create_solution(&x), 0);
+  StaticOptions options;
+  StaticReport report;
+  ASSERT_EQ(solve_static(problem, x, options, &report), 0);
+  ASSERT_TRUE(report.converged) << report.reason;
+  Certificate c;
+  ASSERT_EQ(certify(problem, x, {}, &c), 0);
+  VecDestroy(&x);
+  const double weight = density * side * side * gravity;
+  EXPECT_NEAR(c.reference_force, weight, 1e-9 * weight);
+  EXPECT_LT(c.relative_residual, 1e-6);
+  // Every vertex against each plate: two contacts per vertex, all sticking.
+  EXPECT_EQ(c.coulomb.contacts, 2 * long(mesh.vertex_count()));
+  EXPECT_EQ(c.coulomb.sticking, c.coulomb.contacts);
+  EXPECT_TRUE(c.coulomb.passed()) << "worst |f_t| / mu_s f_n " << c.coulomb.worst_ratio;
+  EXPECT_LT(c.coulomb.worst_ratio, 1.0);
+  EXPECT_TRUE(c.certified()) << c.verdict();
 }
 
 TEST(Certificate, StatePushedIntoTheBodyFailsTheDepthCheck) {

@@ -64,6 +64,19 @@ body = s["contact"]["bodies"][0]
 # It touches the body: by vertices, or by the samples of its edges (which
 # may hold every vertex off the offset layer on the convex shoulders).
 assert body["contacting_vertices"] + body["contacting_edge_samples"] > 0, body
+# The result's friction utilisation is the certificate's cone test per
+# vertex: the friction over mu_s times the normal force with the vertex's
+# share of its edges' samples (which bounds its anchor), so it is within the
+# cone's 5 % tolerance everywhere, and not zero where friction acts (the
+# vertices the samples hold off the body included).
+import h5py
+with h5py.File(os.path.join(d, "result.h5"), "r") as f:
+    friction = f["/fields/friction_force"][:]
+    utilisation = f["/fields/friction_utilisation"][:]
+assert utilisation.max() <= 1.05, f"friction utilisation up to {utilisation.max()}"
+held = friction > 1e-6 * weight
+assert held.any() and (utilisation[held] > 0).all(), \
+    f"{int((utilisation[held] == 0).sum())} of {int(held.sum())} vertices with friction have none"
 normal = math.hypot(*body["normal_force_N"])
 assert normal < 3 * weight, f"the body presses on the garment with {normal} N (weight {weight} N)"
 print("drape_static: %d triangles, %d Newton iterations, gap %.2e m, deepest %.2f of the offset, "

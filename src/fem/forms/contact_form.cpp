@@ -590,6 +590,17 @@ PetscErrorCode ContactForm::edge_sample_loads(std::size_t body, const PetscScala
   PetscFunctionReturn(0);
 }
 
+void ContactForm::vertex_contact_forces(std::size_t body, const PetscScalar* x,
+                                        PetscScalar* per_vertex) const {
+  for (int v : vertices_) {
+    const PetscInt offset = vertex_dof_[std::size_t(v)];
+    const Eigen::Vector3d g =
+        vertex_contact(body, v, vertex_position(x, offset), element::Want::gradient).gradient;
+    for (int d = 0; d < 3; ++d)
+      per_vertex[offset + d] = -g[d];
+  }
+}
+
 void ContactForm::add_edge_report(std::size_t body, const PetscScalar* x, double normal_force[3],
                                   double* contacting, double* deepest) const {
   const contact::Body& b = bodies()[body];
@@ -608,8 +619,11 @@ void ContactForm::add_edge_report(std::size_t body, const PetscScalar* x, double
   }
 }
 
-void ContactForm::add_vertex_loads(const PetscScalar* x, PetscScalar* per_vertex) const {
-  // The larger mu_s |f_n| of a body, per vertex.
+void ContactForm::add_vertex_loads(const PetscScalar* x,
+                                   const std::vector<std::vector<Eigen::Vector3d>>& sample_loads,
+                                   PetscScalar* per_vertex) const {
+  // The bodies' cones mu_s f_n summed, per vertex: f_n with the vertex's
+  // share of the body's edge samples, as it bounds the anchor (accept_step).
   std::vector<double> cone(mesh_.vertex_count(), 0.0);
   for (std::size_t b = 0; b < bodies().size(); ++b) {
     const contact::Body& body = bodies()[b];
@@ -618,9 +632,12 @@ void ContactForm::add_vertex_loads(const PetscScalar* x, PetscScalar* per_vertex
       const Eigen::Vector3d p = vertex_position(x, offset);
       const contact::SurfaceQuery q = body.query(p, clock());
       const double k = stiffness(v);
-      const double normal = k * std::max(0.0, settings().offset - q.distance) * q.normal.norm();
+      const double slope = q.normal.norm();
+      const double normal = k * std::max(0.0, settings().offset - q.distance) * slope;
       per_vertex[offset] += normal;
-      cone[std::size_t(v)] += body.friction.static_coefficient * normal;
+      const double samples =
+          slope > 0.0 ? std::max(0.0, q.normal.dot(sample_loads[b][std::size_t(v)]) / slope) : 0.0;
+      cone[std::size_t(v)] += body.friction.static_coefficient * (normal + samples);
       if (solved_anchors_.size() != bodies().size() || !solved_anchors_[b][std::size_t(v)].active)
         continue;
       const FrictionAnchor& anchor = solved_anchors_[b][std::size_t(v)];

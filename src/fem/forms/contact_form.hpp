@@ -66,9 +66,17 @@ public:
   // Collective: per body, forces and state at x (ClothProblem::contact_report).
   PetscErrorCode report(const PetscScalar* x, std::vector<BodyContact>* report) const;
   // Adds per owned free vertex, in the slots of its triple of the local
-  // array `per_vertex`: the normal force, the friction force of the anchors
-  // the last solve used, and that force over the cone mu_s |f_n|.
-  void add_vertex_loads(const PetscScalar* x, PetscScalar* per_vertex) const;
+  // array `per_vertex`: the vertex's own normal force, the friction force of
+  // the anchors the last solve used, and that force over the cone mu_s f_n,
+  // f_n with the vertex's share of the edge samples' normal force
+  // (`sample_loads`, per body as edge_sample_loads gives them).
+  void add_vertex_loads(const PetscScalar* x,
+                        const std::vector<std::vector<Eigen::Vector3d>>& sample_loads,
+                        PetscScalar* per_vertex) const;
+  // Sets, per owned free vertex, in its triple of the local array
+  // `per_vertex`, the force of `body`'s own contact with the vertex at x: its
+  // penalty and its friction anchor's spring, without the edge samples'.
+  void vertex_contact_forces(std::size_t body, const PetscScalar* x, PetscScalar* per_vertex) const;
   // Collective: per mesh vertex (those local to this rank), the normal
   // forces of `body` on the samples of its edges, shared by the lever rule.
   PetscErrorCode edge_sample_loads(std::size_t body, const PetscScalar* x,
