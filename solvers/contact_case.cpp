@@ -10,6 +10,7 @@
 #include <cmath>
 #include <set>
 #include <sstream>
+#include <utility>
 
 namespace sartor {
 
@@ -132,6 +133,50 @@ double projected_area(const TriangleMesh& mesh, const std::vector<Eigen::Vector3
   return double(cells) * cell.x() * cell.y();
 }
 
+int drape_nodes(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& positions,
+                double prominence) {
+  const auto flat_radius = [&](int v) { return mesh.positions[std::size_t(v)].head<2>().norm(); };
+  const std::vector<int> boundary = boundary_vertices(mesh);
+  double largest = 0.0;
+  for (int v : boundary)
+    largest = std::max(largest, flat_radius(v));
+  std::vector<std::pair<double, double>> rim; // polar angle flat, radius draped
+  for (int v : boundary) {
+    if (flat_radius(v) < 0.99 * largest) continue;
+    const Eigen::Vector3d& flat = mesh.positions[std::size_t(v)];
+    rim.emplace_back(std::atan2(flat.y(), flat.x()), positions[std::size_t(v)].head<2>().norm());
+  }
+  if (rim.size() < 3) return 0;
+  std::sort(rim.begin(), rim.end());
+  // From the lowest radius once round and back to it: rising until the
+  // radius falls `prominence` below the top (a node), then falling until it
+  // rises `prominence` above the bottom.
+  const auto lowest = std::min_element(
+      rim.begin(), rim.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  const std::size_t start = std::size_t(lowest - rim.begin());
+  bool rising = true;
+  double top = lowest->second, bottom = lowest->second;
+  int nodes = 0;
+  for (std::size_t k = 1; k <= rim.size(); ++k) {
+    const double r = rim[(start + k) % rim.size()].second;
+    if (rising) {
+      top = std::max(top, r);
+      if (top - r >= prominence) {
+        ++nodes;
+        rising = false;
+        bottom = r;
+      }
+    } else {
+      bottom = std::min(bottom, r);
+      if (r - bottom >= prominence) {
+        rising = true;
+        top = r;
+      }
+    }
+  }
+  return nodes;
+}
+
 CaseContact measure_contact(const Options& options, ClothProblem& problem, Vec x,
                             const std::vector<Eigen::Vector3d>& positions) {
   CaseContact result;
@@ -155,6 +200,13 @@ CaseContact measure_contact(const Options& options, ClothProblem& problem, Vec x
     }
     drape.coefficient =
         (drape.projected_area - drape.support_area) / (drape.specimen_area - drape.support_area);
+    // Folds rise and fall by centimetres; a hundredth of the specimen's
+    // radius leaves out the ripples between mesh vertices.
+    drape.node_prominence = 0.01 * std::sqrt(drape.specimen_area / M_PI);
+    int nodes =
+        positions.empty() ? 0 : drape_nodes(problem.mesh(), positions, drape.node_prominence);
+    MPI_Bcast(&nodes, 1, MPI_INT, 0, problem.comm());
+    drape.nodes = nodes;
     result.drape = drape;
   }
   return result;
@@ -191,6 +243,8 @@ nlohmann::json contact_summary(const CaseContact& contact) {
                             {"bodies", bodies}};
   if (contact.drape) {
     summary["drape"] = {{"coefficient", contact.drape->coefficient},
+                        {"nodes", contact.drape->nodes},
+                        {"node_prominence_m", contact.drape->node_prominence},
                         {"projected_area_m2", contact.drape->projected_area},
                         {"support_area_m2", contact.drape->support_area},
                         {"specimen_area_m2", contact.drape->specimen_area}};

@@ -38,9 +38,11 @@ void apply_placement_waves(const Options& options, TriangleMesh& mesh);
 //     DC = (A_projected - A_support) / (A_specimen - A_support).
 struct DrapeMeasure {
   double coefficient = 0.0;
-  double projected_area = 0.0; // m^2
-  double support_area = 0.0;   // m^2
-  double specimen_area = 0.0;  // m^2, the material area of the mesh
+  int nodes = 0;                // folds of the overhang (drape_nodes)
+  double node_prominence = 0.0; // m, the radial rise and fall a node needs
+  double projected_area = 0.0;  // m^2
+  double support_area = 0.0;    // m^2
+  double specimen_area = 0.0;   // m^2, the material area of the mesh
 };
 
 // Area covered by the triangles projected onto the xy plane, m^2 (overlaps
@@ -48,6 +50,16 @@ struct DrapeMeasure {
 // over their bounding box.
 double projected_area(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& positions,
                       int resolution = 2000);
+
+// The nodes (folds) of a draped circular specimen: the maxima of the rim's
+// projected radius |(x, y)| at `positions`, going round the rim in the order
+// of its vertices' polar angles in `mesh` (the flat specimen), counted with
+// hysteresis: a node rises at least `prominence` above the lowest radius
+// since the last node and falls at least `prominence` below its top before
+// the next (ripples smaller than that are not folds). The rim is the
+// boundary vertices within 1 % of the largest distance from the z axis.
+int drape_nodes(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& positions,
+                double prominence);
 
 struct CaseContact {
   std::vector<std::string> bodies; // descriptions, in option order

@@ -36,7 +36,7 @@ COLUMNS = (
     "series", "size", "size_unit", "ranks", "status", "exit_status", "wall_s", "cpu_s",
     "peak_rss_mb", "vertices", "triangles", "bytes_per_vertex", "newton_iterations",
     "linear_iterations", "settle_newton_iterations", "converged", "certificate",
-    "drape_coefficient",
+    "drape_coefficient", "drape_nodes",
 )
 
 
@@ -138,6 +138,7 @@ def summary_figures(path):
         "certificate": certificate.get("verdict"),
         # The Cusick runs' result, for their mesh convergence (else empty).
         "drape_coefficient": (summary.get("contact") or {}).get("drape", {}).get("coefficient"),
+        "drape_nodes": (summary.get("contact") or {}).get("drape", {}).get("nodes"),
         "timing_s": summary.get("timing_s"),
     }
     # Per level of a coarse-to-fine solve, when the run reports levels.

@@ -63,6 +63,30 @@ print(f"drape coefficient {theirs:.4f} (summary.json), {mine:.4f} (this test's g
       f"discs carry {lift:.6f} N of {weight:.6f} N")
 if not 0.0 < theirs < 1.0 or abs(mine - theirs) > 5e-3:
     failures.append(f"drape coefficient {theirs} against the test's {mine}")
+# The nodes: maxima of the rim's projected radius round the flat specimen's
+# polar angle, rising and falling by 1 % of its radius (docs/contact.md).
+import h5py
+with h5py.File(f"{out}/result.h5", "r") as f:
+    flat = f["/mesh/initial_position"][:]
+flat_r = np.hypot(flat[:, 0], flat[:, 1])
+rim = np.where(flat_r > 0.99 * flat_r.max())[0]
+rim = rim[np.argsort(np.arctan2(flat[rim, 1], flat[rim, 0]))]
+drawn = np.hypot(vertices[rim, 0], vertices[rim, 1])
+prominence = 0.01 * radius
+start = int(np.argmin(drawn))
+rising, top, bottom, nodes = True, drawn[start], drawn[start], 0
+for r in np.roll(drawn, -start)[1:].tolist() + [drawn[start]]:
+    if rising:
+        top = max(top, r)
+        if top - r >= prominence:
+            nodes, rising, bottom = nodes + 1, False, r
+    else:
+        bottom = min(bottom, r)
+        if r - bottom >= prominence:
+            rising, top = True, r
+print(f"nodes {s['contact']['drape']['nodes']} (summary.json), {nodes} (this test's)")
+if s["contact"]["drape"]["nodes"] != nodes or not 4 <= nodes <= 12:
+    failures.append(f"nodes {s['contact']['drape']['nodes']} against the test's {nodes}")
 for f in failures:
     print("FAIL:", f, file=sys.stderr)
 sys.exit(1 if failures else 0)
