@@ -40,10 +40,11 @@ std::vector<bool> free_vertices(const ClothProblem& problem) {
 // The forces at x, per mesh vertex on rank 0: the residual F, what contact
 // must supply for equilibrium (F without the bodies: F_nc), what the contact
 // model applies (F_nc - F), the applied loads (F without loads - F), and per
-// body the normal forces of the edge samples shared to their edges' vertices.
+// body the normal forces of the edge samples shared to their edges' vertices
+// and the force of the body's own contact with each vertex.
 struct VertexForces {
   std::vector<Eigen::Vector3d> positions, residual, needed_contact, applied_contact, load;
-  std::vector<std::vector<Eigen::Vector3d>> sample_loads, vertex_contact; // per body
+  std::vector<std::vector<Eigen::Vector3d>> sample_loads, vertex_contact;
   double residual_norm = 0.0;
 };
 
