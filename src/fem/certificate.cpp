@@ -78,8 +78,7 @@ PetscErrorCode gather_forces(ClothProblem& problem, Vec x, VertexForces* forces)
   }
   PetscCall(VecWAXPY(difference, -1.0, f, other));
   PetscCall(problem.gather_positions(difference, &forces->load));
-  PetscCall(problem.gather_edge_sample_loads(x, &forces->sample_loads));
-  PetscCall(problem.gather_vertex_contact_forces(x, &forces->vertex_contact));
+  PetscCall(problem.gather_body_vertex_forces(x, &forces->sample_loads, &forces->vertex_contact));
   for (Vec* v : {&f, &other, &difference})
     PetscCall(VecDestroy(v));
   PetscFunctionReturn(0);

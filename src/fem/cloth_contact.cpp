@@ -105,46 +105,32 @@ PetscErrorCode ClothProblem::contact_report(Vec x, std::vector<BodyContact>* rep
 }
 
 PetscErrorCode
-ClothProblem::gather_edge_sample_loads(Vec x, std::vector<std::vector<Eigen::Vector3d>>* per_body) {
+ClothProblem::gather_body_vertex_forces(Vec x,
+                                        std::vector<std::vector<Eigen::Vector3d>>* sample_loads,
+                                        std::vector<std::vector<Eigen::Vector3d>>* own_contact) {
   const PetscScalar* values = nullptr;
   PetscInt size = 0;
   PetscFunctionBeginUser;
   PetscCall(to_local(x));
   PetscCall(VecGetLocalSize(local_x_, &size));
-  per_body->assign(bodies.size(), {});
+  sample_loads->assign(bodies.size(), {});
+  own_contact->assign(bodies.size(), {});
   for (std::size_t b = 0; b < bodies.size(); ++b) {
-    std::vector<Eigen::Vector3d> sample_loads;
+    std::vector<Eigen::Vector3d> per_vertex;
+    // In the local-vector layout gather_vertex_triples reads.
+    std::vector<PetscScalar> samples(std::size_t(size), 0.0), own(std::size_t(size), 0.0);
     PetscCall(VecGetArrayRead(local_x_, &values));
-    const PetscErrorCode failed = contact_form_->edge_sample_loads(b, values, &sample_loads);
+    const PetscErrorCode failed = contact_form_->edge_sample_loads(b, values, &per_vertex);
+    if (!failed) contact_form_->vertex_contact_forces(b, values, own.data());
     PetscCall(VecRestoreArrayRead(local_x_, &values));
     PetscCall(failed);
-    // In the local-vector layout gather_vertex_triples reads.
-    std::vector<PetscScalar> local(std::size_t(size), 0.0);
     for (std::size_t v = 0; v < mesh_.vertex_count(); ++v) {
       if (vertex_dof_[v] < 0) continue;
       for (int d = 0; d < 3; ++d)
-        local[std::size_t(vertex_dof_[v] + d)] = sample_loads[v][d];
+        samples[std::size_t(vertex_dof_[v] + d)] = per_vertex[v][d];
     }
-    PetscCall(gather_vertex_triples(local.data(), &(*per_body)[b]));
-  }
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode
-ClothProblem::gather_vertex_contact_forces(Vec x,
-                                           std::vector<std::vector<Eigen::Vector3d>>* per_body) {
-  const PetscScalar* values = nullptr;
-  PetscInt size = 0;
-  PetscFunctionBeginUser;
-  PetscCall(to_local(x));
-  PetscCall(VecGetLocalSize(local_x_, &size));
-  per_body->assign(bodies.size(), {});
-  for (std::size_t b = 0; b < bodies.size(); ++b) {
-    std::vector<PetscScalar> forces(std::size_t(size), 0.0);
-    PetscCall(VecGetArrayRead(local_x_, &values));
-    contact_form_->vertex_contact_forces(b, values, forces.data());
-    PetscCall(VecRestoreArrayRead(local_x_, &values));
-    PetscCall(gather_vertex_triples(forces.data(), &(*per_body)[b]));
+    PetscCall(gather_vertex_triples(samples.data(), &(*sample_loads)[b]));
+    PetscCall(gather_vertex_triples(own.data(), &(*own_contact)[b]));
   }
   PetscFunctionReturn(0);
 }

@@ -255,16 +255,13 @@ public:
 
   // All vertex positions, in mesh numbering, on rank 0 (empty elsewhere).
   PetscErrorCode gather_positions(Vec x, std::vector<Eigen::Vector3d>* positions);
-  // Per body, the normal forces of its edge samples at x shared to the
-  // edges' vertices by the lever rule, in mesh numbering, on rank 0 (empty
-  // elsewhere).
-  PetscErrorCode gather_edge_sample_loads(Vec x,
-                                          std::vector<std::vector<Eigen::Vector3d>>* per_body);
-  // Per body, the force of its own contact with each vertex at x (penalty
-  // and friction anchor, not the edge samples), in mesh numbering, on rank 0
-  // (empty elsewhere).
-  PetscErrorCode gather_vertex_contact_forces(Vec x,
-                                              std::vector<std::vector<Eigen::Vector3d>>* per_body);
+  // Per body, in mesh numbering, on rank 0 (empty elsewhere): the normal
+  // forces of its edge samples at x shared to the edges' vertices by the
+  // lever rule, and the force of its own contact with each vertex (penalty
+  // and friction anchor, not the edge samples).
+  PetscErrorCode gather_body_vertex_forces(Vec x,
+                                           std::vector<std::vector<Eigen::Vector3d>>* sample_loads,
+                                           std::vector<std::vector<Eigen::Vector3d>>* own_contact);
   // Strains and tensions of every triangle, in mesh numbering, on rank 0.
   PetscErrorCode gather_strains(Vec x, std::vector<element::MembraneStrain>* strains);
   // Mesh indices of the triangles this rank assembles.

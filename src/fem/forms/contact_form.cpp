@@ -290,6 +290,21 @@ double ContactForm::step_bound(const PetscScalar* values, const PetscScalar* mot
   return std::min(smallest, edge_step_bound(values, motions));
 }
 
+// A smooth body's gradient is not always of unit length (shape.hpp).
+Eigen::Vector3d ContactForm::unit_normal(const contact::SurfaceQuery& q) {
+  const double slope = q.normal.norm();
+  return slope > 0.0 ? Eigen::Vector3d(q.normal / slope) : q.normal;
+}
+
+double ContactForm::penalty_normal_force(int vertex, const contact::SurfaceQuery& q) const {
+  return stiffness(vertex) * std::max(0.0, settings().offset - q.distance) * q.normal.norm();
+}
+
+double ContactForm::anchor_normal_force(int vertex, const contact::SurfaceQuery& q,
+                                        const Eigen::Vector3d& samples) const {
+  return penalty_normal_force(vertex, q) + std::max(0.0, unit_normal(q).dot(samples));
+}
+
 namespace {
 // The fraction of its stretch an anchor must slide by to count as sliding
 // (far above round-off, far below the certificate's 5 % cone tolerance).
@@ -324,13 +339,10 @@ PetscErrorCode ContactForm::accept_step(const FormPoint& at) {
       const Eigen::Vector3d p = vertex_position(values, vertex_dof_[std::size_t(v)]);
       const contact::SurfaceQuery q = body.query(p, clock());
       FrictionAnchor& anchor = anchors_[b][std::size_t(v)];
-      const double gap = settings().offset - q.distance;
-      // A smooth body's gradient is not always of unit length (shape.hpp).
       const double slope = q.normal.norm();
       const double k = stiffness(v);
-      const Eigen::Vector3d normal = slope > 0.0 ? Eigen::Vector3d(q.normal / slope) : q.normal;
-      const double normal_force =
-          k * std::max(0.0, gap) * slope + std::max(0.0, normal.dot(sample_loads[std::size_t(v)]));
+      const Eigen::Vector3d normal = unit_normal(q);
+      const double normal_force = anchor_normal_force(v, q, sample_loads[std::size_t(v)]);
       if (slope == 0.0 || normal_force <= 0.0) {
         anchor.active = false; // left the body: released
         continue;
@@ -632,12 +644,9 @@ void ContactForm::add_vertex_loads(const PetscScalar* x,
       const Eigen::Vector3d p = vertex_position(x, offset);
       const contact::SurfaceQuery q = body.query(p, clock());
       const double k = stiffness(v);
-      const double slope = q.normal.norm();
-      const double normal = k * std::max(0.0, settings().offset - q.distance) * slope;
-      per_vertex[offset] += normal;
-      const double samples =
-          slope > 0.0 ? std::max(0.0, q.normal.dot(sample_loads[b][std::size_t(v)]) / slope) : 0.0;
-      cone[std::size_t(v)] += body.friction.static_coefficient * (normal + samples);
+      per_vertex[offset] += penalty_normal_force(v, q);
+      cone[std::size_t(v)] += body.friction.static_coefficient *
+                              anchor_normal_force(v, q, sample_loads[b][std::size_t(v)]);
       if (solved_anchors_.size() != bodies().size() || !solved_anchors_[b][std::size_t(v)].active)
         continue;
       const FrictionAnchor& anchor = solved_anchors_[b][std::size_t(v)];

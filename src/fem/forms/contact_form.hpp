@@ -113,6 +113,14 @@ private:
   const ContactSettings& settings() const;
   double clock() const;
   double stiffness(int vertex) const;
+  static Eigen::Vector3d unit_normal(const contact::SurfaceQuery& q);
+  // The penalty's normal force on `vertex` where the body was queried (q).
+  double penalty_normal_force(int vertex, const contact::SurfaceQuery& q) const;
+  // The normal force that bounds the vertex's friction anchor: the
+  // penalty's and its share of the body's edge samples' force (`samples`)
+  // along the body's normal; the samples themselves are frictionless.
+  double anchor_normal_force(int vertex, const contact::SurfaceQuery& q,
+                             const Eigen::Vector3d& samples) const;
   // Per mesh vertex, d(stiffness) / stiffness under the rest change.
   std::vector<double> relative_stiffness_changes(const RestChange& change) const;
   contact::PointResult vertex_contact(std::size_t body, int vertex, const Eigen::Vector3d& x,
