@@ -203,24 +203,62 @@ const OptionSpec& Options::find(const std::string& name) const {
   return *option;
 }
 
-bool Options::is_set(const std::string& name) const {
+bool Options::given(const std::string& name, const char** value) const {
   find(name);
+  *value = nullptr;
   PetscBool set = PETSC_FALSE;
-  SartorPetscCall(PetscOptionsHasName(nullptr, nullptr, database_key(name).c_str(), &set));
+  // The value in full: PETSc's string getter would cut it at 4,095 characters.
+  SartorPetscCall(PetscOptionsFindPair(nullptr, nullptr, database_key(name).c_str(), value, &set));
   return set == PETSC_TRUE;
+}
+
+bool Options::is_set(const std::string& name) const {
+  const char* value = nullptr;
+  const bool in_database = given(name, &value);
+  if (const auto replaced = replaced_.find(name); replaced != replaced_.end())
+    return replaced->second.has_value();
+  return in_database || defaults_.count(name) > 0;
 }
 
 std::string Options::text(const std::string& name) const {
   const OptionSpec& option = find(name);
-  // The value in full: PETSc's string getter would cut it at 4,095 characters.
   const char* value = nullptr;
-  PetscBool set = PETSC_FALSE;
-  SartorPetscCall(PetscOptionsFindPair(nullptr, nullptr, database_key(name).c_str(), &value, &set));
-  if (!set) return option.fallback;
+  const bool in_database = given(name, &value);
+  if (const auto replaced = replaced_.find(name); replaced != replaced_.end())
+    return replaced->second.value_or(option.fallback);
+  if (!in_database) {
+    const auto command_default = defaults_.find(name);
+    return command_default != defaults_.end() ? command_default->second : option.fallback;
+  }
   if ((!value || value[0] == '\0') && !option.value_name.empty()) {
     throw InputError("option --" + name + " needs a value (" + option.value_name + ")");
   }
   return value ? value : "";
+}
+
+void Options::set_default(const std::string& name, const std::string& value) {
+  if (is_set(name)) return;
+  replaced_.erase(name);
+  defaults_[name] = value;
+}
+
+void Options::set(const std::string& name, const std::string& value) {
+  find(name);
+  defaults_.erase(name);
+  replaced_[name] = value;
+}
+
+void Options::clear(const std::string& name) {
+  find(name);
+  defaults_.erase(name);
+  replaced_[name] = std::nullopt;
+}
+
+std::vector<std::pair<std::string, std::string>> Options::command_defaults() const {
+  std::vector<std::pair<std::string, std::string>> entries;
+  for (const auto& [name, value] : defaults_)
+    entries.emplace_back(database_key(name), value);
+  return entries;
 }
 
 double Options::real(const std::string& name) const {

@@ -10,6 +10,8 @@
 
 #include <petscsys.h>
 
+#include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -70,9 +72,26 @@ public:
   // The options as given (or defaulted), for the run's metadata.
   std::vector<std::pair<std::string, std::string>> effective() const;
 
+  // A command's own default for an option it hands on, where the user gave
+  // none: it counts as given (is_set), as a default of the database did.
+  void set_default(const std::string& name, const std::string& value);
+  // A value in place of the user's, or none (as if never given); the user's
+  // is still marked used, so that it is not reported as unused.
+  void set(const std::string& name, const std::string& value);
+  void clear(const std::string& name);
+  // The defaults set_default gave, as database entries (`-key`, value),
+  // for petsc_options.txt: re-running the command sets them again, and
+  // the file lists every option in effect.
+  std::vector<std::pair<std::string, std::string>> command_defaults() const;
+
 private:
   const OptionSpec& find(const std::string& name) const;
+  // The database's value (nullptr for a flag without one); false when the
+  // user gave none. Marks the option used.
+  bool given(const std::string& name, const char** value) const;
   const CommandSpec& spec_;
+  std::map<std::string, std::optional<std::string>> replaced_; // set and clear
+  std::map<std::string, std::string> defaults_;                // set_default
 };
 
 } // namespace sartor

@@ -119,9 +119,12 @@ struct CaseCloth {
 };
 // The panels' fabrics as the case's materials: cloth->fabrics lists each
 // fabric once, in the order the panels first name it, and the mesh's
-// material ids (panel indices on entry) become indices into that list. With
-// one fabric, -fabric names it for what reads it (creep parameters).
+// material ids (panel indices on entry) become indices into that list.
 void assign_panel_fabrics(const std::vector<garment::Panel>& panels, CaseCloth* cloth);
+
+// A cloth of one fabric names it as --fabric, for what reads that option
+// (the creep parameters of a wear).
+void name_single_fabric(const CaseCloth& cloth, Options* options);
 
 CaseResult solve_case(const Options& options, int extra_refinements = 0,
                       const CaseStepObserver& observe = {},
@@ -152,7 +155,8 @@ CaseStepObserver series_writer(const std::string& directory, const ClothOutputLa
 // defaults to DIRECTORY/checkpoint.h5; DIRECTORY is made when needed).
 CaseCheckpointing case_checkpointing(const Options& options, const std::string& directory);
 
-// Collective: every option in effect, to DIRECTORY/petsc_options.txt.
-void write_petsc_options(const std::string& directory);
+// Collective: every option in effect, to DIRECTORY/petsc_options.txt: the
+// options database and the defaults the command gave `options`.
+void write_petsc_options(const std::string& directory, const Options& options);
 
 } // namespace sartor

@@ -353,7 +353,7 @@ int run_converge(const Invocation& invocation) {
                  convergence_json(report, levels, analysis, complete));
     }
     if (!done.converged) {
-      write_petsc_options(directory);
+      write_petsc_options(directory, options);
       throw SolveFailure(
           "level " + std::to_string(k) + " (mesh_refine " + std::to_string(done.mesh_refine) +
           "): the static solve did not converge (" + done.report.reason + " at load factor " +
@@ -362,7 +362,7 @@ int run_converge(const Invocation& invocation) {
           "--load-steps or -snes_monitor");
     }
   }
-  write_petsc_options(directory);
+  write_petsc_options(directory, options);
   print_orders(analyse_convergence(h, values, reference), reference, quantity);
   if (plot) make_plot("plot_converge.py", directory);
   print("sartor converge: wrote %s\n", directory.c_str());

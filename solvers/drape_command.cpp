@@ -440,44 +440,37 @@ CaseCloth drape_cloth(const Options& options, const ConstructedGarment& construc
   return cloth;
 }
 
-// A default in the options database, not only in the spec: the pipeline
-// asks whether --body is set, and a flag's default is off.
-void set_drape_default(const std::string& name, const std::string& value) {
-  std::string key = name;
-  std::replace(key.begin(), key.end(), '-', '_');
-  key = "-" + key;
-  SartorPetscCall(set_default_option(key.c_str(), value.c_str()));
-}
-
-// Drape's defaults over those of `sartor run`; whether the drape is dynamic.
-bool set_drape_defaults(const Options& options, bool sewn, bool creased) {
+// Drape's defaults over those of `sartor run`, in drape's options (not only
+// in the spec: the pipeline asks whether --body is set, and a flag's default
+// is off); whether the drape is dynamic.
+bool set_drape_defaults(Options& options, bool sewn, bool creased) {
   for (const auto& [name, value] : drape_defaults())
-    set_drape_default(name, value);
+    options.set_default(name, value);
   // --analysis creep: the static drape, then wear (docs/wear.md).
   if (options.text("analysis") == "creep") {
-    SartorPetscCall(PetscOptionsSetValue(nullptr, "-analysis", "static"));
-    set_drape_default("wear-time", "28800");
+    options.set("analysis", "static");
+    options.set_default("wear-time", "28800");
   }
   // A time-stepping option asks for dynamics (drape's default before the
   // static minimiser; such command lines keep their meaning).
   if (!options.is_set("analysis")) {
     for (const std::string& name : time_stepping_options()) {
-      if (options.is_set(name)) set_drape_default("analysis", "dynamic");
+      if (options.is_set(name)) options.set_default("analysis", "dynamic");
     }
   }
   const bool dynamic = options.text("analysis") == "dynamic";
   for (const auto& [name, value] : dynamic ? drape_dynamic_defaults() : drape_static_defaults())
-    set_drape_default(name, value);
+    options.set_default(name, value);
   // Statics: the bending patches, which converge to plate theory (the hinges
   // are 5 to 31 % too soft; docs/finite-elements.md#bending). A mesh with
   // creases is left to `sartor run`'s rule: the hinges, which carry them.
-  if (!dynamic && !creased) set_drape_default("bending-model", "patch");
+  if (!dynamic && !creased) options.set_default("bending-model", "patch");
   if (sewn) {
     for (const auto& [name, value] : drape_sewing_defaults(dynamic))
-      set_drape_default(name, value);
+      options.set_default(name, value);
   }
   for (const std::string& flag : drape_flags(dynamic))
-    set_drape_default(flag, "true");
+    options.set_default(flag, "true");
   return dynamic;
 }
 
@@ -613,18 +606,6 @@ nlohmann::json drape_json(const DrapeMeasures& m, const GarmentWeight& garment,
       {"levels", levels_json(levels)}};
 }
 
-// The seams file is drape's own (the pattern's seams, written above): the
-// echoed options re-run the job, and drape refuses a --seams-file given to it.
-void echo_user_seams_file(const std::string& user_seams) {
-  SartorPetscCall(PetscOptionsClearValue(nullptr, "-seams_file"));
-  if (!user_seams.empty()) {
-    // The user's seams file, echoed (and queried, so as not to be reported unused).
-    SartorPetscCall(PetscOptionsSetValue(nullptr, "-seams_file", user_seams.c_str()));
-    PetscBool echoed = PETSC_FALSE;
-    SartorPetscCall(PetscOptionsHasName(nullptr, nullptr, "-seams_file", &echoed));
-  }
-}
-
 void print_drape(const CaseResult& result, std::size_t seams_sewn, double construction_seconds,
                  const DrapeMeasures& m, const Eigen::Vector3d& weight, const std::string& verdict,
                  const std::string& directory) {
@@ -685,8 +666,10 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
   const auto started = Clock::now();
   const double started_cpu = process_cpu_seconds();
   const std::string command = edit ? "edit" : "drape";
-  const Options& options = invocation.options;
-  const std::string path = invocation.command_line.positionals.at(0);
+  // Drape's defaults and its own seams file go into its copy of the options.
+  Invocation drape = invocation;
+  Options& options = drape.options;
+  const std::string path = drape.command_line.positionals.at(0);
   const std::string directory = options.text("output");
   check_drape_options(options);
   const std::string body = options.text("body");
@@ -698,7 +681,7 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
   print_construction(constructed);
   const auto constructed_at = Clock::now();
   write_construction(directory, constructed,
-                     construction_summary(invocation, "drape", path, constructed));
+                     construction_summary(drape, "drape", path, constructed));
   write_drape_body(directory, constructed, path);
 
   // 2. The cloth: the sewn panels, one material per distinct fabric.
@@ -710,9 +693,12 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
   SartorPetscCall(MPI_Barrier(PETSC_COMM_WORLD));
   ClothOutputLabels labels{{}, {}, sewable.mesh.material_ids};
   CaseCloth cloth = drape_cloth(options, constructed, sewable, &labels);
+  name_single_fabric(cloth, &options);
 
-  // 3. Sew and drape: the options of `sartor run` with drape's defaults.
-  SartorPetscCall(PetscOptionsSetValue(nullptr, "-seams_file", seams_file.c_str()));
+  // 3. Sew and drape: the options of `sartor run` with drape's defaults; the
+  // seams drape's own (the user's --seams-file, read by the construction, is
+  // what petsc_options.txt echoes: the echoed options re-run the job).
+  options.set("seams-file", seams_file);
   const bool dynamic =
       set_drape_defaults(options, !sewable.seams.empty(), !sewable.mesh.creases.empty());
   const GarmentWeight garment = garment_weight(options, cloth.mesh);
@@ -752,7 +738,7 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
   const double total_seconds = std::chrono::duration<double>(Clock::now() - started).count();
 
   const std::string verdict = certificate_verdict(options, result);
-  nlohmann::json summary = run_metadata(invocation, command);
+  nlohmann::json summary = run_metadata(drape, command);
   summary["pattern"] = path;
   summary["fabrics"] = cloth.fabrics;
   summary["construction"] = construction_json(constructed, sewable, crossing_json);
@@ -772,9 +758,8 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
     write_wear_tables(directory, *wear);
   }
   write_case_results(directory, result, summary, labels);
-  echo_user_seams_file(user_seams);
-  write_petsc_options(directory);
-  if (invocation.keep_result) invocation.keep_result(result, summary, labels);
+  write_petsc_options(directory, options);
+  if (drape.keep_result) drape.keep_result(result, summary, labels);
 
   print_drape(result, constructed.garment.seams.size(), construction_seconds, measures, weight,
               verdict, directory);

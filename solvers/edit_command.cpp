@@ -4,7 +4,6 @@
 
 #include "common/error.hpp"
 #include "fem/petsc_call.hpp"
-#include "fem/petsc_options.hpp"
 #include "garment/pattern.hpp"
 #include "solvers/commands.hpp"
 #include "solvers/edit_case.hpp"
@@ -72,8 +71,9 @@ int run_edit(const Invocation& invocation) {
   request.steps = read_edit_file(positionals.at(1), garment::read_pattern(positionals.at(0)));
   // The hinges: with the bending patches the sample skirt's hem edit is
   // predicted worse (docs/sensitivity.md#bending-models).
-  SartorPetscCall(set_default_option("-bending_model", "discrete_shell"));
-  const int status = drape_pattern(invocation, &request);
+  Invocation edit = invocation;
+  edit.options.set_default("bending-model", "discrete_shell");
+  const int status = drape_pattern(edit, &request);
   if (!request.run->ran) throw SolveFailure("the drape did not converge, so no edit was made");
   if (!request.run->not_converged.empty()) {
     std::string folders;

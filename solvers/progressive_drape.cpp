@@ -15,49 +15,10 @@
 #include <array>
 #include <cstdio>
 #include <ctime>
-#include <memory>
-#include <optional>
 
 namespace sartor {
 
 namespace {
-
-// An option of the database set (or cleared) for one level's solve, and
-// put back as it was afterwards: the levels run solve_case, which reads
-// its settings there.
-class ScopedOption {
-public:
-  ScopedOption(const std::string& name, const char* value) : name_(name) {
-    PetscBool set = PETSC_FALSE;
-    char previous[PETSC_MAX_PATH_LEN] = "";
-    SartorPetscCall(
-        PetscOptionsGetString(nullptr, nullptr, name_.c_str(), previous, sizeof(previous), &set));
-    PetscBool present = PETSC_FALSE;
-    SartorPetscCall(PetscOptionsHasName(nullptr, nullptr, name_.c_str(), &present));
-    had_ = present == PETSC_TRUE;
-    previous_ = previous;
-    if (value) {
-      SartorPetscCall(PetscOptionsSetValue(nullptr, name_.c_str(), value));
-    } else {
-      SartorPetscCall(PetscOptionsClearValue(nullptr, name_.c_str()));
-    }
-  }
-  ScopedOption(const ScopedOption&) = delete;
-  ScopedOption& operator=(const ScopedOption&) = delete;
-  ~ScopedOption() {
-    // A destructor cannot report: setting a plain value does not fail.
-    if (had_) {
-      PetscOptionsSetValue(nullptr, name_.c_str(), previous_.empty() ? nullptr : previous_.c_str());
-    } else {
-      PetscOptionsClearValue(nullptr, name_.c_str());
-    }
-  }
-
-private:
-  std::string name_;
-  std::string previous_;
-  bool had_ = false;
-};
 
 // What a finer level changes for its solve: a short damped relaxation (drape's
 // dynamics with kinetic damping, --refine-time long) from the prolonged
@@ -67,18 +28,14 @@ private:
 // the T-shirt: 100 damped Newton steps from a residual of 3.6e3 N, then
 // pseudo-transient continuation for minutes (16 to 8 cm; the coarse drape
 // held 9 J of potential, the 8 cm one 2 J at rest).
-std::vector<std::unique_ptr<ScopedOption>> finer_level_options(const Options& options,
-                                                               const std::string& seams_file) {
-  std::vector<std::unique_ptr<ScopedOption>> scoped;
+void set_finer_level_options(const std::string& seams_file, Options* options) {
   // A static drape (--analysis static) stays static on every level.
-  const std::string time = options.text("refine-time");
-  if (options.text("analysis") == "dynamic")
-    scoped.push_back(std::make_unique<ScopedOption>("-time_end", time.c_str()));
-  scoped.push_back(std::make_unique<ScopedOption>("-seams_file", seams_file.c_str()));
+  if (options->text("analysis") == "dynamic")
+    options->set("time-end", options->text("refine-time"));
+  options->set("seams-file", seams_file);
   for (const char* left_out :
-       {"-sewing_tension", "-sewing_time", "-output_interval", "-mesh_translate", "-mesh_rotate_x"})
-    scoped.push_back(std::make_unique<ScopedOption>(left_out, nullptr));
-  return scoped;
+       {"sewing-tension", "sewing-time", "output-interval", "mesh-translate", "mesh-rotate-x"})
+    options->clear(left_out);
 }
 
 // The edge-sample spacing of a level before the last, as an option value.
@@ -451,16 +408,17 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
     // edge there. With 1.5 cm samples on 16 cm edges the skirt's seams stayed
     // 6 cm open through the sewing stages; with none, the finer level
     // started with chords deep in the body (|F| 1e6 N).
-    std::optional<ScopedOption> coarse_samples;
-    const std::string coarse_spacing = coarse_edge_spacing(options, level.edge_length);
-    if (l + 1 < count) coarse_samples.emplace("-contact_edge_spacing", coarse_spacing.c_str());
+    Options level_options = options;
+    if (l + 1 < count)
+      level_options.set("contact-edge-spacing", coarse_edge_spacing(options, level.edge_length));
     if (l == 0) {
-      const ScopedOption seams("-seams_file", level.seams_file.c_str());
+      level_options.set("seams-file", level.seams_file);
       ClothOutputLabels coarsest = labels;
       coarsest.panel_of_triangle = level.panel_of_triangle;
       const CaseCheckpointing in_level = level_checkpointing(l, run, resumed);
-      result = solve_case(options, 0, series_writer(directory, coarsest, in_level.restart_file),
-                          in_level, &level.cloth);
+      result =
+          solve_case(level_options, 0, series_writer(directory, coarsest, in_level.restart_file),
+                     in_level, &level.cloth);
     } else {
       if (resumed) {
         level.cloth.mesh.positions = resume.start;
@@ -472,11 +430,11 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
         run.seam_gap_prolonged = closure.gap_before;
         run.seam_gap_start = closure.gap_after;
         run.outside_distance = prolongation.largest_outside_distance();
-        run.deepest_start = lift_out_of_bodies(options, level.cloth.mesh, &start);
+        run.deepest_start = lift_out_of_bodies(level_options, level.cloth.mesh, &start);
         level.cloth.mesh.positions = start;
       }
-      const auto scoped = finer_level_options(options, level.seams_file);
-      result = solve_case(options, 0, {}, level_checkpointing(l, run, resumed), &level.cloth);
+      set_finer_level_options(level.seams_file, &level_options);
+      result = solve_case(level_options, 0, {}, level_checkpointing(l, run, resumed), &level.cloth);
     }
     run.cpu_seconds = cpu_seconds() - cpu_start;
     record(result, &run);

@@ -1049,8 +1049,10 @@ void assign_panel_fabrics(const std::vector<garment::Panel>& panels, CaseCloth* 
   }
   for (int& id : cloth->mesh.material_ids)
     id = fabric_of_panel[std::size_t(id)];
-  if (cloth->fabrics.size() == 1)
-    SartorPetscCall(PetscOptionsSetValue(nullptr, "-fabric", cloth->fabrics.front().c_str()));
+}
+
+void name_single_fabric(const CaseCloth& cloth, Options* options) {
+  if (cloth.fabrics.size() == 1) options->set("fabric", cloth.fabrics.front());
 }
 
 CaseResult solve_case(const Options& options, int extra_refinements,
@@ -1328,11 +1330,19 @@ void write_case_results(const std::string& directory, const CaseResult& result,
 
 // PETSc lists one option a line, `-name value`, but reads a file back word by
 // word: a value with spaces (--body "mannequin mu=0.3") is quoted so that
-// `-options_file petsc_options.txt` re-runs the job.
-std::string quote_option_values(const std::string& path) {
+// `-options_file petsc_options.txt` re-runs the job. The command's own
+// defaults go in before the table's last line.
+std::string quote_option_values(const std::string& path, const Options& options) {
   std::ifstream lines(path);
+  std::vector<std::string> table;
+  for (std::string line; std::getline(lines, line);)
+    table.push_back(line);
+  const bool closed = !table.empty() && table.back().rfind("#End", 0) == 0;
+  auto end = closed ? table.end() - 1 : table.end();
+  for (const auto& [key, value] : options.command_defaults())
+    end = table.insert(end, key + " " + value) + 1;
   std::string quoted;
-  for (std::string line; std::getline(lines, line);) {
+  for (std::string line : table) {
     const std::size_t space = line.find(' ');
     if (line.rfind('-', 0) == 0 && space != std::string::npos &&
         line.find_first_of(" \t", space + 1) != std::string::npos) {
@@ -1343,13 +1353,13 @@ std::string quote_option_values(const std::string& path) {
   return quoted;
 }
 
-void write_petsc_options(const std::string& directory) {
+void write_petsc_options(const std::string& directory, const Options& options) {
   const std::string path = directory + "/petsc_options.txt";
   PetscViewer viewer = nullptr;
   SartorPetscCall(PetscViewerASCIIOpen(PETSC_COMM_WORLD, path.c_str(), &viewer));
   SartorPetscCall(PetscOptionsView(nullptr, viewer));
   SartorPetscCall(PetscViewerDestroy(&viewer));
-  if (is_root()) write_file_atomically(path, quote_option_values(path));
+  if (is_root()) write_file_atomically(path, quote_option_values(path, options));
 }
 
 CaseStepObserver series_writer(const std::string& directory, const ClothOutputLabels& labels,
@@ -1412,7 +1422,7 @@ int run_run(const Invocation& invocation) {
   summary["case"] = invocation.command_line.positionals.at(0);
   add_case_summary(result, summary);
   write_case_results(directory, result, summary, labels);
-  write_petsc_options(directory);
+  write_petsc_options(directory, options);
   if (invocation.keep_result) invocation.keep_result(result, summary, labels);
   if (!options.flag("no-plot")) make_plot("plot_result.py", directory);
 

@@ -6,7 +6,6 @@
 #include "common/output.hpp"
 #include "contact/body_spec.hpp"
 #include "fem/petsc_call.hpp"
-#include "fem/petsc_options.hpp"
 #include "garment/wrap.hpp"
 #include "mesh/obj.hpp"
 #include "solvers/cloth_case.hpp"
@@ -83,27 +82,26 @@ nlohmann::json point_json(const Eigen::Vector3d& p) {
 void drape_wrapped(const Invocation& invocation, const garment::WrapResult& wrapped,
                    const garment::Pattern& pattern, const std::string& body,
                    const std::string& directory) {
-  const auto set_default = [](std::string name, const std::string& value) {
-    std::replace(name.begin(), name.end(), '-', '_');
-    SartorPetscCall(set_default_option(("-" + name).c_str(), value.c_str()));
-  };
-  set_default("body", body);
+  Invocation drape = invocation;
+  Options& options = drape.options;
+  options.set_default("body", body);
   for (const auto& [name, value] : wrap_drape_defaults())
-    set_default(name, value);
+    options.set_default(name, value);
   CaseCloth cloth;
   cloth.mesh = wrapped.mesh;
   ClothOutputLabels labels{{}, {}, wrapped.mesh.material_ids};
   for (const garment::Panel& panel : pattern.panels)
     labels.panels.push_back(panel.id);
   assign_panel_fabrics(pattern.panels, &cloth);
+  name_single_fabric(cloth, &options);
   labels.fabrics = cloth.fabrics;
-  const CaseResult result = solve_case(invocation.options, 0, {}, {}, &cloth);
+  const CaseResult result = solve_case(options, 0, {}, {}, &cloth);
   const std::string drape_directory = directory + "/drape";
   if (is_root()) make_output_directory(drape_directory);
-  nlohmann::json summary = run_metadata(invocation, "wrap");
+  nlohmann::json summary = run_metadata(drape, "wrap");
   add_case_summary(result, summary);
   write_case_results(drape_directory, result, summary, labels);
-  write_petsc_options(drape_directory);
+  write_petsc_options(drape_directory, options);
   SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "sartor wrap: drape %s in %.1f s (%s); wrote %s\n",
                               result.converged ? "converged" : "did not converge",
                               result.solve_seconds, result.dynamics ? "dynamics" : "statics",
