@@ -4,6 +4,7 @@
 #include "element/pressure.hpp"
 #include "fem/block_assembly.hpp"
 #include "fem/forms/contact_form.hpp"
+#include "fem/forms/creep_coupling_form.hpp"
 #include "fem/forms/load_forms.hpp"
 #include "fem/forms/local_arrays.hpp"
 #include "fem/forms/membrane_form.hpp"
@@ -218,6 +219,8 @@ ClothProblem::ClothProblem(MPI_Comm comm, const TriangleMesh& mesh,
   set_up_dofs(original, foreign, is_pinned);
   const std::vector<bool> triangle_owned = set_up_triangles(original, foreign);
   triangle_forms_.push_back(std::make_unique<fem::MembraneForm>(nonelastic, nonelastic_response));
+  triangle_forms_.push_back(
+      std::make_unique<fem::CreepCouplingForm>(nonelastic, nonelastic_response));
   const std::vector<int> boundary = boundary_vertices(mesh);
   const bool boundary_held = std::all_of(boundary.begin(), boundary.end(),
                                          [&](int v) { return is_pinned[std::size_t(v)]; });
@@ -265,8 +268,8 @@ template <class F>
 std::vector<F*> ClothProblem::enabled(const std::vector<std::unique_ptr<F>>& all) const {
   std::vector<F*> forms;
   for (const auto& form : all) {
-    if (std::find(disabled_forms_.begin(), disabled_forms_.end(), form->name()) ==
-        disabled_forms_.end())
+    if (form->active() && std::find(disabled_forms_.begin(), disabled_forms_.end(), form->name()) ==
+                              disabled_forms_.end())
       forms.push_back(form.get());
   }
   return forms;

@@ -83,9 +83,11 @@ public:
   // fixed; time stepping advances it.
   double time = 0.0;
   std::vector<element::NonelasticStrain> nonelastic; // per mesh triangle (creep state)
-  // When set, residual and Jacobian take each triangle's non-elastic strains
-  // from it instead of `nonelastic`, and the Jacobian includes their
-  // dependence on the positions (then there is no potential energy).
+  // When set (a monolithically coupled creep step), the creep coupling form
+  // stands in for the membrane form: residual and Jacobian take each
+  // triangle's non-elastic strains from it instead of `nonelastic`, and the
+  // Jacobian includes their dependence on the positions (then there is no
+  // potential energy).
   const NonelasticResponse* nonelastic_response = nullptr;
 
   // A global vector of the free positions, filled from the mesh's placement.
@@ -362,7 +364,7 @@ private:
   fem::ContactForm* contact_form_ = nullptr;
   fem::SeamForm* seam_form_ = nullptr;
   std::vector<std::string> disabled_forms_;
-  // The forms of `all` that are enabled.
+  // The forms of `all` that are enabled and active (fem/form.hpp).
   template <class F>
   std::vector<F*> enabled(const std::vector<std::unique_ptr<F>>& all) const;
 };

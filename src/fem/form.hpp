@@ -113,6 +113,10 @@ public:
   virtual ~TriangleForm() = default;
   virtual const char* name() const = 0;
   virtual EnergyPart part() const = 0;
+  // Whether the form takes part in the sum now: a form standing in for
+  // another in some states (the creep coupling for the membrane while a
+  // creep step is coupled) is inactive in the others.
+  virtual bool active() const { return true; }
   // Adds the triangle's energy to `sum` (a term of several pieces adds them
   // one by one).
   virtual void add_energy(const TriangleView& t, const FormPoint& at, double* sum) const = 0;
@@ -143,6 +147,10 @@ public:
   virtual ~Form() = default;
   virtual const char* name() const = 0;
   virtual EnergyPart part() const = 0;
+  // Whether the form takes part in the sum now: a form standing in for
+  // another in some states (the creep coupling for the membrane while a
+  // creep step is coupled) is inactive in the others.
+  virtual bool active() const { return true; }
   // Adds this rank's share of the energy to `sum`.
   virtual void add_energy(const FormPoint& at, double* sum) const = 0;
   // Adds this rank's share of the gradient to the local vector f.
@@ -174,6 +182,10 @@ public:
   virtual ~CouplingForm() = default;
   virtual const char* name() const = 0;
   virtual EnergyPart part() const = 0;
+  // Whether the form takes part in the sum now: a form standing in for
+  // another in some states (the creep coupling for the membrane while a
+  // creep step is coupled) is inactive in the others.
+  virtual bool active() const { return true; }
   // Collective: the whole energy, every rank the same.
   virtual PetscErrorCode energy(Vec x, double* energy) = 0;
   // Collective: adds the gradient to the global vector f.

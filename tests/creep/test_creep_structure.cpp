@@ -229,6 +229,9 @@ TEST(CreepMonolithic, TangentMatchesDifferencesOfTheResidual) {
       place(0.08 * load_scale);
       ASSERT_EQ(problem.set_solution(placed, x), 0);
       creep.couple(30.0);
+      // The creep coupling form in the membrane's place: its strains'
+      // dependence on the rest is not differentiated, so no rest derivative.
+      EXPECT_FALSE(problem.has_rest_derivative());
       ASSERT_EQ(problem.jacobian(x, J), 0);
       ASSERT_EQ(VecSetRandom(v, nullptr), 0);
       ASSERT_EQ(MatMult(J, v, jv), 0);

@@ -129,6 +129,8 @@ TEST(Forms, EachFormsGradientAndHessianMatchDifferences) {
     problem.exact_hessian = true;
     const std::vector<std::string> names = problem.form_names();
     for (const std::string& name : names) {
+      // Active only in a coupled creep step: CreepMonolithic checks it there.
+      if (name == "creep coupling") continue;
       for (const std::string& other : names)
         problem.enable_form(other, other == name);
       EXPECT_LT(directional_energy_error(problem, x, v, 1e-6), 1e-6) << name;
@@ -287,9 +289,11 @@ TEST(Forms, PressureOnAHeldBoundaryIsMinusPTimesTheVolume) {
 TEST(Forms, TheProblemsResidualIsTheSumOfItsForms) {
   Scene s = scene(element::BendingModel::discrete_shell);
   ClothProblem& problem = *s.problem;
-  const std::vector<std::string> expected = {"membrane",    "surface loads", "hinge bending",
-                                             "point loads", "contact",       "spring to point",
-                                             "seams"};
+  // The creep coupling stands in for the membrane in a coupled creep step
+  // only: inactive here, it adds nothing.
+  const std::vector<std::string> expected = {"membrane",        "creep coupling", "surface loads",
+                                             "hinge bending",   "point loads",    "contact",
+                                             "spring to point", "seams"};
   EXPECT_EQ(problem.form_names(), expected);
   Vec x = nullptr, total = nullptr, sum = nullptr, one = nullptr;
   ASSERT_EQ(problem.create_solution(&x), 0);

@@ -1,9 +1,8 @@
 #pragma once
 // The membrane energy of every triangle (element/membrane.hpp) at the
-// triangle's non-elastic strains: the creep state held from the last step,
-// or, with a NonelasticResponse (monolithic creep coupling), strains that
-// follow the element's positions within the step, whose dependence the
-// Hessian includes (then the residual has no potential).
+// triangle's non-elastic strains held from the last step (the creep state).
+// While a creep step is coupled monolithically, the creep coupling form
+// (fem/forms/creep_coupling_form.hpp) stands in for this one.
 
 #include "fem/cloth_model.hpp"
 #include "fem/form.hpp"
@@ -20,10 +19,10 @@ public:
       : nonelastic_(nonelastic), response_(response) {}
   const char* name() const override { return "membrane"; }
   EnergyPart part() const override { return EnergyPart::membrane; }
+  bool active() const override { return response_ == nullptr; }
   void add_energy(const TriangleView& t, const FormPoint& at, double* sum) const override;
   element::Vector9 gradient(const TriangleView& t, const FormPoint& at) const override;
   void add_hessian(const TriangleView& t, const FormPoint& at, Matrix9& block) const override;
-  bool has_potential() const override { return !(response_ && response_->moves_with_positions()); }
   bool projects(const ClothMaterial& material) const override { return material.project_membrane; }
   // At the held non-elastic strains (the creep state of the step).
   bool has_rest_derivative() const override { return true; }
@@ -34,5 +33,9 @@ private:
   const std::vector<element::NonelasticStrain>& nonelastic_;
   const NonelasticResponse* const& response_;
 };
+
+// The membrane energy of a triangle at held non-elastic strains: what the
+// membrane form adds, and the energy the creep coupling form reports.
+double held_membrane_energy(const TriangleView& t, const element::NonelasticStrain& held);
 
 } // namespace sartor::fem
