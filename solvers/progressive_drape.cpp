@@ -28,11 +28,10 @@ namespace {
 // the T-shirt: 100 damped Newton steps from a residual of 3.6e3 N, then
 // pseudo-transient continuation for minutes (16 to 8 cm; the coarse drape
 // held 9 J of potential, the 8 cm one 2 J at rest).
-void set_finer_level_options(const std::string& seams_file, Options* options) {
+void set_finer_level_options(Options* options) {
   // A static drape (--analysis static) stays static on every level.
   if (options->text("analysis") == "dynamic")
     options->set("time-end", options->text("refine-time"));
-  options->set("seams-file", seams_file);
   for (const char* left_out :
        {"sewing-tension", "sewing-time", "output-interval", "mesh-translate", "mesh-rotate-x"})
     options->clear(left_out);
@@ -409,10 +408,10 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
     // 6 cm open through the sewing stages; with none, the finer level
     // started with chords deep in the body (|F| 1e6 N).
     Options level_options = options;
+    level_options.set("seams-file", level.seams_file);
     if (l + 1 < count)
       level_options.set("contact-edge-spacing", coarse_edge_spacing(options, level.edge_length));
     if (l == 0) {
-      level_options.set("seams-file", level.seams_file);
       ClothOutputLabels coarsest = labels;
       coarsest.panel_of_triangle = level.panel_of_triangle;
       const CaseCheckpointing in_level = level_checkpointing(l, run, resumed);
@@ -433,7 +432,7 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
         run.deepest_start = lift_out_of_bodies(level_options, level.cloth.mesh, &start);
         level.cloth.mesh.positions = start;
       }
-      set_finer_level_options(level.seams_file, &level_options);
+      set_finer_level_options(&level_options);
       result = solve_case(level_options, 0, {}, level_checkpointing(l, run, resumed), &level.cloth);
     }
     run.cpu_seconds = cpu_seconds() - cpu_start;

@@ -147,10 +147,7 @@ public:
   virtual ~Form() = default;
   virtual const char* name() const = 0;
   virtual EnergyPart part() const = 0;
-  // Whether the form takes part in the sum now: a form standing in for
-  // another in some states (the creep coupling for the membrane while a
-  // creep step is coupled) is inactive in the others.
-  virtual bool active() const { return true; }
+  virtual bool active() const { return true; } // as TriangleForm::active
   // Adds this rank's share of the energy to `sum`.
   virtual void add_energy(const FormPoint& at, double* sum) const = 0;
   // Adds this rank's share of the gradient to the local vector f.
@@ -182,10 +179,7 @@ public:
   virtual ~CouplingForm() = default;
   virtual const char* name() const = 0;
   virtual EnergyPart part() const = 0;
-  // Whether the form takes part in the sum now: a form standing in for
-  // another in some states (the creep coupling for the membrane while a
-  // creep step is coupled) is inactive in the others.
-  virtual bool active() const { return true; }
+  virtual bool active() const { return true; } // as TriangleForm::active
   // Collective: the whole energy, every rank the same.
   virtual PetscErrorCode energy(Vec x, double* energy) = 0;
   // Collective: adds the gradient to the global vector f.

@@ -34,8 +34,13 @@ private:
   const NonelasticResponse* const& response_;
 };
 
-// The membrane energy of a triangle at held non-elastic strains: what the
-// membrane form adds, and the energy the creep coupling form reports.
-double held_membrane_energy(const TriangleView& t, const element::NonelasticStrain& held);
+// The membrane kernel of triangle t at non-elastic strains `strain`, as the
+// membrane form (at the held strains) and the creep coupling form (at the
+// responding ones) evaluate it; the Hessian projected as the material and
+// `at` ask.
+double membrane_energy(const TriangleView& t, const element::NonelasticStrain& strain);
+element::Vector9 membrane_gradient(const TriangleView& t, const element::NonelasticStrain& strain);
+Matrix9 membrane_hessian(const TriangleView& t, const FormPoint& at,
+                         const element::NonelasticStrain& strain);
 
 } // namespace sartor::fem
