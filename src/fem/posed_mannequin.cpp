@@ -6,6 +6,8 @@
 #include <cmath>
 #include <set>
 #include <sstream>
+#include <stdexcept>
+#include <utility>
 
 namespace sartor {
 
@@ -41,6 +43,35 @@ std::size_t nearest_bone(const std::vector<Bone>& bones, const Eigen::Vector3d& 
     }
   }
   return nearest;
+}
+
+// The reference frame is an atlas of the bones' unposed frames: bone b's
+// chart is the unposed body shifted by (b + 1) chart spacings along x, so a
+// reference point names the bone that carries it and every pose carries it
+// with that bone. (Near a bent joint the bone nearest a posed point and the
+// one nearest its unposed image can differ, and choosing the carrier afresh
+// on the way back made anchors there jump by centimetres.) Chart 0 is the
+// unposed body itself, each point carried by the bone nearest it: the
+// standing drape's anchors arrive in it.
+constexpr double chart_spacing = 100.0; // m, far beyond any body's size
+
+Eigen::Vector3d chart_offset(std::size_t chart) {
+  return Eigen::Vector3d(chart_spacing * double(chart), 0.0, 0.0);
+}
+
+// The bone that carries reference point q and q in the unposed body.
+std::pair<std::size_t, Eigen::Vector3d> carrier(const std::vector<Bone>& unposed,
+                                                const Eigen::Vector3d& q) {
+  const long chart = std::lround(q.x() / chart_spacing);
+  if (chart <= 0) return {nearest_bone(unposed, q), q};
+  if (std::size_t(chart) > unposed.size()) {
+    throw InputError("posed mannequin: a friction anchor lies in chart " + std::to_string(chart) +
+                     " (bone " + std::to_string(chart - 1) + "), but the body has " +
+                     std::to_string(unposed.size()) +
+                     " bones (anchors from a checkpoint of another body?)");
+  }
+  const Eigen::Vector3d unposed_point = q - chart_offset(std::size_t(chart));
+  return {std::size_t(chart - 1), unposed_point};
 }
 
 } // namespace
@@ -83,13 +114,15 @@ contact::SurfaceQuery PosedMannequin::partial_query(const Eigen::Vector3d& p, do
 
 Eigen::Vector3d PosedMannequin::to_reference(const Eigen::Vector3d& p, double time) const {
   const Posed& posed = posed_at(time);
-  const BoneMotion& m = posed.motions[nearest_bone(posed.bones, p)];
-  return m.rotation.transpose() * (p - m.shift);
+  const std::size_t bone = nearest_bone(posed.bones, p);
+  const BoneMotion& m = posed.motions[bone];
+  return m.rotation.transpose() * (p - m.shift) + chart_offset(bone + 1);
 }
 
 Eigen::Vector3d PosedMannequin::from_reference(const Eigen::Vector3d& q, double time) const {
-  const BoneMotion& m = posed_at(time).motions[nearest_bone(unposed_bones_, q)];
-  return m.rotation * q + m.shift;
+  const auto [bone, unposed_point] = carrier(unposed_bones_, q);
+  const BoneMotion& m = posed_at(time).motions[bone];
+  return m.rotation * unposed_point + m.shift;
 }
 
 Eigen::Vector3d PosedMannequin::direction_to_reference(const Eigen::Vector3d& p,
@@ -102,7 +135,7 @@ Eigen::Vector3d PosedMannequin::direction_to_reference(const Eigen::Vector3d& p,
 Eigen::Vector3d PosedMannequin::direction_from_reference(const Eigen::Vector3d& q,
                                                          const Eigen::Vector3d& d,
                                                          double time) const {
-  return posed_at(time).motions[nearest_bone(unposed_bones_, q)].rotation * d;
+  return posed_at(time).motions[carrier(unposed_bones_, q).first].rotation * d;
 }
 
 std::string PosedMannequin::describe() const {

@@ -12,10 +12,12 @@
 // of cloth away from where it was, and the penalty would push the cloth out
 // on the wrong side).
 //
-// Its reference frame (friction anchors) is the unposed body's: a point is
-// carried by the bone whose flesh it is nearest (the distance to the bone's
-// segment less its radius there), so that cloth sticking to a shin swings
-// with it.
+// Its reference frame (friction anchors) is the unposed body's, one copy
+// (chart) per bone: a point is taken there by the bone whose flesh it is
+// nearest in the pose of the moment (the distance to the bone's segment less
+// its radius there), and that bone, named by the chart, carries it in every
+// other pose, so that cloth sticking to a shin swings with it and an anchor
+// near a bent joint does not change bones on the way.
 
 #include "contact/mannequin.hpp"
 #include "contact/mannequin_surface.hpp"

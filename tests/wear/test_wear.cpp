@@ -501,6 +501,38 @@ TEST(WearPoses, CarryAPointOnTheShinWithIt) {
   EXPECT_LT((shape.to_reference(carried) - point).norm(), 1e-12);
 }
 
+TEST(WearPoses, PointsRoundABentKneeStayWithTheirBone) {
+  // Round the left knee bent 54 degrees, points 1 cm outside its flesh in
+  // every direction: into the reference frame and back at the same pose they
+  // come back where they were, and carried on to 54.9 degrees none moves
+  // further than the shin's turn would take a point that far from the knee
+  // (the thigh's do not move at all). A carrier chosen afresh on the way back
+  // (the bone nearest the point's unposed image) breaks both near the crease.
+  const auto poses = left_knee_bending();
+  const Bone shin = standing_left_shin();
+  const Eigen::Vector3d knee = shin.start;
+  const double radius = shin.start_radius + 0.01;
+  const double turn = 0.9 * M_PI / 180.0;
+  double clock = 6.0;
+  const ShapeOnClock shape(poses, &clock);
+  for (int i = 0; i < 12; ++i) {
+    const double polar = M_PI * (i + 0.5) / 12.0;
+    for (int j = 0; j < 24; ++j) {
+      const double azimuth = 2.0 * M_PI * j / 24.0;
+      const Eigen::Vector3d p =
+          knee + radius * Eigen::Vector3d(std::cos(polar), std::sin(polar) * std::cos(azimuth),
+                                          std::sin(polar) * std::sin(azimuth));
+      clock = 6.0;
+      const Eigen::Vector3d point = shape.to_reference(p);
+      EXPECT_LT((shape.from_reference(point) - p).norm(), 1e-12)
+          << "polar " << polar << ", azimuth " << azimuth;
+      clock = 6.1;
+      EXPECT_LE((shape.from_reference(point) - p).norm(), turn * radius + 1e-12)
+          << "polar " << polar << ", azimuth " << azimuth;
+    }
+  }
+}
+
 TEST(WearPoses, StepsLandWhereNoJointTurnedMoreThanTheLargestTurn) {
   // Sit (hips and knees to 90 degrees over 10 s), stay, stand up (10 s):
   // 18 pieces of 5 degrees each way, the keyframes among the knots.
