@@ -177,6 +177,32 @@ double triangle_area_derivative(const std::array<Eigen::Vector2d, 3>& uv,
   return rest.area * (rest.inverse_material * edge_matrix(delta_uv)).trace();
 }
 
+namespace {
+
+// How the columns a, b and their corner weights c, d move when the material
+// coordinates move by delta_uv, at fixed positions and non-elastic strains
+// (d M^-1 = -M^-1 dM M^-1).
+struct ColumnChange {
+  Vector3d a, b;
+  Eigen::Vector3d c, d;
+};
+ColumnChange column_change(const TriangleRest& rest, const NonelasticStrain& nonelastic,
+                           const Vector9& x, const std::array<Eigen::Vector2d, 3>& delta_uv) {
+  const Eigen::Matrix2d unloaded =
+      Eigen::Vector2d(1.0 / (1.0 + nonelastic.warp), 1.0 / (1.0 + nonelastic.weft)).asDiagonal();
+  const Eigen::Matrix2d delta_b =
+      -rest.inverse_material * edge_matrix(delta_uv) * rest.inverse_material * unloaded;
+  ColumnChange change;
+  corner_weights(delta_b, &change.c, &change.d);
+  change.a =
+      change.c(0) * x.segment<3>(0) + change.c(1) * x.segment<3>(3) + change.c(2) * x.segment<3>(6);
+  change.b =
+      change.d(0) * x.segment<3>(0) + change.d(1) * x.segment<3>(3) + change.d(2) * x.segment<3>(6);
+  return change;
+}
+
+} // namespace
+
 Vector9 membrane_rest_derivative(MembraneModel model, const MembraneMaterial& material,
                                  const std::array<Eigen::Vector2d, 3>& uv,
                                  const NonelasticStrain& nonelastic, const Vector9& x,
@@ -184,28 +210,34 @@ Vector9 membrane_rest_derivative(MembraneModel model, const MembraneMaterial& ma
   const TriangleRest rest = triangle_rest(uv);
   const Columns k = columns(rest, nonelastic, x);
   const Density w = membrane_model_kernels(model).density(material, k.a, k.b);
-  const Eigen::Matrix2d unloaded =
-      Eigen::Vector2d(1.0 / (1.0 + nonelastic.warp), 1.0 / (1.0 + nonelastic.weft)).asDiagonal();
-  const Eigen::Matrix2d delta_m = edge_matrix(delta_uv);
-  const Eigen::Matrix2d delta_b =
-      -rest.inverse_material * delta_m * rest.inverse_material * unloaded;
-  Vector3d dc, dd;
-  corner_weights(delta_b, &dc, &dd);
-  const Vector3d da = dc(0) * x.segment<3>(0) + dc(1) * x.segment<3>(3) + dc(2) * x.segment<3>(6);
-  const Vector3d db = dd(0) * x.segment<3>(0) + dd(1) * x.segment<3>(3) + dd(2) * x.segment<3>(6);
+  const ColumnChange dk = column_change(rest, nonelastic, x, delta_uv);
   // The density's gradient moves with the columns: d(dW/da), d(dW/db).
-  const Vector3d d_grad_a = w.haa * da + w.hab * db;
-  const Vector3d d_grad_b = w.hab.transpose() * da + w.hbb * db;
+  const Vector3d d_grad_a = w.haa * dk.a + w.hab * dk.b;
+  const Vector3d d_grad_b = w.hab.transpose() * dk.a + w.hbb * dk.b;
   const double scale = (1.0 + nonelastic.warp) * (1.0 + nonelastic.weft);
   const double unloaded_area = rest.area * scale;
-  const double d_unloaded_area = scale * rest.area * (rest.inverse_material * delta_m).trace();
+  const double d_unloaded_area =
+      scale * rest.area * (rest.inverse_material * edge_matrix(delta_uv)).trace();
   Vector9 derivative;
   for (int i = 0; i < 3; ++i) {
     derivative.segment<3>(3 * i) = d_unloaded_area * (k.c(i) * w.grad_a + k.d(i) * w.grad_b) +
-                                   unloaded_area * (dc(i) * w.grad_a + dd(i) * w.grad_b +
+                                   unloaded_area * (dk.c(i) * w.grad_a + dk.d(i) * w.grad_b +
                                                     k.c(i) * d_grad_a + k.d(i) * d_grad_b);
   }
   return derivative;
+}
+
+Eigen::Vector2d membrane_tension_rest_derivative(MembraneModel model,
+                                                 const MembraneMaterial& material,
+                                                 const std::array<Eigen::Vector2d, 3>& uv,
+                                                 const NonelasticStrain& nonelastic,
+                                                 const Vector9& x,
+                                                 const std::array<Eigen::Vector2d, 3>& delta_uv) {
+  const TriangleRest rest = triangle_rest(uv);
+  const Columns k = columns(rest, nonelastic, x);
+  const ColumnTensions t = membrane_model_kernels(model).tensions(material, k.a, k.b);
+  const ColumnChange dk = column_change(rest, nonelastic, x, delta_uv);
+  return t.per_a * dk.a + t.per_b * dk.b;
 }
 
 } // namespace sartor::element

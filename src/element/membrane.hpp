@@ -138,6 +138,17 @@ Vector9 membrane_rest_derivative(MembraneModel model, const MembraneMaterial& ma
                                  const NonelasticStrain& nonelastic, const Vector9& x,
                                  const std::array<Eigen::Vector2d, 3>& delta_uv);
 
+// The change of the element's tensions (membrane_strain's tension_warp and
+// tension_weft) when its material coordinates move by `delta_uv`, at fixed
+// positions and non-elastic strains: the monolithic creep coupling's
+// strains follow the tensions (CreepCouplingForm::rest_derivative).
+Eigen::Vector2d membrane_tension_rest_derivative(MembraneModel model,
+                                                 const MembraneMaterial& material,
+                                                 const std::array<Eigen::Vector2d, 3>& uv,
+                                                 const NonelasticStrain& nonelastic,
+                                                 const Vector9& x,
+                                                 const std::array<Eigen::Vector2d, 3>& delta_uv);
+
 // The change of a triangle's material area when its corners move by
 // `delta_uv` (the lumped masses' and so gravity's dependence on the
 // pattern), m^2.

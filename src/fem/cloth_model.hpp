@@ -127,6 +127,9 @@ public:
   struct Answer {
     element::NonelasticStrain strain;
     Eigen::Matrix<double, 2, 9> per_position = Eigen::Matrix<double, 2, 9>::Zero(); // dn/dx
+    // dn/dT: the strains' response to a change of the element's tensions at
+    // fixed n (a move of the rest coordinates makes one); dn/dx is it times dT/dx.
+    Eigen::Matrix2d per_tension = Eigen::Matrix2d::Zero();
   };
   // The strains of mesh triangle `triangle` at element positions `x` (NaN
   // when there are none), and their derivative when `want_derivative`.

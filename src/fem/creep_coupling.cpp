@@ -132,7 +132,9 @@ NonelasticResponse::Answer CreepCoupling::respond(int triangle, const ClothMater
   }
   const CoupledStep step = coupled_step(committed_[t], coupled_dt_, material_of(triangle), material,
                                         rest, x, want_derivative);
-  return {{step.state.warp.nonelastic(), step.state.weft.nonelastic()}, step.per_position};
+  return {{step.state.warp.nonelastic(), step.state.weft.nonelastic()},
+          step.per_position,
+          step.per_tension};
 }
 
 CreepCoupling::CoupledStep
@@ -161,7 +163,10 @@ CreepCoupling::coupled_step(const ElementCreep& from, double dt, const CreepMate
                                                         law * membrane.tension_per_nonelastic);
     if (mismatch.cwiseAbs().maxCoeff() <= tolerance) {
       step.state = {warp.state, weft.state, membrane.tension(0), membrane.tension(1)};
-      if (want_derivative) step.per_position = jacobian.solve(law * membrane.tension_per_position);
+      if (want_derivative) {
+        step.per_tension = jacobian.solve(law);
+        step.per_position = step.per_tension * membrane.tension_per_position;
+      }
       return step;
     }
     n -= jacobian.solve(mismatch);

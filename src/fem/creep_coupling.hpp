@@ -95,10 +95,11 @@ private:
   void apply(const std::vector<ElementCreep>& states);
   const CreepMaterial& material_of(int triangle) const;
   // One element's monolithic step from `from` over `dt` at positions x: its
-  // end state, and when asked dn/dx. Not converged: NaN strains.
+  // end state, and when asked dn/dx and dn/dT. Not converged: NaN strains.
   struct CoupledStep {
     ElementCreep state;
     Eigen::Matrix<double, 2, 9> per_position = Eigen::Matrix<double, 2, 9>::Zero();
+    Eigen::Matrix2d per_tension = Eigen::Matrix2d::Zero();
   };
   CoupledStep coupled_step(const ElementCreep& from, double dt, const CreepMaterial& creep,
                            const ClothMaterial& material, const element::TriangleRest& rest,

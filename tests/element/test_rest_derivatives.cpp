@@ -1,6 +1,7 @@
 // The kernels' rest-coordinate derivatives (element/rest_derivative.hpp,
-// membrane_rest_derivative): each against central differences of the
-// kernel's own force with its rest data rebuilt at X +- h dX.
+// membrane_rest_derivative, membrane_tension_rest_derivative): each against
+// central differences of the kernel's own force (or tensions) with its rest
+// data rebuilt at X +- h dX.
 
 #include "element/membrane.hpp"
 #include "element/rest_derivative.hpp"
@@ -70,6 +71,31 @@ TEST(RestDerivative, MembraneBaraffWitkin) {
 
 TEST(RestDerivative, MembraneSaintVenantKirchhoff) {
   expect_membrane_derivative(MembraneModel::saint_venant_kirchhoff);
+}
+
+// The tensions the monolithic creep coupling's strains follow.
+void expect_tension_derivative(MembraneModel model) {
+  const MembraneMaterial material{TensionCurve::linear(800.0, "warp"),
+                                  TensionCurve::linear(500.0, "weft"), 60.0, 0.3};
+  const NonelasticStrain nonelastic{0.02, -0.01};
+  const Vector9 x = deformed_triangle();
+  const Vector2d exact = membrane_tension_rest_derivative(model, material, triangle_uv, nonelastic,
+                                                          x, triangle_change);
+  const auto tensions = [&](double h) {
+    const TriangleRest rest = triangle_rest(moved(triangle_uv, triangle_change, h));
+    const MembraneStrain s = membrane_strain(model, material, rest, nonelastic, x);
+    return Vector2d(s.tension_warp, s.tension_weft);
+  };
+  EXPECT_GT(exact.norm(), 0.0);
+  EXPECT_LT(relative_error(central(tensions, 1e-6), exact), 1e-7) << membrane_model_name(model);
+}
+
+TEST(RestDerivative, MembraneTensionsBaraffWitkin) {
+  expect_tension_derivative(MembraneModel::baraff_witkin);
+}
+
+TEST(RestDerivative, MembraneTensionsSaintVenantKirchhoff) {
+  expect_tension_derivative(MembraneModel::saint_venant_kirchhoff);
 }
 
 TEST(RestDerivative, TriangleArea) {

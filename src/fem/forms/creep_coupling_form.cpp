@@ -24,4 +24,22 @@ void CreepCouplingForm::add_hessian(const TriangleView& t, const FormPoint& at,
                response.per_position;
 }
 
+element::Vector9
+CreepCouplingForm::rest_derivative(const TriangleView& t, const FormPoint&,
+                                   const std::array<Eigen::Vector2d, 3>& delta_uv) const {
+  const NonelasticResponse::Answer response =
+      response_->respond(t.index, t.material, t.rest, t.x, true);
+  const ClothMaterial& m = t.material;
+  const Eigen::Vector2d strain_change =
+      response.per_tension * element::membrane_tension_rest_derivative(m.membrane_model, m.membrane,
+                                                                       t.uv, response.strain, t.x,
+                                                                       delta_uv);
+  return element::membrane_rest_derivative(m.membrane_model, m.membrane, t.uv, response.strain, t.x,
+                                           delta_uv) +
+         element::membrane_creep_sensitivity(m.membrane_model, m.membrane, t.rest, response.strain,
+                                             t.x)
+                 .force_per_nonelastic *
+             strain_change;
+}
+
 } // namespace sartor::fem
