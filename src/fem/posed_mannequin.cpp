@@ -6,7 +6,6 @@
 #include <cmath>
 #include <set>
 #include <sstream>
-#include <stdexcept>
 #include <utility>
 
 namespace sartor {
