@@ -171,6 +171,11 @@ ParsedCommandLine parse_command_line(const CommandSpec& spec, const std::string&
     check_case_file(spec, file);
     parsed.petsc_arguments.insert(parsed.petsc_arguments.begin() + 1, {"-options_file_yaml", file});
   }
+  if (!parsed.help && spec.options_from_positionals) {
+    const std::vector<std::string> leading = spec.options_from_positionals(parsed.positionals);
+    parsed.petsc_arguments.insert(parsed.petsc_arguments.begin() + 1, leading.begin(),
+                                  leading.end());
+  }
   return parsed;
 }
 

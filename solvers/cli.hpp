@@ -10,6 +10,7 @@
 
 #include <petscsys.h>
 
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -35,6 +36,11 @@ struct CommandSpec {
   // The first positional argument is a YAML options file (a case), read
   // before the command line so that command-line options override it.
   bool positional_is_options_file = false;
+  // PETSc arguments read before the command line's (which override them),
+  // named by the positional arguments, e.g. {"-options_file", FILE}; none
+  // when empty (`sartor edit DRAPE_DIR`: the drape's petsc_options.txt).
+  std::function<std::vector<std::string>(const std::vector<std::string>& positionals)>
+      options_from_positionals = {};
 };
 
 // The command line of one command, split into what is ours and what PETSc gets.

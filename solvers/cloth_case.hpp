@@ -83,6 +83,9 @@ struct CaseResult {
   double setup_seconds = 0.0; // mesh, material, problem
   double solve_seconds = 0.0; // solve_static or solve_dynamic
   double total_seconds = 0.0; // everything up to the gathered results
+  // The process's CPU time (s) when the solve and its certificate ended,
+  // before any after_statics (an edit's, a wear's).
+  double cpu_at_end = 0.0;
 };
 
 // Collective. Solves the case the options describe, with `extra_refinements`

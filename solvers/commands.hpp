@@ -73,6 +73,9 @@ void make_plot(const std::string& script, const std::string& directory);
 // Rank 0 writes; everybody waits, and learns of a failure.
 bool is_root();
 
+// CPU time of this process (user + system), s.
+double process_cpu_seconds();
+
 // "warning: TEXT" on rank 0's standard error for each (plausibility
 // warnings of the fabric readers).
 void print_warnings(const std::vector<std::string>& warnings);

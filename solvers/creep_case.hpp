@@ -27,6 +27,10 @@ struct CaseCheckpointing {
   // record (JSON text) its checkpoints carry in /state, with the mesh's start
   // (solvers/progressive_drape.cpp); "" for every other run.
   std::string drape_level;
+  // Statics: the state the solve ended in (after the certificate's saddle
+  // escapes), written here whatever the interval; "" writes none (`sartor
+  // drape`'s drape_state.h5, which `sartor edit DRAPE_DIR` resumes from).
+  std::string final_state;
 };
 
 struct CreepRunResult {

@@ -101,11 +101,11 @@ int run_drag(const Invocation& invocation) {
   const garment::BodyAtRest shape(body);
   garment::ClothOnBody cloth(garment, shape, relax_parameters(options));
 
-  const double cpu_started = cpu_seconds();
+  const double cpu_started = process_cpu_seconds();
   nlohmann::json drags = nlohmann::json::array();
   for (const garment::ScriptedDrag& scripted : script.drags)
     drags.push_back(run_drag(cloth, scripted, script.options));
-  const double drag_cpu = cpu_seconds() - cpu_started;
+  const double drag_cpu = process_cpu_seconds() - cpu_started;
 
   const garment::EdgeRatios ratios = garment::edge_length_ratios(cloth.edges(), cloth.positions());
   const double closest = garment::min_body_distance(shape, cloth.positions());

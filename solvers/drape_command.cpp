@@ -5,6 +5,7 @@
 // in continuation stages (fem/statics.hpp); on request in implicit dynamics
 // with kinetic damping and a final static solve.
 
+#include "common/checksum.hpp"
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
@@ -30,6 +31,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <memory>
@@ -719,17 +721,21 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
                        "do not apply");
     attach_edit(options, directory,
                 {constructed.pattern, sewable.mesh.material_ids, sewable.seams, labels},
-                edit->steps, started_cpu, &cloth, edit->run);
+                edit->steps, {edit->drape.directory, edit->drape.recorded_cpu, started_cpu}, &cloth,
+                edit->run);
   }
   // Progressive refinement (solvers/progressive_drape.hpp): coarser levels
   // first when --edge-length allows them; one level is the drape above.
   const DrapeLevel finest{constructed.mesh_options.edge_length, cloth, sewable.mesh.material_ids,
                           sewable.seams, seams_file};
   std::vector<LevelRun> levels;
+  // The drape's final state, at full precision: `sartor edit DIRECTORY` resumes from it.
+  CaseCheckpointing checkpointing = case_checkpointing(options, directory);
+  checkpointing.final_state = directory + "/" + drape_state_file;
   const CaseResult result = drape_progressively(
       options, constructed.construction, constructed.mesh_options, finest,
       drape_level_edge_lengths(options, constructed.construction, constructed.mesh_options),
-      directory, labels, &levels, case_checkpointing(options, directory));
+      directory, labels, &levels, checkpointing);
 
   // 4. What the drape achieved.
   const DrapeMeasures measures = measure_drape(options, result, *constructed.body, weight);
@@ -740,6 +746,8 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
   const std::string verdict = certificate_verdict(options, result);
   nlohmann::json summary = run_metadata(drape, command);
   summary["pattern"] = path;
+  summary["pattern_file"] = std::filesystem::absolute(path).lexically_normal().string();
+  summary["pattern_checksum"] = file_checksum(path);
   summary["fabrics"] = cloth.fabrics;
   summary["construction"] = construction_json(constructed, sewable, crossing_json);
   add_case_summary(result, summary);
@@ -752,6 +760,7 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
        {"drape_setup", result.setup_seconds},
        {"total", total_seconds}},
       levels);
+  summary["drape"]["cpu_s"] = result.cpu_at_end - started_cpu;
   if (edit && edit->run->ran) summary["edit"] = edit->run->summary;
   if (wear->ran) {
     add_wear_summary(*wear, labels, summary);

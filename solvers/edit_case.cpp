@@ -14,16 +14,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <fstream>
 #include <map>
 #include <set>
 
 namespace sartor {
-
-double process_cpu_seconds() {
-  return double(std::clock()) / CLOCKS_PER_SEC;
-}
 
 namespace {
 
@@ -154,8 +149,9 @@ const std::vector<OptionSpec>& edit_option_specs() {
       {"edit-start", "KIND", "auto",
        "the start of each warm re-solve, pushed out of the body: auto (of the three below, the "
        "one of least potential energy), gmls (GMLS over the designs solved so far; the linear "
-       "prediction while there is one), linear (x + S dp from the last design) or unchanged "
-       "(the last drape as it is)"},
+       "prediction while there is one), linear (x + S dp from the last design), unchanged "
+       "(the last drape as it is) or geometric (the thesis' barycentric transfer of the last "
+       "drape onto the edited pattern; not among auto's)"},
       {"edit-anchors", "KIND", "fresh",
        "the friction anchors of each re-solve: fresh (set where the start touches the body) "
        "or kept (the last drape's)"},

@@ -63,26 +63,39 @@ struct EditRun {
   std::vector<std::string> not_converged; // the folders of the edits no re-solve converged
 };
 
+// The file in a drape's output directory holding its final state (a static
+// checkpoint: positions, friction anchors, the contact penalty's scale and
+// the solve's report), which `sartor edit DRAPE_DIR` resumes from.
+inline constexpr const char* drape_state_file = "drape_state.h5";
+
+// Where the drape the edits start from was made, and what it cost: the
+// edits' speed-ups are against its CPU time from scratch.
+struct EditDrapeSource {
+  // `sartor edit DRAPE_DIR`: the directory of the drape resumed, and the CPU
+  // time (s) its summary.json records for the drape from scratch; "" when
+  // this process draped it.
+  std::string directory;
+  double recorded_cpu = 0.0;
+  double started_cpu = 0.0; // the process CPU time (s) when this process's drape began
+};
+
 // Sets cloth->after_statics so that, once the drape converged, the edits of
 // `steps` are predicted, re-solved and written to DIRECTORY/edit_NN (rank 0).
-// `drape_started_cpu` is the process CPU time (s) when the drape began: the
-// drape from scratch is timed up to the edit.
 void attach_edit(const Options& options, const std::string& directory, EditGarment garment,
-                 std::vector<EditStep> steps, double drape_started_cpu, CaseCloth* cloth,
+                 std::vector<EditStep> steps, const EditDrapeSource& drape, CaseCloth* cloth,
                  const std::shared_ptr<EditRun>& run);
 
-// What `sartor edit` asks of the drape: the edits, and where their results go.
+// What `sartor edit` asks of the drape: the edits, where their results go,
+// and the drape resumed (a DRAPE_DIR's; directory "" drapes afresh).
 struct EditRequest {
   std::vector<EditStep> steps;
   std::shared_ptr<EditRun> run = std::make_shared<EditRun>();
+  EditDrapeSource drape;
 };
 
 // `sartor drape` (edit null) and `sartor edit`: constructs and drapes the
 // pattern of the invocation's first argument; with `edit`, the edits follow
 // the converged drape (solvers/drape_command.cpp).
 int drape_pattern(const Invocation& invocation, const EditRequest* edit);
-
-// CPU time of this process (user + system), s.
-double process_cpu_seconds();
 
 } // namespace sartor

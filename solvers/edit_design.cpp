@@ -175,4 +175,25 @@ void write_edit_svg(const std::string& path, const garment::Pattern& pattern,
   out << "</svg>\n";
 }
 
+nlohmann::json edit_outlines_json(const garment::Pattern& pattern,
+                                  const std::vector<std::vector<Eigen::Vector2d>>& before,
+                                  const std::vector<std::vector<Eigen::Vector2d>>& after,
+                                  const std::string& title) {
+  const std::vector<garment::Placement> layout = garment::sheet_layout(pattern, 0.05);
+  const auto placed = [&](std::size_t panel, const std::vector<Eigen::Vector2d>& outline) {
+    nlohmann::json points = nlohmann::json::array();
+    for (const Eigen::Vector2d& q : outline) {
+      const Eigen::Vector2d at = layout[panel].apply(q);
+      points.push_back({at.x(), at.y()});
+    }
+    return points;
+  };
+  nlohmann::json panels = nlohmann::json::array();
+  for (std::size_t panel = 0; panel < before.size(); ++panel)
+    panels.push_back({{"id", pattern.panels[panel].id},
+                      {"before", placed(panel, before[panel])},
+                      {"after", placed(panel, after[panel])}});
+  return {{"title", title}, {"units", "m"}, {"panels", panels}};
+}
+
 } // namespace sartor

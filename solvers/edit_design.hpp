@@ -12,6 +12,8 @@
 #include "mesh/triangle_mesh.hpp"
 #include "solvers/edit_case.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <Eigen/Core>
 
 #include <string>
@@ -61,5 +63,13 @@ void write_edit_svg(const std::string& path, const garment::Pattern& pattern,
                     const std::vector<std::vector<Eigen::Vector2d>>& before,
                     const std::vector<std::vector<Eigen::Vector2d>>& after,
                     const std::string& title);
+
+// The same outlines as data (edit_NN/outlines.json, which
+// postproc/plot_edit.py draws): per panel its id and the outline before
+// and after, each a list of [x, y] points (m) laid out as the pattern sheet.
+nlohmann::json edit_outlines_json(const garment::Pattern& pattern,
+                                  const std::vector<std::vector<Eigen::Vector2d>>& before,
+                                  const std::vector<std::vector<Eigen::Vector2d>>& after,
+                                  const std::string& title);
 
 } // namespace sartor

@@ -10,6 +10,7 @@
 #include "fem/petsc_call.hpp"
 #include "fem/sensitivity.hpp"
 #include "fem/statics.hpp"
+#include "garment/mesh_levels.hpp"
 #include "solvers/certificate_case.hpp"
 #include "solvers/commands.hpp"
 #include "solvers/edit_case.hpp"
@@ -114,7 +115,7 @@ std::vector<std::string> order_starts(const std::map<std::string, Vec>& candidat
   const std::string requested = options.text("edit-start");
   if (requested != "auto" && !candidates.count(requested))
     throw InputError("option --edit-start: unknown start '" + requested +
-                     "' (auto, gmls, linear, unchanged)");
+                     "' (auto, gmls, linear, unchanged, geometric)");
   std::vector<std::pair<double, std::string>> by_energy;
   for (const auto& [kind, candidate] : candidates) {
     SartorPetscCall(VecCopy(candidate, work));
@@ -131,6 +132,20 @@ std::vector<std::string> order_starts(const std::map<std::string, Vec>& candidat
   for (const auto& [energy, kind] : by_energy)
     if (kind != requested) order.push_back(kind);
   return order;
+}
+
+// The kept re-solve: the solver's report and the certificate's verdict.
+nlohmann::json resolve_json(const StaticReport& report, const CertifiedState& certified) {
+  return {{"converged", report.converged},
+          {"reason", report.reason},
+          {"newton_iterations", report.newton_iterations},
+          {"contact_rounds", report.contact_rounds},
+          {"residual_N", report.final_residual_norm},
+          {"sliding_vertices", report.sliding_vertices},
+          {"contact_round_failed", report.contact_round_failed},
+          {"contact_stiffness_scale", report.contact_stiffness_scale},
+          {"certificate", certified.certificate.verdict()},
+          {"certified", certified.certificate.certified()}};
 }
 
 nlohmann::json distance_json(const Distance& d) {
@@ -181,9 +196,9 @@ const Attempt& best_attempt(const std::vector<std::unique_ptr<Attempt>>& attempt
 class EditSession {
 public:
   EditSession(const Options& options, std::string directory, EditGarment garment,
-              std::vector<EditStep> steps, double drape_started_cpu, std::shared_ptr<EditRun> run)
+              std::vector<EditStep> steps, EditDrapeSource drape, std::shared_ptr<EditRun> run)
       : options_(options), directory_(std::move(directory)), garment_(std::move(garment)),
-        steps_(std::move(steps)), drape_started_cpu_(drape_started_cpu), run_(std::move(run)) {}
+        steps_(std::move(steps)), drape_(std::move(drape)), run_(std::move(run)) {}
 
   void edit(ClothProblem& base, const std::vector<ClothMaterial>& materials, Vec x);
 
@@ -192,6 +207,9 @@ private:
   double ensure_slope(Design& design);
   void add_slope(Design& from, const Eigen::VectorXd& dp, ClothProblem& to, Vec into);
   void predict_gmls(const Eigen::VectorXd& query, ClothProblem& to, Vec into, GmlsWeights* used);
+  void predict_geometric(Design& last, const Design& next, Vec into);
+  std::unique_ptr<Design> next_design(Design& last, const Eigen::VectorXd& p,
+                                      const EditDesign& design);
   StaticOptions static_options() const;
   void reset_state(Design& last, ClothProblem& problem);
   std::unique_ptr<Attempt> resolve_from(Design& last, ClothProblem& problem,
@@ -203,7 +221,7 @@ private:
   std::string directory_;
   EditGarment garment_;
   std::vector<EditStep> steps_;
-  double drape_started_cpu_;
+  EditDrapeSource drape_;
   std::shared_ptr<EditRun> run_;
   ProblemFactory factory_;
   std::vector<std::unique_ptr<Design>> designs_;
@@ -284,6 +302,24 @@ void EditSession::predict_gmls(const Eigen::VectorXd& query, ClothProblem& to, V
   SartorPetscCall(VecDestroy(&state));
 }
 
+// The thesis' geometric route (ch. 4, eqs. 4.1-4.2): each vertex, at its
+// edited rest point, takes the barycentric combination of the last drape's
+// positions in the triangle of the last design's panel that holds that
+// point (extrapolated from the nearest one outside the panel:
+// garment::Prolongation, the drape levels' transfer); each side of a seam is
+// carried in its own panel, and the two are then closed at their mean.
+void EditSession::predict_geometric(Design& last, const Design& next, Vec into) {
+  std::vector<Eigen::Vector3d> positions = gathered(*last.problem, last.x);
+  positions.resize(last.mesh->vertex_count());
+  SartorPetscCall(MPI_Bcast(positions.data()->data(), int(3 * positions.size()), MPI_DOUBLE, 0,
+                            last.problem->comm()));
+  TriangleMesh before = *last.mesh, after = *next.mesh;
+  before.material_ids = after.material_ids = garment_.panel_of_triangle;
+  positions = garment::Prolongation(before, after).vertex_field(positions);
+  garment::close_seams(after, garment_.seams, &positions);
+  SartorPetscCall(next.problem->set_solution(positions, into));
+}
+
 // The drape's last stage again: sewn, loaded, with its contact rounds.
 StaticOptions EditSession::static_options() const {
   StaticOptions solve;
@@ -339,11 +375,10 @@ void EditSession::write_state(const std::string& directory, const Design& design
   if (is_root()) write_cloth_results(directory, *design.mesh, positions, strains, garment_.labels);
 }
 
-nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
-                                       const EditDesign& design) {
-  Design& last = *designs_.back();
-  const double slope_cpu = ensure_slope(last);
-  const double predict_started = process_cpu_seconds();
+// The design p on the mesh moved to its rest coordinates, its problem in
+// the last design's state and its solution vector made (not yet filled).
+std::unique_ptr<Design> EditSession::next_design(Design& last, const Eigen::VectorXd& p,
+                                                 const EditDesign& design) {
   auto next = std::make_unique<Design>();
   next->p = p;
   next->owned_mesh = std::make_unique<TriangleMesh>(
@@ -351,11 +386,20 @@ nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
   next->mesh = next->owned_mesh.get();
   next->owned = factory_(last.problem->comm(), *next->mesh, 0.0);
   next->problem = next->owned.get();
+  reset_state(last, *next->problem);
+  SartorPetscCall(next->problem->create_solution(&next->x));
+  return next;
+}
+
+nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
+                                       const EditDesign& design) {
+  Design& last = *designs_.back();
+  const double slope_cpu = ensure_slope(last);
+  const double predict_started = process_cpu_seconds();
+  std::unique_ptr<Design> next = next_design(last, p, design);
   ClothProblem& problem = *next->problem;
-  reset_state(last, problem);
-  SartorPetscCall(problem.create_solution(&next->x));
-  Vec unchanged = nullptr, linear = nullptr, gmls = nullptr;
-  for (Vec* v : {&unchanged, &linear, &gmls})
+  Vec unchanged = nullptr, linear = nullptr, gmls = nullptr, geometric = nullptr;
+  for (Vec* v : {&unchanged, &linear, &gmls, &geometric})
     SartorPetscCall(VecDuplicate(next->x, v));
   SartorPetscCall(transfer_vector(*last.problem, last.x, problem, unchanged));
   SartorPetscCall(VecCopy(unchanged, linear));
@@ -363,10 +407,15 @@ nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
   GmlsWeights used;
   predict_gmls(p, problem, gmls, &used);
   const double predict_cpu = process_cpu_seconds() - predict_started;
+  const double geometric_started = process_cpu_seconds();
+  predict_geometric(last, *next, geometric);
+  const double geometric_cpu = process_cpu_seconds() - geometric_started;
 
   // With one design GMLS is the linear prediction: one of the two is tried.
+  // The geometric route is for comparison: a start only when asked for.
   const std::string requested = options_.text("edit-start");
   std::map<std::string, Vec> candidates{{"linear", linear}, {"unchanged", unchanged}};
+  if (requested == "geometric") candidates["geometric"] = geometric;
   if (designs_.size() > 1 || requested == "gmls") candidates["gmls"] = gmls;
   if (designs_.size() == 1 && requested == "gmls") candidates.erase("linear");
   nlohmann::json start_energy = nlohmann::json::object();
@@ -383,8 +432,6 @@ nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
   SartorPetscCall(VecCopy(chosen.x, next->x));
   problem.restore_anchors(chosen.anchors);
   problem.contact = chosen.contact;
-  const StaticReport& report = chosen.report;
-  const CertifiedState& certified = chosen.certified;
   double solve_cpu = 0.0;
   nlohmann::json tried = nlohmann::json::array();
   for (const auto& attempt : attempts) {
@@ -399,10 +446,14 @@ nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
     make_output_directory(folder);
     write_edit_svg(folder + "/pattern.svg", garment_.pattern, design.outlines(last.p),
                    design.outlines(p), steps_[k].name);
+    write_json(folder + "/outlines.json",
+               edit_outlines_json(garment_.pattern, design.outlines(last.p), design.outlines(p),
+                                  steps_[k].name));
   }
   if (!options_.flag("no-edit-outputs")) {
     write_state(folder + "/linear", *next, linear);
     write_state(folder + "/gmls", *next, gmls);
+    write_state(folder + "/geometric", *next, geometric);
     write_state(folder + "/resolved", *next, next->x);
   }
   const double edit_cpu = slope_cpu + predict_cpu + solve_cpu;
@@ -413,47 +464,41 @@ nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
       {"error_against_resolved",
        {{"unchanged", distance_json(distance(problem, unchanged, next->x))},
         {"linear", distance_json(distance(problem, linear, next->x))},
-        {"gmls", distance_json(distance(problem, gmls, next->x))}}},
+        {"gmls", distance_json(distance(problem, gmls, next->x))},
+        {"geometric", distance_json(distance(problem, geometric, next->x))}}},
       {"gmls", {{"designs", designs_.size()}, {"degree", used.degree}}},
       {"lowest_point_z_m",
        {{"before", lowest_point(problem, unchanged)},
         {"linear", lowest_point(problem, linear)},
         {"gmls", lowest_point(problem, gmls)},
+        {"geometric", lowest_point(problem, geometric)},
         {"resolved", lowest_point(problem, next->x)}}},
       {"start", chosen.start},
       {"start_energy_J", start_energy},
       {"start_pushed_out", {{"vertices", chosen.pushed}, {"deepest_m", chosen.deepest}}},
       {"start_residual_N", chosen.start_residual},
       {"attempts", tried},
-      {"resolve",
-       {{"converged", report.converged},
-        {"reason", report.reason},
-        {"newton_iterations", report.newton_iterations},
-        {"contact_rounds", report.contact_rounds},
-        {"residual_N", report.final_residual_norm},
-        {"sliding_vertices", report.sliding_vertices},
-        {"contact_round_failed", report.contact_round_failed},
-        {"contact_stiffness_scale", report.contact_stiffness_scale},
-        {"certificate", certified.certificate.verdict()},
-        {"certified", certified.certificate.certified()}}},
+      {"resolve", resolve_json(chosen.report, chosen.certified)},
       {"sensitivity_stabilised", last.slope->stabilised()},
       {"cpu_s",
        {{"sensitivity_factorisation", slope_cpu},
         {"prediction", predict_cpu},
+        {"geometric_prediction", geometric_cpu},
         {"resolve", solve_cpu},
         {"edit_total", edit_cpu},
         {"drape_from_scratch", scratch_cpu_}}},
       {"speedup",
        {{"resolve", solve_cpu > 0.0 ? scratch_cpu_ / solve_cpu : 0.0},
         {"edit_total", edit_cpu > 0.0 ? scratch_cpu_ / edit_cpu : 0.0}}}};
-  for (Vec* v : {&unchanged, &linear, &gmls})
+  for (Vec* v : {&unchanged, &linear, &gmls, &geometric})
     SartorPetscCall(VecDestroy(v));
   designs_.push_back(std::move(next));
   return step;
 }
 
 void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& materials, Vec x) {
-  scratch_cpu_ = process_cpu_seconds() - drape_started_cpu_;
+  scratch_cpu_ =
+      drape_.directory.empty() ? process_cpu_seconds() - drape_.started_cpu : drape_.recorded_cpu;
   if (garment_.panel_of_triangle.size() != base.mesh().triangle_count())
     throw std::logic_error("sartor edit: the drape's mesh is not the constructed garment's");
   factory_ = factory(base, materials);
@@ -489,12 +534,14 @@ void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& mat
     SartorPetscCall(PetscPrintf(
         base.comm(),
         "sartor edit: %s ('%s'): lowest point %+.1f mm; predictions off by (max) linear %.2f "
-        "mm, GMLS %.2f mm, unchanged %.2f mm; re-solve from %s: %s, %d Newton iterations, "
+        "mm, GMLS %.2f mm, geometric %.2f mm, unchanged %.2f mm; re-solve from %s: %s, %d "
+        "Newton iterations, "
         "certificate: %s; CPU s: re-solve %.2f, edit %.2f, drape from scratch %.2f\n",
         step["folder"].get<std::string>().c_str(), steps_[k].name.c_str(),
         1e3 * (step["lowest_point_z_m"]["resolved"].get<double>() -
                step["lowest_point_z_m"]["before"].get<double>()),
         1e3 * error["linear"]["max_m"].get<double>(), 1e3 * error["gmls"]["max_m"].get<double>(),
+        1e3 * error["geometric"]["max_m"].get<double>(),
         1e3 * error["unchanged"]["max_m"].get<double>(), from.c_str(),
         step["resolve"]["converged"].get<bool>() ? "converged" : "NOT converged",
         int(step["resolve"]["newton_iterations"].get<long>()),
@@ -509,6 +556,7 @@ void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& mat
   run_->all_certified = all_certified;
   run_->summary = {{"steps", steps},
                    {"drape_from_scratch_cpu_s", scratch_cpu_},
+                   {"drape_resumed_from", drape_.directory},
                    {"start", options_.text("edit-start")},
                    {"gmls_degree", int(options_.positive_real("gmls-degree"))}};
 }
@@ -516,10 +564,10 @@ void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& mat
 } // namespace
 
 void attach_edit(const Options& options, const std::string& directory, EditGarment garment,
-                 std::vector<EditStep> steps, double drape_started_cpu, CaseCloth* cloth,
+                 std::vector<EditStep> steps, const EditDrapeSource& drape, CaseCloth* cloth,
                  const std::shared_ptr<EditRun>& run) {
   auto session = std::make_shared<EditSession>(options, directory, std::move(garment),
-                                               std::move(steps), drape_started_cpu, run);
+                                               std::move(steps), drape, run);
   cloth->after_statics = [session](ClothProblem& problem,
                                    const std::vector<ClothMaterial>& materials,
                                    const std::vector<SeamSpring>&, Vec x,

@@ -1119,7 +1119,10 @@ CaseResult solve_case(const Options& options, int extra_refinements,
     result.converged =
         result.report.converged && !(result.certified && result.certified->certificate.saddle());
     result.solve_seconds = result.report.solve_seconds;
+    if (!checkpointing.final_state.empty())
+      SartorPetscCall(write_final_static_state(problem, x, checkpointing, result.report));
   }
+  result.cpu_at_end = process_cpu_seconds();
   result.load_factor = problem.load_factor;
 
   SartorPetscCall(problem.energy(x, &result.energy));
@@ -1331,8 +1334,11 @@ void write_case_results(const std::string& directory, const CaseResult& result,
 // PETSc lists one option a line, `-name value`, but reads a file back word by
 // word: a value with spaces (--body "mannequin mu=0.3") is quoted so that
 // `-options_file petsc_options.txt` re-runs the job. The command's own
-// defaults go in before the table's last line.
-std::string quote_option_values(const std::string& path, const Options& options) {
+// defaults go in before the table's last line; -output names the directory
+// written (which a command may have chosen in place of the database's:
+// `sartor edit DRAPE_DIR` does not write into the drape's).
+std::string echoed_options(const std::string& path, const std::string& directory,
+                           const Options& options) {
   std::ifstream lines(path);
   std::vector<std::string> table;
   for (std::string line; std::getline(lines, line);)
@@ -1343,6 +1349,7 @@ std::string quote_option_values(const std::string& path, const Options& options)
     end = table.insert(end, key + " " + value) + 1;
   std::string quoted;
   for (std::string line : table) {
+    if (line.rfind("-output ", 0) == 0) line = "-output " + directory;
     const std::size_t space = line.find(' ');
     if (line.rfind('-', 0) == 0 && space != std::string::npos &&
         line.find_first_of(" \t", space + 1) != std::string::npos) {
@@ -1359,7 +1366,7 @@ void write_petsc_options(const std::string& directory, const Options& options) {
   SartorPetscCall(PetscViewerASCIIOpen(PETSC_COMM_WORLD, path.c_str(), &viewer));
   SartorPetscCall(PetscOptionsView(nullptr, viewer));
   SartorPetscCall(PetscViewerDestroy(&viewer));
-  if (is_root()) write_file_atomically(path, quote_option_values(path, options));
+  if (is_root()) write_file_atomically(path, echoed_options(path, directory, options));
 }
 
 CaseStepObserver series_writer(const std::string& directory, const ClothOutputLabels& labels,

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <ctime>
 #include <spawn.h>
 #include <sstream>
 #include <stdexcept>
@@ -14,6 +15,10 @@
 extern char** environ;
 
 namespace sartor {
+
+double process_cpu_seconds() {
+  return double(std::clock()) / CLOCKS_PER_SEC;
+}
 
 void print_warnings(const std::vector<std::string>& warnings) {
   for (const std::string& warning : warnings)

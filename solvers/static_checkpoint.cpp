@@ -166,4 +166,17 @@ static_checkpoint_writer(ClothProblem& problem, const CaseCheckpointing& checkpo
   };
 }
 
+PetscErrorCode write_final_static_state(ClothProblem& problem, Vec x,
+                                        const CaseCheckpointing& checkpointing,
+                                        const StaticReport& report) {
+  PetscFunctionBeginUser;
+  CaseCheckpointing final_state = checkpointing;
+  final_state.file = checkpointing.final_state;
+  // Not the solve's last checkpoint (a wear's /before): that stays the solver's.
+  long written = 0;
+  std::shared_ptr<const RunCheckpoint> last;
+  PetscCall(static_checkpoint_writer(problem, final_state, &written, &last)(x, report));
+  PetscFunctionReturn(0);
+}
+
 } // namespace sartor

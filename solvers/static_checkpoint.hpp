@@ -35,4 +35,11 @@ std::function<PetscErrorCode(Vec, const StaticReport&)>
 static_checkpoint_writer(ClothProblem& problem, const CaseCheckpointing& checkpointing,
                          long* written, std::shared_ptr<const RunCheckpoint>* last);
 
+// Collective. Writes the state x a static solve ended in, with its report,
+// to checkpointing.final_state (a checkpoint a restart resumes from at the
+// end of the solve).
+PetscErrorCode write_final_static_state(ClothProblem& problem, Vec x,
+                                        const CaseCheckpointing& checkpointing,
+                                        const StaticReport& report);
+
 } // namespace sartor

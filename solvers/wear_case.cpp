@@ -14,7 +14,6 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <ctime>
 #include <map>
 #include <optional>
 #include <set>
@@ -61,10 +60,6 @@ bool wear_requested(const Options& options) {
 }
 
 namespace {
-
-double process_cpu_seconds() {
-  return double(std::clock()) / CLOCKS_PER_SEC;
-}
 
 // Per fabric of the cloth: its creep parameters per direction, or
 // --creep-parameters for every fabric and direction.

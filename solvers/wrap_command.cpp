@@ -252,11 +252,11 @@ int run_wrap(const Invocation& invocation) {
     throw InputError(marks_path + ": pins: pushpins limit a rewrap only: add --rewrap GARMENT.obj");
   }
 
-  const double cpu_started = cpu_seconds();
+  const double cpu_started = process_cpu_seconds();
   const auto wall_started = std::chrono::steady_clock::now();
   const garment::WrapResult result =
       garment::wrap(sewn, pattern, marks.pairs, shape, wrap_options, rewrap ? &*rewrap : nullptr);
-  const double wrap_cpu = cpu_seconds() - cpu_started;
+  const double wrap_cpu = process_cpu_seconds() - cpu_started;
   const double wrap_wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_started).count();
 

@@ -6,7 +6,6 @@
 #include "common/output.hpp"
 
 #include <cmath>
-#include <ctime>
 #include <sstream>
 
 namespace sartor {
@@ -63,10 +62,6 @@ void write_body_samples(const std::string& path, const contact::Shape& body,
         out << query.closest.x() << "," << query.closest.y() << "," << query.closest.z() << "\n";
       }
   write_file_atomically(path, out.str());
-}
-
-double cpu_seconds() {
-  return double(std::clock()) / CLOCKS_PER_SEC;
 }
 
 } // namespace sartor

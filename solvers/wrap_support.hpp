@@ -23,7 +23,4 @@ garment::RelaxParameters relax_parameters(const Options& options);
 void write_body_samples(const std::string& path, const contact::Shape& body,
                         const std::vector<Eigen::Vector3d>& cloth, double spacing);
 
-// CPU time of the process (user + system), s.
-double cpu_seconds();
-
 } // namespace sartor

@@ -1,5 +1,6 @@
 #include "fem/checkpoint.hpp"
 
+#include "common/checksum.hpp"
 #include "common/error.hpp"
 #include "fem/h5_handle.hpp"
 
@@ -19,30 +20,6 @@ namespace sartor {
 namespace {
 
 constexpr const char* format_tag = "sartor-checkpoint 3";
-
-// FNV-1a over bytes: each byte is xor-ed into the state, which is then
-// multiplied by an odd number (a bijection modulo 2^64), so a change of any
-// one byte, a flipped bit included, always changes the sum.
-class Checksum {
-public:
-  void add(const void* data, std::size_t size) {
-    const auto* bytes = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < size; ++i) {
-      state_ ^= bytes[i];
-      state_ *= 0x100000001b3ULL;
-    }
-  }
-  void add(double value) { add(&value, sizeof value); }
-  void add(const std::vector<double>& values) {
-    const std::uint64_t count = values.size();
-    add(&count, sizeof count);
-    add(values.data(), values.size() * sizeof(double));
-  }
-  std::uint64_t value() const { return state_; }
-
-private:
-  std::uint64_t state_ = 0xcbf29ce484222325ULL;
-};
 
 void write_set(hid_t file, const char* name, hid_t type, const void* data,
                const std::vector<hsize_t>& dims, const std::string& path) {
