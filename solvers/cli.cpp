@@ -14,14 +14,14 @@
 
 namespace sartor {
 
-namespace {
-
 std::string database_key(const std::string& name) {
   std::string key = "-" + name;
   std::replace(key.begin(), key.end(), '-', '_');
   key[0] = '-';
   return key;
 }
+
+namespace {
 
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);

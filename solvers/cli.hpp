@@ -43,6 +43,10 @@ struct CommandSpec {
       options_from_positionals = {};
 };
 
+// The options database's key of option `name`: "-" with its dashes as
+// underscores ("bending-model" is "-bending_model").
+std::string database_key(const std::string& name);
+
 // The command line of one command, split into what is ours and what PETSc gets.
 struct ParsedCommandLine {
   std::vector<std::string> positionals;

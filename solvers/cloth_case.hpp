@@ -162,4 +162,8 @@ CaseCheckpointing case_checkpointing(const Options& options, const std::string& 
 // options database and the defaults the command gave `options`.
 void write_petsc_options(const std::string& directory, const Options& options);
 
+// Collective: rank 0's `positions` (gathered, `count` of them) on every rank.
+std::vector<Eigen::Vector3d> broadcast_positions(std::vector<Eigen::Vector3d> positions,
+                                                 std::size_t count);
+
 } // namespace sartor

@@ -26,8 +26,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The options a drape's petsc_options.txt gives: database key without its
-// dash ("bending_model") to value (quotes removed; "" for a flag).
+// The options a drape's petsc_options.txt gives: database key
+// ("-bending_model") to value (quotes removed; "" for a flag).
 std::map<std::string, std::string> read_echoed_options(const std::string& path) {
   std::ifstream file(path);
   if (!file) throw InputError(path + ": cannot open the drape's options");
@@ -38,15 +38,9 @@ std::map<std::string, std::string> read_echoed_options(const std::string& path) 
     std::string value = space == std::string::npos ? "" : line.substr(space + 1);
     if (value.size() >= 2 && value.front() == '"' && value.back() == '"')
       value = value.substr(1, value.size() - 2);
-    options[line.substr(1, space == std::string::npos ? std::string::npos : space - 1)] = value;
+    options[line.substr(0, space)] = value;
   }
   return options;
-}
-
-std::string database_name(std::string name) {
-  for (char& c : name)
-    if (c == '-') c = '_';
-  return name;
 }
 
 // Two option values that say the same: equal texts, or equal numbers.
@@ -154,7 +148,7 @@ OptionValues option_values(const OptionSpec& option, const std::string* echoed,
     values = {drape ? "true" : "false", edit ? "true" : "false", drape != edit};
   } else {
     values.drape = echoed ? *echoed : option.fallback;
-    values.edit = options.is_set(option.name) ? options.text(option.name) : option.fallback;
+    values.edit = options.text(option.name);
     values.differ = !same_value(values.drape, values.edit);
   }
   return values;
@@ -174,7 +168,7 @@ std::string resume_drape_directory(const DrapeDirectory& drape,
   const auto& given = command_line.petsc_arguments;
   const bool output_given = std::find(given.begin(), given.end(), "-output") != given.end();
   for (const OptionSpec& option : drape_command().options) {
-    const auto found = drape.options.find(database_name(option.name));
+    const auto found = drape.options.find(database_key(option.name));
     const std::string* echoed = found == drape.options.end() ? nullptr : &found->second;
     if (option.name == "output") {
       // The drape's own output is not where its edits go.

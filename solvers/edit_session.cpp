@@ -309,10 +309,8 @@ void EditSession::predict_gmls(const Eigen::VectorXd& query, ClothProblem& to, V
 // garment::Prolongation, the drape levels' transfer); each side of a seam is
 // carried in its own panel, and the two are then closed at their mean.
 void EditSession::predict_geometric(Design& last, const Design& next, Vec into) {
-  std::vector<Eigen::Vector3d> positions = gathered(*last.problem, last.x);
-  positions.resize(last.mesh->vertex_count());
-  SartorPetscCall(MPI_Bcast(positions.data()->data(), int(3 * positions.size()), MPI_DOUBLE, 0,
-                            last.problem->comm()));
+  std::vector<Eigen::Vector3d> positions =
+      broadcast_positions(gathered(*last.problem, last.x), last.mesh->vertex_count());
   TriangleMesh before = *last.mesh, after = *next.mesh;
   before.material_ids = after.material_ids = garment_.panel_of_triangle;
   positions = garment::Prolongation(before, after).vertex_field(positions);

@@ -173,16 +173,6 @@ double lift_out_of_bodies(const Options& options, const TriangleMesh& mesh,
   return deepest;
 }
 
-// Rank 0's positions on every rank.
-std::vector<Eigen::Vector3d> broadcast_positions(std::vector<Eigen::Vector3d> positions,
-                                                 std::size_t count) {
-  positions.resize(count);
-  static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double), "packed vectors");
-  SartorPetscCall(
-      MPI_Bcast(positions.data()->data(), int(3 * count), MPI_DOUBLE, 0, PETSC_COMM_WORLD));
-  return positions;
-}
-
 void record(const CaseResult& result, LevelRun* run) {
   run->converged = result.converged;
   run->solve_seconds = result.solve_seconds;

@@ -1360,6 +1360,15 @@ std::string echoed_options(const std::string& path, const std::string& directory
   return quoted;
 }
 
+std::vector<Eigen::Vector3d> broadcast_positions(std::vector<Eigen::Vector3d> positions,
+                                                 std::size_t count) {
+  positions.resize(count);
+  static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double), "packed vectors");
+  SartorPetscCall(
+      MPI_Bcast(positions.data()->data(), int(3 * count), MPI_DOUBLE, 0, PETSC_COMM_WORLD));
+  return positions;
+}
+
 void write_petsc_options(const std::string& directory, const Options& options) {
   const std::string path = directory + "/petsc_options.txt";
   PetscViewer viewer = nullptr;
