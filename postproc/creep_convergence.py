@@ -21,7 +21,7 @@ and writes to OUTDIR:
 Needs numpy (and matplotlib for the plot); run it with /usr/bin/python3.
 
 Example:
-    postproc/creep_convergence.py --sartor build/solvers/sartor \\
+    postproc/creep_convergence.py --sartor build/bin/sartor \\
         --case cases/creep/relaxation.yaml --steps 2,1,0.5,0.25,0.125 out/creep_convergence
 """
 
@@ -113,7 +113,7 @@ def plot(study, path):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("output", help="folder for the runs and the study's files")
-    parser.add_argument("--sartor", default="build/solvers/sartor", help="the sartor binary")
+    parser.add_argument("--sartor", default="build/bin/sartor", help="the sartor binary")
     parser.add_argument("--case", default="cases/creep/relaxation.yaml", help="the case file")
     parser.add_argument("--steps", default="2,1,0.5,0.25,0.125", help="time steps, s")
     parser.add_argument("--reference-step", type=float, default=0.0078125,

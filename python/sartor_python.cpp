@@ -1,17 +1,17 @@
 // sartor._sartor: `sartor run` and `sartor drape` in the Python process. The
-// commands' own run functions (solvers/run_command.cpp, drape_command.cpp)
+// commands' own run functions (app/run_command.cpp, drape_command.cpp)
 // run with the options a Python call gives, as the command line would give
 // them; the solved case comes back through Invocation::keep_result and
 // becomes numpy arrays and a dict, with no file read back. PETSc (and MPI)
 // start once, at the first call, and end when the interpreter exits.
 // docs/python.md describes the interface; python/sartor/__init__.py wraps it.
 
+#include "app/cloth_case.hpp"
+#include "app/commands.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
 #include "fem/cloth_output.hpp"
 #include "fem/petsc_call.hpp"
-#include "solvers/cloth_case.hpp"
-#include "solvers/commands.hpp"
 
 #include <nlohmann/json.hpp>
 #include <petscsys.h>

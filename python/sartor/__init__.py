@@ -86,7 +86,7 @@ def executable():
     """The `sartor` executable: $SARTOR_EXE, else the build of this checkout, else PATH."""
     if os.environ.get("SARTOR_EXE"):
         return os.environ["SARTOR_EXE"]
-    built = os.path.join(_build_dir(), "solvers", "sartor")
+    built = os.path.join(_build_dir(), "bin", "sartor")
     if os.access(built, os.X_OK):
         return os.path.normpath(built)
     found = shutil.which("sartor")

@@ -81,27 +81,27 @@ struct ContactSettings {
   double stiffness = 0.0;        // N/m per vertex; 0: automatic, see contact::penalty_stiffness
   double stiffness_factor = 1.0; // the automatic rule's factor
   // Multiplies the stiffness above: statics raise it where the cloth ends
-  // too deep in the offset layer (fem/statics.hpp, adaptive penalty).
+  // too deep in the offset layer (solvers/statics.hpp, adaptive penalty).
   double stiffness_scale = 1.0;
   // PSD-project each vertex's contact Hessian (its curvature term
   // -k (offset - d) H_d is negative on convex bodies).
   bool project_hessian = false;
   // Friction anchor springs bounded by Coulomb's cone (contact::anchor_spring):
   // a vertex slides within a solve. The static minimiser's contact rounds
-  // turn it on (fem/statics.hpp), and a wear whose bodies move keeps it on
+  // turn it on (solvers/statics.hpp), and a wear whose bodies move keeps it on
   // (CreepOptions::follow_bodies); plain springs otherwise, whose anchors
   // slide between solves only.
   bool bounded_friction = false;
   // The anchor springs in the body's tangent plane at the vertex
   // (contact::surface_anchor_spring) instead of the plane frozen at the
   // anchor, and anchors placed at the vertex's level: the wear turns it on
-  // (fem/wear.hpp), where cloth slides over a bending knee and the frozen
+  // (solvers/wear.hpp), where cloth slides over a bending knee and the frozen
   // plane's force turned at every update.
   bool friction_plane_at_vertex = false;
   // m: sample points on every edge longer than this, no further apart than
   // it, carry the penalty too (fem/cloth_edge_contact.cpp), so that edges do
   // not cut through curved bodies between vertices; 0: vertices only
-  // (static drapes: 0.015, solvers/drape_command.cpp).
+  // (static drapes: 0.015, app/drape_command.cpp).
   double edge_sample_spacing = 0.0;
 };
 

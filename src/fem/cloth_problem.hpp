@@ -193,7 +193,7 @@ public:
   // a body; the bodies have no friction meanwhile, so that the panels slide
   // into place (docs/seams.md). Set both before set_seams; sewing_tension 0
   // (or statics) sews with the springs' own stiffness throughout.
-  // Statics sew by continuation instead (fem/statics.hpp): `sewing_stage`
+  // Statics sew by continuation instead (solvers/statics.hpp): `sewing_stage`
   // is the progress of the stage being solved, 0 to 1; below 1 the bodies
   // have no friction.
   double sewing_tension = 0.0;
@@ -227,7 +227,7 @@ public:
   // the change of the residual when the material coordinates move by
   // `change` (per mesh triangle corner), at fixed positions, summed from
   // the enabled forms' exact derivatives (fem/form.hpp). Fails (PETSc error
-  // PETSC_ERR_SUP) when an enabled form has none: fem/sensitivity.hpp
+  // PETSC_ERR_SUP) when an enabled form has none: solvers/sensitivity.hpp
   // differentiates rebuilt problems instead.
   PetscErrorCode rest_derivative(Vec x, const RestChange& change, Vec derivative);
   // Whether every enabled form has a rest derivative (in the problem's
@@ -244,7 +244,7 @@ public:
   PetscErrorCode jacobian(Vec x, Mat J);
   // The Jacobian without the PSD projections the materials and contact ask
   // for: the true Hessian, whose inertia certifies stability
-  // (fem/certificate.hpp), and which the static minimiser tries near a
+  // (solvers/certificate.hpp), and which the static minimiser tries near a
   // solution, where the projected one converges only linearly.
   bool exact_hessian = false;
   bool projects_hessians() const;

@@ -2,10 +2,10 @@
 // thesis' size (86,400 samples: 2 h at 12 Hz). They measure; they never fail.
 // Run: ./dev bench  (or build/tests/bench/sartor-bench --benchmark_filter=Fit)
 
-#include "fit/creep_fit.hpp"
 #include "material/creep_law.hpp"
 #include "material/creep_recovery_model.hpp"
 #include "material/strip_creep.hpp"
+#include "solvers/creep_fit.hpp"
 
 #include <benchmark/benchmark.h>
 #include <petscsys.h>

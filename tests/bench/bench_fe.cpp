@@ -33,9 +33,9 @@
 
 #include "fem/cloth_problem.hpp"
 #include "fem/petsc_options.hpp"
-#include "fem/statics.hpp"
 #include "material/tension_curve.hpp"
 #include "mesh/generators.hpp"
+#include "solvers/statics.hpp"
 
 #include <nlohmann/json.hpp>
 #include <petscsys.h>

@@ -14,11 +14,11 @@
 // (times are CPU seconds of this process: run it alone on one rank).
 
 #include "contact/analytic_shapes.hpp"
-#include "fem/sensitivity.hpp"
-#include "fem/statics.hpp"
 #include "garment/pattern_edit.hpp"
 #include "material/tension_curve.hpp"
 #include "mesh/generators.hpp"
+#include "solvers/sensitivity.hpp"
+#include "solvers/statics.hpp"
 
 #include <petscsys.h>
 

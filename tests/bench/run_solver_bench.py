@@ -54,7 +54,7 @@ def parse_arguments():
     parser.add_argument("--only", default="",
                         help="run only rows whose 'series,size' matches this regular expression")
     parser.add_argument("--sartor", default=os.path.join(
-        os.environ.get("SARTOR_BUILD_DIR", os.path.join(ROOT, "build")), "solvers", "sartor"),
+        os.environ.get("SARTOR_BUILD_DIR", os.path.join(ROOT, "build")), "bin", "sartor"),
                         help="the sartor executable (default: %(default)s)")
     parser.add_argument("--mpiexec", default="mpiexec", help="MPI launcher (default: %(default)s)")
     parser.add_argument("--list", action="store_true", help="print the runs and exit")

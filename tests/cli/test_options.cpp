@@ -2,7 +2,7 @@
 // live in its copy of the options, over or under what the user gave; the
 // options database keeps what the user gave.
 
-#include "solvers/cli.hpp"
+#include "app/cli.hpp"
 
 #include <gtest/gtest.h>
 #include <petscsys.h>

@@ -7,9 +7,9 @@
 #include "contact/analytic_shapes.hpp"
 #include "contact/edge_penalty.hpp"
 #include "fem/cloth_problem.hpp"
-#include "fem/dynamics.hpp"
-#include "fem/statics.hpp"
 #include "mesh/generators.hpp"
+#include "solvers/dynamics.hpp"
+#include "solvers/statics.hpp"
 #include "tests/fem/jacobian_check.hpp"
 
 #include <gtest/gtest.h>

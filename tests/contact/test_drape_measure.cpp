@@ -1,9 +1,9 @@
-// The Cusick measures of solvers/contact_case.hpp on shapes made here: a
+// The Cusick measures of app/contact_case.hpp on shapes made here: a
 // flat disc whose overhang is folded into N nodes by a radial shrink that
 // varies as cos(N theta), so the rim's projected radius has N maxima.
 
+#include "app/contact_case.hpp"
 #include "mesh/generators.hpp"
-#include "solvers/contact_case.hpp"
 
 #include <gtest/gtest.h>
 

@@ -6,13 +6,13 @@
 #include "common/error.hpp"
 #include "fem/checkpoint.hpp"
 #include "fem/cloth_problem.hpp"
-#include "fem/creep_analysis.hpp"
 #include "fem/creep_coupling.hpp"
-#include "fem/load_history.hpp"
-#include "fem/sensitivity.hpp"
 #include "material/fabric.hpp"
 #include "material/strip_creep.hpp"
 #include "mesh/generators.hpp"
+#include "solvers/creep_analysis.hpp"
+#include "solvers/load_history.hpp"
+#include "solvers/sensitivity.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,13 +1,13 @@
-// The certificate of a static equilibrium (fem/certificate.hpp): each check
+// The certificate of a static equilibrium (solvers/certificate.hpp): each check
 // against a reference computed here (weights, depths, crossings from the
 // geometry; the buckling of a strip from Euler's load; the modes of a
 // stretched membrane and of a free sheet).
 
 #include "contact/analytic_shapes.hpp"
 #include "contact/body.hpp"
-#include "fem/certificate.hpp"
-#include "fem/statics.hpp"
 #include "mesh/generators.hpp"
+#include "solvers/certificate.hpp"
+#include "solvers/statics.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

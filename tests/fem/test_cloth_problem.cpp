@@ -4,8 +4,8 @@
 
 #include "common/error.hpp"
 #include "fem/cloth_problem.hpp"
-#include "fem/statics.hpp"
 #include "mesh/generators.hpp"
+#include "solvers/statics.hpp"
 #include "tests/fem/jacobian_check.hpp"
 
 #include <gtest/gtest.h>

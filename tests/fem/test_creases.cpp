@@ -3,11 +3,11 @@
 // here from the solved positions.
 
 #include "fem/cloth_problem.hpp"
-#include "fem/statics.hpp"
 #include "garment/pattern.hpp"
 #include "garment/prefold.hpp"
 #include "material/tension_curve.hpp"
 #include "mesh/panel_mesher.hpp"
+#include "solvers/statics.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

@@ -6,10 +6,10 @@
 
 #include "common/error.hpp"
 #include "fem/cloth_problem.hpp"
-#include "fem/dynamics.hpp"
 #include "fem/pin_motion.hpp"
-#include "fem/statics.hpp"
 #include "mesh/generators.hpp"
+#include "solvers/dynamics.hpp"
+#include "solvers/statics.hpp"
 
 #include <gtest/gtest.h>
 

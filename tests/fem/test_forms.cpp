@@ -10,10 +10,10 @@
 #include "contact/analytic_shapes.hpp"
 #include "fem/cloth_problem.hpp"
 #include "fem/forms/inertia_form.hpp"
-#include "fem/sensitivity.hpp"
-#include "fem/statics.hpp"
 #include "mesh/generators.hpp"
 #include "mesh/panels.hpp"
+#include "solvers/sensitivity.hpp"
+#include "solvers/statics.hpp"
 #include "tests/fem/jacobian_check.hpp"
 #include "tests/fem/spring_to_point_form.hpp"
 

@@ -4,7 +4,7 @@
 // thesis' constant-force creep test (§5.2.2); and the check that a fit found
 // the generating parameters.
 
-#include "fit/creep_fit.hpp"
+#include "solvers/creep_fit.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,9 +5,9 @@
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
-#include "fit/creep_fit.hpp"
 #include "material/creep_recovery_model.hpp"
 #include "material/strip_creep.hpp"
+#include "solvers/creep_fit.hpp"
 #include "tests/support/scratch_folder.hpp"
 
 #include <gtest/gtest.h>

@@ -5,8 +5,8 @@
 // eqs. 5.7, 5.8) integrated here by classical Runge-Kutta with small steps,
 // independently of the exact stepping under test.
 
-#include "fit/creep_fit.hpp"
 #include "fit_test_data.hpp"
+#include "solvers/creep_fit.hpp"
 
 #include <gtest/gtest.h>
 

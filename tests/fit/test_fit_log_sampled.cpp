@@ -5,8 +5,8 @@
 // (thesis eqs. 5.7-5.8, docs/theory.md §4), written out here independently of
 // the code under test.
 
-#include "fit/creep_fit.hpp"
 #include "fit_test_data.hpp"
+#include "solvers/creep_fit.hpp"
 
 #include <gtest/gtest.h>
 

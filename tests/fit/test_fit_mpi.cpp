@@ -1,7 +1,7 @@
 // Run with mpiexec -n 2: the residual and Jacobian rows of the fit are spread
 // over the ranks; the result must equal the one-rank fit to solver tolerance.
 
-#include "fit/creep_fit.hpp"
+#include "solvers/creep_fit.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
-// How a drape ended (solvers/drape_outcome.hpp), on made-up garments around
+// How a drape ended (app/drape_outcome.hpp), on made-up garments around
 // a sphere of radius 0.3 m centred 1 m above a floor at z = 0: the distance
 // to it is |p - c| - 0.3, and the heights are chosen so that each limit is
 // crossed by a wide margin or not at all.
 
-#include "solvers/drape_outcome.hpp"
+#include "app/drape_outcome.hpp"
 
 #include <gtest/gtest.h>
 

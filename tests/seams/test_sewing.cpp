@@ -5,9 +5,9 @@
 // seam couplings, and the result must not depend on the number of ranks.
 
 #include "fem/cloth_problem.hpp"
-#include "fem/statics.hpp"
 #include "mesh/merge.hpp"
 #include "mesh/panels.hpp"
+#include "solvers/statics.hpp"
 #include "tests/fem/jacobian_check.hpp"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Design sensitivity (fem/sensitivity.hpp) against finite differences of
+// Design sensitivity (solvers/sensitivity.hpp) against finite differences of
 // re-solved equilibria: dx = S dX from one linear solve must match
 // (x(X + e dX) - x(X - e dX)) / (2 e), each equilibrium solved from the
 // previous one and polished by Newton's method on the exact tangent to
@@ -13,12 +13,12 @@
 #include "common/gmls.hpp"
 #include "contact/analytic_shapes.hpp"
 #include "element/rest_derivative.hpp"
-#include "fem/sensitivity.hpp"
-#include "fem/statics.hpp"
 #include "garment/pattern_edit.hpp"
 #include "mesh/generators.hpp"
 #include "mesh/panels.hpp"
 #include "mesh/seams.hpp"
+#include "solvers/sensitivity.hpp"
+#include "solvers/statics.hpp"
 
 #include <gtest/gtest.h>
 #include <petscksp.h>

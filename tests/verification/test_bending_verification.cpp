@@ -8,10 +8,10 @@
 // of Sze, Liu & Lo (no closed form: their converged values).
 
 #include "fem/cloth_problem.hpp"
-#include "fem/statics.hpp"
 #include "garment/pattern.hpp"
 #include "mesh/generators.hpp"
 #include "mesh/panel_mesher.hpp"
+#include "solvers/statics.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

@@ -14,9 +14,9 @@
 // command line would fill it (case file first, then the overrides).
 
 #include "analysis/hencky.hpp"
+#include "app/cloth_case.hpp"
+#include "app/commands.hpp"
 #include "fem/petsc_call.hpp"
-#include "solvers/cloth_case.hpp"
-#include "solvers/commands.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

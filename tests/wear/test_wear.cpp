@@ -1,4 +1,4 @@
-// Wear and take-off (fem/wear.hpp): a square sheet held in a frame (its
+// Wear and take-off (solvers/wear.hpp): a square sheet held in a frame (its
 // border), pushed up 2 cm by a ball (a knee) over the first 5 s and held
 // there, then freed (the ball removed) and recovering. The creep law says
 // what the bagging must do, reasoned here without the code under test:
@@ -16,9 +16,9 @@
 #include "common/error.hpp"
 #include "contact/analytic_shapes.hpp"
 #include "contact/body.hpp"
-#include "fem/posed_mannequin.hpp"
-#include "fem/wear.hpp"
 #include "mesh/generators.hpp"
+#include "solvers/posed_mannequin.hpp"
+#include "solvers/wear.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 #pragma once
 // The terms a time step adds to the cloth's potential, both quadratic in the
-// lumped masses M (fem/incremental_system.hpp):
+// lumped masses M (solvers/incremental_system.hpp):
 //   (a/2) |x - x_pred|^2_M   inertia: backward Euler's a = 1/h^2 about
 //                            x_pred = x_n + h v_n; pseudo-transient
 //                            continuation's 1/dt^2 about the last state;

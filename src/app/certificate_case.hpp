@@ -1,0 +1,32 @@
+#pragma once
+// The certificate of a case's final state (solvers/certificate.hpp) and, in
+// statics, the escape from a saddle: while the certificate finds directions
+// of descent, push the state along the lowest mode (the side that lowers
+// the energy) and solve again (docs/certificate.md).
+
+#include "app/cli.hpp"
+#include "solvers/certificate.hpp"
+#include "solvers/statics.hpp"
+
+#include <petscvec.h>
+
+#include <vector>
+
+namespace sartor {
+
+// The options --no-certificate, --escape-saddles, --saddle-push.
+const std::vector<OptionSpec>& certificate_option_specs();
+
+struct CertifiedState {
+  Certificate certificate;
+  int escapes = 0;        // pushes off a saddle
+  double push_size = 0.0; // m: the largest vertex displacement of a push
+};
+
+// Collective. Certifies x; in statics (`solve` given), while it is a saddle
+// and escapes are left, pushes and re-solves, adding the solves' statistics
+// to `report` (converged and reason of the last solve).
+CertifiedState certify_case(const Options& options, ClothProblem& problem, Vec x,
+                            const StaticOptions* solve, StaticReport* report);
+
+} // namespace sartor

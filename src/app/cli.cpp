@@ -1,0 +1,373 @@
+#include "app/cli.hpp"
+#include "fem/petsc_call.hpp"
+
+#include "common/error.hpp"
+#include "common/yaml_input.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+namespace sartor {
+
+std::string database_key(const std::string& name) {
+  std::string key = "-" + name;
+  std::replace(key.begin(), key.end(), '-', '_');
+  key[0] = '-';
+  return key;
+}
+
+namespace {
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j)
+    row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+const OptionSpec* lookup(const CommandSpec& spec, const std::string& name) {
+  for (const auto& option : spec.options) {
+    if (option.name == name) return &option;
+  }
+  return nullptr;
+}
+
+[[noreturn]] void unknown_option(const CommandSpec& spec, const std::string& name) {
+  std::string message = "sartor " + spec.name + ": unknown option --" + name;
+  const OptionSpec* closest = nullptr;
+  std::size_t best = 3;
+  for (const auto& option : spec.options) {
+    const std::size_t distance = edit_distance(name, option.name);
+    if (distance < best) {
+      best = distance;
+      closest = &option;
+    }
+  }
+  if (closest) message += " (did you mean --" + closest->name + "?)";
+  throw InputError(message + "; see `sartor " + spec.name + " --help`");
+}
+
+// PETSc's YAML options are scalars, in mappings for prefixes; it answers a
+// list with a traceback.
+void reject_lists(const YAML::Node& node, const std::string& path) {
+  if (!node.IsMap()) return;
+  for (const auto& entry : node) {
+    if (entry.second.IsSequence()) {
+      throw InputError(path, entry.second.Mark().line + 1,
+                       "option '" + entry.first.Scalar() +
+                           "': a list is not an option value (write a,b,c)");
+    }
+    reject_lists(entry.second, path);
+  }
+}
+
+// PETSc reads a YAML case itself, with a traceback and no line for a syntax
+// error, and lets a repeated key win silently: read here first.
+// PETSc's YAML reader stops with a traceback on bytes that are not UTF-8.
+void reject_non_utf8(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  long line = 1;
+  int continuation = 0; // bytes still expected in the current character
+  for (char c; in.get(c);) {
+    const auto byte = static_cast<unsigned char>(c);
+    const bool follows = (byte & 0xC0) == 0x80;
+    if (continuation > 0 ? !follows : (follows || byte >= 0xF8 || byte == 0)) {
+      throw InputError(path, line, "not UTF-8 text (byte " + std::to_string(byte) + ")");
+    }
+    continuation = continuation > 0 ? continuation - 1
+                   : byte >= 0xF0   ? 3
+                   : byte >= 0xE0   ? 2
+                   : byte >= 0xC0   ? 1
+                                    : 0;
+    if (byte == '\n') ++line;
+  }
+}
+
+void check_case_file(const CommandSpec& spec, const std::string& path) {
+  try {
+    reject_non_utf8(path);
+    reject_lists(load_yaml_input(path, "case file"), path);
+  } catch (const InputError& error) {
+    throw InputError("sartor " + spec.name + ": " + error.what());
+  }
+}
+
+} // namespace
+
+ParsedCommandLine parse_command_line(const CommandSpec& spec, const std::string& program,
+                                     const std::vector<std::string>& arguments) {
+  ParsedCommandLine parsed;
+  parsed.petsc_arguments.push_back(program);
+  for (std::size_t i = 0; i < arguments.size(); ++i) {
+    const std::string& argument = arguments[i];
+    if (argument == "--help" || argument == "-h") {
+      parsed.help = true;
+    } else if (argument.rfind("--", 0) == 0 && argument.size() > 2) {
+      std::string name = argument.substr(2);
+      std::string value;
+      bool has_value = false;
+      if (const auto equals = name.find('='); equals != std::string::npos) {
+        value = name.substr(equals + 1);
+        name = name.substr(0, equals);
+        has_value = true;
+      }
+      const OptionSpec* option = lookup(spec, name);
+      if (!option) unknown_option(spec, name);
+      if (option->value_name.empty()) {
+        if (has_value) {
+          throw InputError("sartor " + spec.name + ": option --" + name + " takes no value");
+        }
+        value = "true";
+      } else if (!has_value) {
+        if (i + 1 == arguments.size()) {
+          throw InputError("sartor " + spec.name + ": option --" + name + " needs a value (" +
+                           option->value_name + ")");
+        }
+        value = arguments[++i];
+      }
+      parsed.petsc_arguments.push_back(database_key(name));
+      parsed.petsc_arguments.push_back(value);
+    } else if ((argument == "-options_file_yaml" || argument == "-options_file") &&
+               i + 1 < arguments.size() && !std::ifstream(arguments[i + 1])) {
+      throw InputError("sartor " + spec.name + ": " + arguments[i + 1] +
+                       ": cannot open options file (" + argument + ")");
+    } else if (argument == "-options_file_yaml" && i + 1 < arguments.size()) {
+      check_case_file(spec, arguments[i + 1]);
+      parsed.petsc_arguments.insert(parsed.petsc_arguments.end(), {argument, arguments[++i]});
+    } else if (argument.size() > 1 && argument[0] == '-') {
+      // A PETSc option; a following word that is not an option is its value.
+      parsed.petsc_arguments.push_back(argument);
+      if (i + 1 < arguments.size() && arguments[i + 1].rfind('-', 0) != 0) {
+        parsed.petsc_arguments.push_back(arguments[++i]);
+      }
+    } else {
+      parsed.positionals.push_back(argument);
+    }
+  }
+  if (!parsed.help && parsed.positionals.size() != spec.positionals) {
+    throw InputError("sartor " + spec.name + " takes " + std::to_string(spec.positionals) +
+                     " argument(s), got " + std::to_string(parsed.positionals.size()) +
+                     "; usage: " + spec.usage);
+  }
+  if (!parsed.help && spec.positional_is_options_file) {
+    const std::string& file = parsed.positionals.front();
+    if (!std::ifstream(file)) {
+      throw InputError("sartor " + spec.name + ": " + file + ": cannot open case file");
+    }
+    check_case_file(spec, file);
+    parsed.petsc_arguments.insert(parsed.petsc_arguments.begin() + 1, {"-options_file_yaml", file});
+  }
+  if (!parsed.help && spec.options_from_positionals) {
+    const std::vector<std::string> leading = spec.options_from_positionals(parsed.positionals);
+    parsed.petsc_arguments.insert(parsed.petsc_arguments.begin() + 1, leading.begin(),
+                                  leading.end());
+  }
+  return parsed;
+}
+
+std::string help_text(const CommandSpec& spec) {
+  std::ostringstream out;
+  out << "usage: " << spec.usage << "\n\n" << spec.description << "\n\noptions:\n";
+  for (const auto& option : spec.options) {
+    std::string left = "  --" + option.name;
+    if (!option.value_name.empty()) left += " " + option.value_name;
+    out << left;
+    if (left.size() < 30) {
+      out << std::string(30 - left.size(), ' ');
+    } else {
+      out << "\n" << std::string(30, ' ');
+    }
+    out << option.help;
+    if (!option.fallback.empty()) out << " [" << option.fallback << "]";
+    out << "\n";
+  }
+  out << "  -h, --help                  this text\n\n"
+         "Options can also come from a YAML file (-options_file_yaml FILE, keys without\n"
+         "dashes, e.g. load_duration: 3600). PETSc options (-log_view, -options_view,\n"
+         "-tao_monitor, ...) are accepted as well.\n";
+  return out.str();
+}
+
+const OptionSpec& Options::find(const std::string& name) const {
+  const OptionSpec* option = lookup(spec_, name);
+  if (!option) throw std::logic_error("option --" + name + " is not declared");
+  return *option;
+}
+
+bool Options::given(const std::string& name, const char** value) const {
+  find(name);
+  *value = nullptr;
+  PetscBool set = PETSC_FALSE;
+  // The value in full: PETSc's string getter would cut it at 4,095 characters.
+  SartorPetscCall(PetscOptionsFindPair(nullptr, nullptr, database_key(name).c_str(), value, &set));
+  return set == PETSC_TRUE;
+}
+
+bool Options::is_set(const std::string& name) const {
+  const char* value = nullptr;
+  const bool in_database = given(name, &value);
+  if (const auto replaced = replaced_.find(name); replaced != replaced_.end())
+    return replaced->second.has_value();
+  return in_database || defaults_.count(name) > 0;
+}
+
+std::string Options::text(const std::string& name) const {
+  const OptionSpec& option = find(name);
+  const char* value = nullptr;
+  const bool in_database = given(name, &value);
+  if (const auto replaced = replaced_.find(name); replaced != replaced_.end())
+    return replaced->second.value_or(option.fallback);
+  if (!in_database) {
+    const auto command_default = defaults_.find(name);
+    return command_default != defaults_.end() ? command_default->second : option.fallback;
+  }
+  if ((!value || value[0] == '\0') && !option.value_name.empty()) {
+    throw InputError("option --" + name + " needs a value (" + option.value_name + ")");
+  }
+  return value ? value : "";
+}
+
+void Options::set_default(const std::string& name, const std::string& value) {
+  if (is_set(name)) return;
+  replaced_.erase(name);
+  defaults_[name] = value;
+}
+
+void Options::set(const std::string& name, const std::string& value) {
+  find(name);
+  defaults_.erase(name);
+  replaced_[name] = value;
+}
+
+void Options::clear(const std::string& name) {
+  find(name);
+  defaults_.erase(name);
+  replaced_[name] = std::nullopt;
+}
+
+std::vector<std::pair<std::string, std::string>> Options::command_defaults() const {
+  std::vector<std::pair<std::string, std::string>> entries;
+  for (const auto& [name, value] : defaults_)
+    entries.emplace_back(database_key(name), value);
+  return entries;
+}
+
+double Options::real(const std::string& name) const {
+  const std::string value = text(name);
+  try {
+    std::size_t used = 0;
+    const double number = std::stod(value, &used);
+    if (used == value.size() && std::isfinite(number)) return number;
+  } catch (const std::exception&) {
+  }
+  throw InputError("option --" + name + ": '" + value + "' is not a finite number");
+}
+
+double Options::positive_real(const std::string& name) const {
+  const double value = real(name);
+  if (value <= 0.0) throw InputError("option --" + name + ": must be > 0, got " + text(name));
+  return value;
+}
+
+double Options::nonnegative_real(const std::string& name) const {
+  const double value = real(name);
+  if (value < 0.0) throw InputError("option --" + name + ": must be >= 0, got " + text(name));
+  return value;
+}
+
+long Options::integer(const std::string& name) const {
+  return integer_in(name, INT_MIN, INT_MAX);
+}
+
+long Options::integer_in(const std::string& name, long minimum, long maximum) const {
+  const std::string value = text(name);
+  long number = 0;
+  try {
+    std::size_t used = 0;
+    number = std::stol(value, &used);
+    if (used != value.size()) throw std::invalid_argument(value);
+  } catch (const std::out_of_range&) {
+    number = value.find('-') == std::string::npos ? LONG_MAX : LONG_MIN;
+  } catch (const std::exception&) {
+    throw InputError("option --" + name + ": '" + value + "' is not an integer");
+  }
+  if (number < minimum || number > maximum) {
+    throw InputError("option --" + name + ": must be between " + std::to_string(minimum) + " and " +
+                     std::to_string(maximum) + ", got " + value);
+  }
+  return number;
+}
+
+namespace {
+
+// The kinds a help text is scoped to: "dynamic, creep: end time" gives
+// {dynamic, creep}; "dynamic: time step; creep: the first step" gives both.
+std::set<std::string> help_scopes(const std::string& help, const std::set<std::string>& kinds) {
+  std::set<std::string> scopes;
+  static const std::regex scope_list("(^|; )([a-z_]+(, [a-z_]+)*):");
+  for (auto match = std::sregex_iterator(help.begin(), help.end(), scope_list);
+       match != std::sregex_iterator(); ++match) {
+    std::stringstream words((*match)[2].str());
+    std::set<std::string> found;
+    for (std::string word; std::getline(words, word, ',');) {
+      if (word.front() == ' ') word.erase(0, 1);
+      found.insert(word);
+    }
+    const bool all_kinds = std::all_of(found.begin(), found.end(),
+                                       [&](const std::string& w) { return kinds.count(w) > 0; });
+    if (all_kinds) scopes.insert(found.begin(), found.end());
+  }
+  return scopes;
+}
+
+} // namespace
+
+void Options::reject_inapplicable(const std::string& selector,
+                                  const std::set<std::string>& kinds) const {
+  const std::string kind = text(selector);
+  for (const auto& option : spec_.options) {
+    const std::set<std::string> scopes = help_scopes(option.help, kinds);
+    if (scopes.empty() || scopes.count(kind) || !is_set(option.name)) continue;
+    std::string list;
+    for (const auto& scope : scopes)
+      list += (list.empty() ? "" : " or ") + scope;
+    throw InputError("option --" + option.name + " applies to --" + selector + " " + list +
+                     " only, not to --" + selector + " " + kind);
+  }
+}
+
+bool Options::flag(const std::string& name) const {
+  if (!is_set(name)) return false;
+  const std::string value = text(name);
+  if (value.empty() || value == "true" || value == "1" || value == "yes") return true;
+  if (value == "false" || value == "0" || value == "no") return false;
+  throw InputError("option --" + name + ": '" + value + "' is not true or false");
+}
+
+std::vector<std::pair<std::string, std::string>> Options::effective() const {
+  std::vector<std::pair<std::string, std::string>> values;
+  for (const auto& option : spec_.options) {
+    if (option.value_name.empty()) {
+      values.emplace_back(option.name, flag(option.name) ? "true" : "false");
+    } else if (is_set(option.name) || !option.fallback.empty()) {
+      values.emplace_back(option.name, text(option.name));
+    }
+  }
+  return values;
+}
+
+} // namespace sartor

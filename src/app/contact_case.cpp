@@ -1,0 +1,255 @@
+#include "app/contact_case.hpp"
+
+#include "common/error.hpp"
+#include "contact/body_spec.hpp"
+#include "fem/petsc_call.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <utility>
+
+namespace sartor {
+
+namespace {
+
+const char* const body_options[] = {"body", "body2", "body3", "body4"};
+
+nlohmann::json vector_json(const Eigen::Vector3d& v) {
+  return {v[0], v[1], v[2]};
+}
+
+double material_area(const TriangleMesh& mesh) {
+  double area = 0.0;
+  for (const auto& uv : mesh.material_uv) {
+    const Eigen::Vector2d a = uv[1] - uv[0], b = uv[2] - uv[0];
+    area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+  }
+  return area;
+}
+
+} // namespace
+
+void set_up_contact(const Options& options, ClothProblem& problem) {
+  std::set<std::string> names;
+  for (const char* option : body_options) {
+    if (!options.is_set(option)) continue;
+    contact::Body body =
+        contact::parse_body(options.text(option), std::string("option --") + option, option);
+    if (!names.insert(body.name()).second) {
+      throw InputError(std::string("option --") + option + ": a body is already named '" +
+                       body.name() + "'");
+    }
+    problem.bodies.push_back(std::move(body));
+  }
+  problem.contact.offset = options.positive_real("contact-offset");
+  if (options.is_set("contact-stiffness")) {
+    problem.contact.stiffness = options.positive_real("contact-stiffness");
+  }
+  problem.contact.stiffness_factor = options.positive_real("contact-stiffness-factor");
+  problem.contact.edge_sample_spacing = options.nonnegative_real("contact-edge-spacing");
+  if (options.is_set("drape-support-radius")) options.positive_real("drape-support-radius");
+}
+
+void apply_placement_waves(const Options& options, TriangleMesh& mesh) {
+  if (!options.is_set("mesh-waves")) return;
+  const std::string text = options.text("mesh-waves");
+  const auto bad = [&](const std::string& why) {
+    return InputError("option --mesh-waves: " + why + " (expected N,AMPLITUDE,RADIUS, e.g. " +
+                      "8,0.002,0.09), got '" + text + "'");
+  };
+  std::vector<double> values;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, ',')) {
+    std::size_t used = 0;
+    try {
+      values.push_back(std::stod(item, &used));
+    } catch (const std::exception&) {
+      throw bad("'" + item + "' is not a number");
+    }
+    if (item.find_first_not_of(" \t", used) != std::string::npos || !std::isfinite(values.back()))
+      throw bad("'" + item + "' is not a number");
+  }
+  if (values.size() != 3) throw bad("three numbers needed");
+  const double waves = values[0], amplitude = values[1], start = values[2];
+  if (waves < 1.0 || waves != std::floor(waves)) throw bad("N must be a whole number >= 1");
+  if (start < 0.0) throw bad("the radius where the waves start must not be negative");
+  double outer = 0.0;
+  for (const auto& p : mesh.positions)
+    outer = std::max(outer, std::hypot(p.x(), p.y()));
+  if (!(outer > start)) {
+    throw bad("the waves start at radius " + std::to_string(start) +
+              " m, beyond the mesh's outer radius " + std::to_string(outer) + " m");
+  }
+  for (auto& p : mesh.positions) {
+    const double r = std::hypot(p.x(), p.y());
+    if (r <= start) continue;
+    const double s = (r - start) / (outer - start);
+    p.z() += amplitude * s * s * std::cos(waves * std::atan2(p.y(), p.x()));
+  }
+}
+
+double projected_area(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& positions,
+                      int resolution) {
+  Eigen::Vector2d lower = positions.front().head<2>(), upper = lower;
+  for (const auto& p : positions) {
+    lower = lower.cwiseMin(p.head<2>());
+    upper = upper.cwiseMax(p.head<2>());
+  }
+  const Eigen::Vector2d cell = (upper - lower) / double(resolution);
+  if (!(cell.minCoeff() > 0.0)) return 0.0;
+  std::vector<bool> covered(std::size_t(resolution) * std::size_t(resolution), false);
+  const auto index = [&](double value, int axis) {
+    return std::clamp(int(std::floor((value - lower[axis]) / cell[axis] - 0.5)), 0, resolution - 1);
+  };
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector2d a = positions[std::size_t(t[0])].head<2>();
+    const Eigen::Vector2d b = positions[std::size_t(t[1])].head<2>();
+    const Eigen::Vector2d c = positions[std::size_t(t[2])].head<2>();
+    const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
+      return u.x() * v.y() - u.y() * v.x();
+    };
+    const double twice_area = cross(b - a, c - a);
+    if (twice_area == 0.0) continue;
+    const Eigen::Vector2d low = a.cwiseMin(b).cwiseMin(c), high = a.cwiseMax(b).cwiseMax(c);
+    // Cells whose centre lies in the triangle (barycentric signs).
+    for (int i = index(low.x(), 0); i <= std::min(index(high.x(), 0) + 1, resolution - 1); ++i) {
+      for (int j = index(low.y(), 1); j <= std::min(index(high.y(), 1) + 1, resolution - 1); ++j) {
+        const Eigen::Vector2d p =
+            lower + Eigen::Vector2d((i + 0.5) * cell.x(), (j + 0.5) * cell.y());
+        const double u = cross(b - p, c - p) / twice_area;
+        const double v = cross(c - p, a - p) / twice_area;
+        if (u >= 0.0 && v >= 0.0 && u + v <= 1.0) {
+          covered[std::size_t(i) * std::size_t(resolution) + std::size_t(j)] = true;
+        }
+      }
+    }
+  }
+  const auto cells = std::count(covered.begin(), covered.end(), true);
+  return double(cells) * cell.x() * cell.y();
+}
+
+int drape_nodes(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& positions,
+                double prominence) {
+  const auto flat_radius = [&](int v) { return mesh.positions[std::size_t(v)].head<2>().norm(); };
+  const std::vector<int> boundary = boundary_vertices(mesh);
+  double largest = 0.0;
+  for (int v : boundary)
+    largest = std::max(largest, flat_radius(v));
+  std::vector<std::pair<double, double>> rim; // polar angle flat, radius draped
+  for (int v : boundary) {
+    if (flat_radius(v) < 0.99 * largest) continue;
+    const Eigen::Vector3d& flat = mesh.positions[std::size_t(v)];
+    rim.emplace_back(std::atan2(flat.y(), flat.x()), positions[std::size_t(v)].head<2>().norm());
+  }
+  if (rim.size() < 3) return 0;
+  std::sort(rim.begin(), rim.end());
+  // From the lowest radius once round and back to it: rising until the
+  // radius falls `prominence` below the top (a node), then falling until it
+  // rises `prominence` above the bottom.
+  const auto lowest = std::min_element(
+      rim.begin(), rim.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  const std::size_t start = std::size_t(lowest - rim.begin());
+  bool rising = true;
+  double top = lowest->second, bottom = lowest->second;
+  int nodes = 0;
+  for (std::size_t k = 1; k <= rim.size(); ++k) {
+    const double r = rim[(start + k) % rim.size()].second;
+    if (rising) {
+      top = std::max(top, r);
+      if (top - r >= prominence) {
+        ++nodes;
+        rising = false;
+        bottom = r;
+      }
+    } else {
+      bottom = std::min(bottom, r);
+      if (r - bottom >= prominence) {
+        rising = true;
+        top = r;
+      }
+    }
+  }
+  return nodes;
+}
+
+CaseContact measure_contact(const Options& options, ClothProblem& problem, Vec x,
+                            const std::vector<Eigen::Vector3d>& positions) {
+  CaseContact result;
+  result.settings = problem.contact;
+  for (const contact::Body& body : problem.bodies)
+    result.bodies.push_back(body.describe());
+  SartorPetscCall(problem.contact_report(x, &result.reports));
+  if (options.is_set("drape-support-radius")) {
+    const double radius = options.positive_real("drape-support-radius");
+    DrapeMeasure drape;
+    drape.support_area = M_PI * radius * radius;
+    drape.specimen_area = material_area(problem.mesh());
+    double area = positions.empty() ? 0.0 : projected_area(problem.mesh(), positions);
+    MPI_Bcast(&area, 1, MPI_DOUBLE, 0, problem.comm());
+    drape.projected_area = area;
+    if (!(drape.specimen_area > drape.support_area)) {
+      throw InputError("option --drape-support-radius: the support disk (" +
+                       std::to_string(drape.support_area) +
+                       " m^2) is not smaller than the specimen (" +
+                       std::to_string(drape.specimen_area) + " m^2)");
+    }
+    drape.coefficient =
+        (drape.projected_area - drape.support_area) / (drape.specimen_area - drape.support_area);
+    // Folds rise and fall by centimetres; a hundredth of the specimen's
+    // radius leaves out the ripples between mesh vertices.
+    drape.node_prominence = 0.01 * std::sqrt(drape.specimen_area / M_PI);
+    int nodes =
+        positions.empty() ? 0 : drape_nodes(problem.mesh(), positions, drape.node_prominence);
+    MPI_Bcast(&nodes, 1, MPI_INT, 0, problem.comm());
+    drape.nodes = nodes;
+    result.drape = drape;
+  }
+  return result;
+}
+
+nlohmann::json contact_summary(const CaseContact& contact) {
+  nlohmann::json bodies = nlohmann::json::array();
+  double penetration = 0.0;
+  long contacting = 0;
+  for (std::size_t b = 0; b < contact.reports.size(); ++b) {
+    const BodyContact& r = contact.reports[b];
+    penetration = std::max(penetration, r.max_penetration);
+    contacting += r.contacting_vertices;
+    bodies.push_back({{"body", contact.bodies[b]},
+                      {"reaction_N", vector_json(r.normal_force + r.friction_force)},
+                      {"normal_force_N", vector_json(r.normal_force)},
+                      {"friction_force_N", vector_json(r.friction_force)},
+                      {"contacting_vertices", r.contacting_vertices},
+                      {"anchored_vertices", r.anchored_vertices},
+                      {"sliding_vertices", r.sliding_vertices},
+                      {"max_penetration_m", r.max_penetration},
+                      {"min_distance_m", r.min_distance},
+                      {"contacting_edge_samples", r.contacting_edge_samples},
+                      {"edge_max_penetration_m", r.edge_max_penetration}});
+  }
+  nlohmann::json summary = {{"offset_m", contact.settings.offset},
+                            {"stiffness_N_per_m", contact.settings.stiffness > 0.0
+                                                      ? nlohmann::json(contact.settings.stiffness)
+                                                      : nlohmann::json("automatic")},
+                            {"stiffness_factor", contact.settings.stiffness_factor},
+                            {"edge_sample_spacing_m", contact.settings.edge_sample_spacing},
+                            {"max_penetration_m", penetration},
+                            {"contacting_vertices", contacting},
+                            {"bodies", bodies}};
+  if (contact.drape) {
+    summary["drape"] = {{"coefficient", contact.drape->coefficient},
+                        {"nodes", contact.drape->nodes},
+                        {"node_prominence_m", contact.drape->node_prominence},
+                        {"projected_area_m2", contact.drape->projected_area},
+                        {"support_area_m2", contact.drape->support_area},
+                        {"specimen_area_m2", contact.drape->specimen_area}};
+  }
+  return summary;
+}
+
+} // namespace sartor

@@ -1,0 +1,78 @@
+#pragma once
+// Bodies and contact in a cloth case (docs/contact.md): the options that
+// describe them, their set-up on a ClothProblem, and what summary.json
+// reports: per-body reactions, penetration, contacting and sliding vertices,
+// and the Cusick drape coefficient.
+
+#include "app/cli.hpp"
+#include "fem/cloth_problem.hpp"
+#include "mesh/triangle_mesh.hpp"
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sartor {
+
+// Parses the options --body, --body2 ... --body4, --contact-offset,
+// --contact-stiffness, --contact-stiffness-factor (declared with the case's
+// options in run_command.cpp) onto `problem`.
+// Throws InputError naming the option for a bad specification.
+void set_up_contact(const Options& options, ClothProblem& problem);
+
+// --mesh-waves N,A,R0: a small out-of-plane imperfection of the placement,
+// applied in the mesh's own frame (before --mesh-rotate-x and
+// --mesh-translate), about its z axis:
+//     z += A ((r - R0) / (R - R0))^2 cos(N theta)   for r > R0,
+// R the largest distance of a vertex from the axis. A flat, symmetric start
+// (a Cusick specimen) is a saddle that a static or damped solve need never
+// leave; N waves seed the N folds (nodes) a real drape forms.
+// Throws InputError for a malformed value. Does nothing without the option.
+void apply_placement_waves(const Options& options, TriangleMesh& mesh);
+
+// The Cusick drape coefficient: the cloth's shadow on the horizontal plane
+// (the area covered by its triangles projected along z) against the flat
+// specimen's and the support disk's areas:
+//     DC = (A_projected - A_support) / (A_specimen - A_support).
+struct DrapeMeasure {
+  double coefficient = 0.0;
+  int nodes = 0;                // folds of the overhang (drape_nodes)
+  double node_prominence = 0.0; // m, the radial rise and fall a node needs
+  double projected_area = 0.0;  // m^2
+  double support_area = 0.0;    // m^2
+  double specimen_area = 0.0;   // m^2, the material area of the mesh
+};
+
+// Area covered by the triangles projected onto the xy plane, m^2 (overlaps
+// counted once), by sampling a grid of `resolution` x `resolution` cells
+// over their bounding box.
+double projected_area(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& positions,
+                      int resolution = 2000);
+
+// The nodes (folds) of a draped circular specimen: the maxima of the rim's
+// projected radius |(x, y)| at `positions`, going round the rim in the order
+// of its vertices' polar angles in `mesh` (the flat specimen), counted with
+// hysteresis: a node rises at least `prominence` above the lowest radius
+// since the last node and falls at least `prominence` below its top before
+// the next (ripples smaller than that are not folds). The rim is the
+// boundary vertices within 1 % of the largest distance from the z axis.
+int drape_nodes(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& positions,
+                double prominence);
+
+struct CaseContact {
+  std::vector<std::string> bodies; // descriptions, in option order
+  std::vector<BodyContact> reports;
+  ContactSettings settings;
+  std::optional<DrapeMeasure> drape;
+};
+
+// Collective: the contact state at x; `positions` (rank 0) give the drape.
+CaseContact measure_contact(const Options& options, ClothProblem& problem, Vec x,
+                            const std::vector<Eigen::Vector3d>& positions);
+
+// The "contact" object of summary.json.
+nlohmann::json contact_summary(const CaseContact& contact);
+
+} // namespace sartor

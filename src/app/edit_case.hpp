@@ -1,0 +1,101 @@
+#pragma once
+// `sartor edit` (docs/sensitivity.md#sartor-edit): after a static drape,
+// a sequence of pattern edits (outline corners moved, read from an edit
+// file), each predicted by the design sensitivity (linear) and by GMLS over
+// the designs solved so far, then re-solved warm from the prediction and
+// certified; the edited pattern, the predictions and the re-solved drape
+// written per edit, with the prediction errors and CPU times.
+
+#include "app/cli.hpp"
+#include "app/cloth_case.hpp"
+#include "app/commands.hpp"
+#include "fem/cloth_output.hpp"
+#include "garment/pattern.hpp"
+#include "mesh/seams.hpp"
+#include "mesh/triangle_mesh.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace sartor {
+
+// One move of an edit file: the corners of an outline line (both, or its
+// start or its end) move by `by` (pattern coordinates, m).
+struct CornerMove {
+  std::string line;
+  enum class Which { both, start, end } which = Which::both;
+  Eigen::Vector2d by = Eigen::Vector2d::Zero();
+};
+
+struct EditStep {
+  std::string name;
+  std::vector<CornerMove> moves;
+};
+
+// Reads an edit file (YAML; docs/sensitivity.md#the-edit-file) against the
+// pattern its lines must belong to. Throws InputError "FILE:LINE: KEY: what
+// is wrong".
+std::vector<EditStep> read_edit_file(const std::string& path, const garment::Pattern& pattern);
+
+// The options of `sartor edit` beyond drape's.
+const std::vector<OptionSpec>& edit_option_specs();
+
+// What the garment is, for the edit: the pattern, and per triangle of the
+// cloth mesh its panel (an index into pattern.panels); the seams sewn.
+struct EditGarment {
+  garment::Pattern pattern;
+  std::vector<int> panel_of_triangle;
+  std::vector<Seam> seams;
+  ClothOutputLabels labels; // for the drapes written
+};
+
+// The edits' results, filled in by the drape's after_statics.
+struct EditRun {
+  bool ran = false;
+  nlohmann::json summary = nlohmann::json::object();
+  std::string message; // the closing lines
+  bool all_certified = false;
+  std::vector<std::string> not_converged; // the folders of the edits no re-solve converged
+};
+
+// The file in a drape's output directory holding its final state (a static
+// checkpoint: positions, friction anchors, the contact penalty's scale and
+// the solve's report), which `sartor edit DRAPE_DIR` resumes from.
+inline constexpr const char* drape_state_file = "drape_state.h5";
+
+// Where the drape the edits start from was made, and what it cost: the
+// edits' speed-ups are against its CPU time from scratch.
+struct EditDrapeSource {
+  // `sartor edit DRAPE_DIR`: the directory of the drape resumed, and the CPU
+  // time (s) its summary.json records for the drape from scratch; "" when
+  // this process draped it.
+  std::string directory;
+  double recorded_cpu = 0.0;
+  double started_cpu = 0.0; // the process CPU time (s) when this process's drape began
+};
+
+// Sets cloth->after_statics so that, once the drape converged, the edits of
+// `steps` are predicted, re-solved and written to DIRECTORY/edit_NN (rank 0).
+void attach_edit(const Options& options, const std::string& directory, EditGarment garment,
+                 std::vector<EditStep> steps, const EditDrapeSource& drape, CaseCloth* cloth,
+                 const std::shared_ptr<EditRun>& run);
+
+// What `sartor edit` asks of the drape: the edits, where their results go,
+// and the drape resumed (a DRAPE_DIR's; directory "" drapes afresh).
+struct EditRequest {
+  std::vector<EditStep> steps;
+  std::shared_ptr<EditRun> run = std::make_shared<EditRun>();
+  EditDrapeSource drape;
+};
+
+// `sartor drape` (edit null) and `sartor edit`: constructs and drapes the
+// pattern of the invocation's first argument; with `edit`, the edits follow
+// the converged drape (app/drape_command.cpp).
+int drape_pattern(const Invocation& invocation, const EditRequest* edit);
+
+} // namespace sartor

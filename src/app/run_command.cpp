@@ -1,0 +1,1509 @@
+// sartor run: static equilibrium, or implicit dynamics, of a cloth described
+// by a YAML case file.
+// The case pipeline itself (solve_case) is shared with `sartor converge`.
+
+#include "app/case_checks.hpp"
+#include "app/certificate_case.hpp"
+#include "app/cloth_case.hpp"
+#include "app/commands.hpp"
+#include "app/dynamic_case.hpp"
+#include "app/static_checkpoint.hpp"
+#include "common/csv.hpp"
+#include "common/error.hpp"
+#include "common/output.hpp"
+#include "fem/bending_models.hpp"
+#include "fem/cloth_output.hpp"
+#include "fem/petsc_call.hpp"
+#include "material/fabric.hpp"
+#include "mesh/generators.hpp"
+#include "mesh/obj.hpp"
+#include "solvers/statics.hpp"
+
+#include <nlohmann/json.hpp>
+#include <petscsys.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace sartor {
+
+namespace {
+
+// The mesh: a generator or an OBJ file, its refinement and placement.
+const std::vector<OptionSpec>& mesh_option_specs() {
+  static const std::vector<OptionSpec> specs{
+      {"mesh", "KIND", "rectangle",
+       "rectangle, disk, annulus, cylinder_band, sphere_cap, tube_panels or obj"},
+      {"mesh-file", "FILE", "", "OBJ file (mesh obj): texture coordinates give the rest shape"},
+      {"mesh-width", "M", "1", "rectangle width (along warp), m"},
+      {"mesh-height", "M", "1", "rectangle or band height (along weft), m"},
+      {"mesh-nx", "N", "10", "rectangle divisions along the width"},
+      {"mesh-ny", "N", "10", "rectangle divisions along the height"},
+      {"mesh-pattern", "P", "alternating",
+       "rectangle (and annulus) diagonals: alternating, right, perturbed"},
+      {"mesh-radius", "M", "0.5", "disk, band or sphere radius, annulus outer radius, m"},
+      {"mesh-inner-radius", "M", "0.25", "annulus inner radius, m"},
+      {"mesh-angles", "A0,A1", "0,360",
+       "annulus: from angle A0 to A1, degrees (a full turn stays slit along A0)"},
+      {"mesh-lift", "M", "0",
+       "annulus: start placement on a helix rising from z = 0 at angle 0 to this at A1, m "
+       "(tells the slit's edges apart; the rest shape stays flat)"},
+      {"mesh-rings", "N", "8", "disk or cap rings; annulus cells across the radii"},
+      {"mesh-segments", "N", "32", "band segments around; annulus cells around"},
+      {"mesh-rows", "N", "8", "band rows along the axis"},
+      {"mesh-cap-angle", "RAD", "0.5", "sphere cap half angle, rad"},
+      {"mesh-nx-front", "N", "", "tube_panels: front panel divisions around [mesh-nx]"},
+      {"mesh-ny-front", "N", "", "tube_panels: front panel divisions along the height [mesh-ny]"},
+      {"mesh-gap", "M", "0.15", "tube_panels: distance the two panels start apart, m"},
+      {"mesh-refine", "N", "0", "uniform refinements (each splits triangles in four)"},
+      {"mesh-snap-boundary", "", "",
+       "disk: put refined boundary vertices back on the circle (position and uv)"},
+      {"mesh-waves", "N,A,R0", "",
+       "out-of-plane imperfection of the placement: N waves around the z axis, amplitude A (m) "
+       "at the rim, growing from radius R0 (m) (docs/contact.md)"},
+      {"mesh-rotate-x", "DEG", "0", "rotate the placement about the x axis, degrees"},
+      {"mesh-translate", "X,Y,Z", "0,0,0", "then translate it, m"},
+  };
+  return specs;
+}
+
+// "a, b or c".
+std::string alternatives(const std::vector<std::string>& names) {
+  std::string text;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  return text;
+}
+
+// The registered bending models (fem/bending_models.hpp), each with its summary.
+std::string bending_model_help() {
+  std::vector<std::string> described;
+  const std::size_t models = fem::bending_model_names().size();
+  for (std::size_t i = 0; i < models; ++i) {
+    const auto& entry = fem::bending_model_entry(element::BendingModel(int(i)));
+    described.push_back(entry.name + " (" + entry.summary + ")");
+  }
+  return alternatives(described);
+}
+
+// The cloth's material: fabric, membrane and bending models (as registered:
+// element/membrane_models.hpp, fem/bending_models.hpp).
+const std::vector<OptionSpec>& material_option_specs() {
+  static const std::vector<OptionSpec> specs{
+      {"fabric", "SPEC", "cotton_twill",
+       "preset, FILE.yaml or measured FILE.json: membrane, bending, density (docs/fabrics.md)"},
+      {"warp-modulus", "N/M", "", "linear warp modulus, N/m (replaces the fabric's curve)"},
+      {"weft-modulus", "N/M", "", "linear weft modulus, N/m (replaces the fabric's curve)"},
+      {"shear-modulus", "N/M", "",
+       "in-plane shear modulus, N/m [the fabric's, else 0.1 sqrt(k_warp k_weft)]"},
+      {"poisson", "NU", "0", "warp-weft Poisson coupling (stvk model)"},
+      {"membrane-model", "M", "baraff_witkin",
+       alternatives(element::membrane_model_names()) +
+           " [measured (a Wang et al. table) for a fabric with one]"},
+      {"membrane-psd", "", "",
+       "project membrane (and contact) Hessians to PSD (compression stabilisation)"},
+      {"bending-model", "M", "patch",
+       bending_model_help() + " [discrete_shell for a mesh with creases]"},
+      {"bending-stiffness", "N*M", "1e-6",
+       "bending stiffness (warp, patch), N m (0: no bending) [the fabric's curves if any]"},
+      {"bending-weft", "N*M", "", "patch model: weft rigidity, N m [--bending-stiffness]"},
+      {"bending-twist", "N*M", "", "patch model: twist rigidity, N m [half the warp's]"},
+      {"bending-psd", "", "", "project bending Hessians to PSD"},
+      {"density", "KG/M2", "0.2", "areal density, kg/m^2 [the fabric's if it has one]"},
+  };
+  return specs;
+}
+
+// Loads, pins and the probe.
+const std::vector<OptionSpec>& load_option_specs() {
+  static const std::vector<OptionSpec> specs{
+      {"gravity", "X,Y,Z", "0,0,-9.80665", "gravitational acceleration, m/s^2"},
+      {"pressure", "PA", "0", "follower pressure on the triangles' normal side, Pa"},
+      {"point-force", "V,FX,FY,FZ", "", "a force (N) on vertex V"},
+      {"edge-force", "FX,FY,FZ", "",
+       "a total force (N) spread over the boundary edges inside --edge-force-box as a uniform "
+       "line load (per unit material length)"},
+      {"edge-force-box", "X0,X1,Y0,Y1,Z0,Z1", "", "the box of the --edge-force edges, m"},
+      {"pin-box", "X0,X1,Y0,Y1,Z0,Z1", "", "pin the vertices inside these boxes (6 numbers each)"},
+      {"pin-boundary", "", "", "pin every boundary vertex"},
+      {"pin-vertices", "I,J,...", "", "pin these vertices"},
+      {"pin-move", "X,Y,Z", "0,0,0", "move the pins by this much as the load ramps, m"},
+      {"pin-motion", "HISTORY", "",
+       "pins follow 'T:DX,DY,DZ[,DEG]; ...' (m, degrees; T: load factor, or time in s with "
+       "--analysis dynamic); groups separated by '|'"},
+      {"pin-motion-boxes", "I,..|J,..", "",
+       "the --pin-box boxes (numbered from 1) each --pin-motion group moves [all pins]"},
+      {"pin-release", "BOX:T,...", "",
+       "dynamic, creep: the pins of --pin-box BOX (numbered from 1) let go at time T, s"},
+      {"pin-rotation-axis", "X,Y,Z", "0,0,1", "axis of the --pin-motion angles"},
+      {"pin-rotation-center", "X,Y,Z", "0,0,0", "a point of that axis, m"},
+      {"probe", "X,Y,Z", "", "report the displacement of the vertex nearest this point"},
+  };
+  return specs;
+}
+
+// Rigid bodies and contact.
+const std::vector<OptionSpec>& contact_option_specs() {
+  static const std::vector<OptionSpec> specs{
+      {"body", "SPEC", "",
+       "a rigid body, e.g. \"sphere center=0,0,0 radius=0.3 mu=0.3\" (docs/contact.md)"},
+      {"body2", "SPEC", "", "a second body"},
+      {"body3", "SPEC", "", "a third body"},
+      {"body4", "SPEC", "", "a fourth body"},
+      {"contact-offset", "M", "0.001", "distance kept between cloth vertices and bodies, m"},
+      {"contact-stiffness", "N/M", "",
+       "penalty stiffness per vertex, N/m [factor * E_max * vertex area / h^2]"},
+      {"contact-stiffness-factor", "C", "1", "the factor of the automatic penalty stiffness"},
+      {"contact-edge-spacing", "M", "0",
+       "penalty samples along cloth edges at most this far apart, m (0: vertices only; "
+       "static drapes: 0.015)"},
+      {"drape-support-radius", "M", "",
+       "report the Cusick drape coefficient for a support disk of this radius, m"},
+  };
+  return specs;
+}
+
+// Load steps, seams and sewing, and the static solver.
+const std::vector<OptionSpec>& static_option_specs() {
+  static const std::vector<OptionSpec> specs{
+      {"load-steps", "N", "1", "load increments (each halved up to 8 times on failure)"},
+      {"seams-file", "FILE", "", "seams to sew (JSON, docs/formats.md) [tube_panels: its own]"},
+      {"seam-stiffness", "N/M2", "", "seam stiffness per unit seam length, N/m^2 [automatic]"},
+      {"seam-penalty", "P", "100", "automatic seam stiffness: P x modulus / seam spacing"},
+      {"seam-merge", "", "", "sew, then merge matched seam vertices and solve again"},
+      {"seam-merge-gap", "M", "1e-4", "--seam-merge: largest seam gap accepted as closed, m"},
+      {"sewing-tension", "N/M", "",
+       "dynamic: sew gradually: each seam spring starts pulling with this force per metre of "
+       "seam and stiffens to its own stiffness by --sewing-time (0 or none: no sewing stage)"},
+      {"sewing-time", "S", "", "the end of the sewing stage, s [half of --time-end]"},
+      {"static-solver", "KIND", "minimise",
+       "static: minimise (Newton on the total potential with a contact step bound, "
+       "docs/drape.md) or snes (PETSc's SNES with pseudo-transient continuation); pressure on a "
+       "cloth with a free (unpinned) edge has no potential and takes snes"},
+      {"sewing-stages", "N", "1",
+       "static: sew in N continuation stages of the seam stiffness, starting from "
+       "--sewing-start-tension (1: at once)"},
+      {"sewing-start-tension", "N/M", "10",
+       "static: with --sewing-stages, each seam's pull per metre of seam at the first stage"},
+      {"converge-stages", "", "",
+       "static: with --sewing-stages, solve every stage after the first to the full tolerance "
+       "(the same equilibrium under any CPU's round-off, for two to three times the Newton "
+       "iterations; docs/drape.md)"},
+      {"contact-max-depth", "F", "0.5",
+       "static: stiffen the contact penalty until no vertex is deeper in the offset layer than "
+       "F times --contact-offset (0: never)"},
+      {"contact-rounds", "N", "30",
+       "static: at most N contact rounds after the last stage: re-solves until the friction "
+       "anchors' update leaves the state in equilibrium (and no vertex is too deep)"},
+  };
+  return specs;
+}
+
+// The analysis and its time grid.
+const std::vector<OptionSpec>& time_option_specs() {
+  static const std::vector<OptionSpec> specs{
+      {"analysis", "KIND", "static",
+       "static (equilibrium), dynamic (implicit time stepping) or creep (quasi-static creep "
+       "over real time)"},
+      {"time-end", "S", "1", "dynamic, creep: end time, s"},
+      {"time-step", "S", "0.01",
+       "dynamic: time step, s (halved up to 8 times on failure); creep: the first step"},
+      {"damping", "1/S", "0",
+       "dynamic, creep: mass-proportional damping alpha (force -alpha M v), 1/s (creep: with "
+       "--creep-dynamics)"},
+      {"kinetic-damping", "", "", "dynamic: zero every velocity at each kinetic-energy peak"},
+      {"rest-tolerance", "R", "0",
+       "dynamic: stop once the static residual is below R times its initial value (0: never)"},
+      {"dynamic-solver", "KIND", "snes",
+       "dynamic: snes (PETSc's SNES from the predicted positions) or minimise (drape's static "
+       "minimiser on each step's incremental potential, from the last state, with the contact "
+       "step bound; docs/drape.md#time-steps-by-the-minimiser)"},
+      {"settle", "", "",
+       "dynamic: finish (at rest or at --time-end) with a static solve from the last state, with "
+       "the static solve's contact rounds (friction made consistent)"},
+      {"output-interval", "S", "0",
+       "dynamic, creep: time between the states written to series.h5, s (0: every step)"},
+  };
+  return specs;
+}
+
+} // namespace
+
+const std::vector<OptionSpec>& case_option_specs() {
+  static const std::vector<OptionSpec> all = [] {
+    std::vector<OptionSpec> options;
+    for (const auto& group : {mesh_option_specs, material_option_specs, load_option_specs,
+                              contact_option_specs, static_option_specs, time_option_specs})
+      options.insert(options.end(), group().begin(), group().end());
+    options.insert(options.end(), creep_option_specs().begin(), creep_option_specs().end());
+    options.insert(options.end(), certificate_option_specs().begin(),
+                   certificate_option_specs().end());
+    return options;
+  }();
+  return all;
+}
+
+const CommandSpec& run_command() {
+  static const CommandSpec spec{
+      "run",
+      "static equilibrium or dynamics of a cloth case (YAML options file)",
+      "sartor run CASE.yaml [--option value ...] [-petsc_option ...]",
+      "Builds the mesh, material, pins and loads the case describes, solves static\n"
+      "equilibrium with Newton's method (PETSc SNES; loads ramped in --load-steps,\n"
+      "failed steps cut back), and writes the result. CASE.yaml holds the options\n"
+      "below without their dashes (load_steps: 4); options on the command line win.\n\n"
+      "Output in DIR: result.h5 + result.xmf (open the .xmf in ParaView: positions,\n"
+      "displacement, per-triangle strain and tension in warp and weft), final.obj,\n"
+      "summary.json (energies, iterations, residuals, reactions, timings),\n"
+      "petsc_options.txt (every option in effect), result.png (the cloth from the\n"
+      "front, side and top, coloured by strain: postproc/plot_result.py; not with\n"
+      "--no-plot).\n\n"
+      "With --analysis dynamic it steps through time instead (backward Euler with\n"
+      "lumped masses, from rest at the case's placement, pins following\n"
+      "--pin-motion in time), prints progress every 5 % of the simulated time and\n"
+      "also writes series.h5 + series.xmf (the states at --output-interval: open\n"
+      "series.xmf in ParaView as a time series) and dynamics.csv (time, kinetic and\n"
+      "potential energy, residual, iterations, probe displacement per step).\n\n"
+      "With --analysis creep it follows the cloth's creep over real time (thesis\n"
+      "Algorithm 2: equilibrium, then each element's creep update, with the loads\n"
+      "scaled by --load-history and steps sized by --creep-tolerance) and writes\n"
+      "series.h5 + series.xmf (with per-triangle creep strains) and creep.csv (one\n"
+      "row per step).\n\n"
+      "Runs write checkpoints with --checkpoint-interval (statics: after every\n"
+      "load step, sewing stage and contact round for any interval > 0), and\n"
+      "--restart resumes one where it stood (docs/reliability.md).\n\n"
+      "examples:\n"
+      "  sartor run cases/fe/hanging_sheet.yaml\n"
+      "  sartor run cases/fe/hencky.yaml --mesh-rings 16 -snes_monitor\n"
+      "  mpiexec -n 2 sartor run cases/fe/hanging_sheet.yaml\n"
+      "  sartor run cases/fe/hanging_sheet_dynamic.yaml --time-end 2 --output-interval 0.05\n"
+      "  sartor run cases/fe/cantilever_strip.yaml --pin-motion \"0:0,0,0; 1:0,0,0.1\"\n"
+      "  sartor run cases/creep/strip.yaml --checkpoint-interval 600",
+      [] {
+        std::vector<OptionSpec> options = case_option_specs();
+        options.push_back(
+            {"output", "DIR", "out/run", "output folder (created; files in it are replaced)"});
+        options.push_back({"checkpoint-interval", "S", "0",
+                           "write a checkpoint every S seconds of simulated time (dynamic, "
+                           "creep); statics: after every load step, stage and round if S > 0"});
+        options.push_back({"checkpoint", "FILE", "", "the checkpoint file [OUTPUT/checkpoint.h5]"});
+        options.push_back({"restart", "FILE", "", "resume from this checkpoint"});
+        options.push_back({"no-plot", "", "", "write data only, no result.png"});
+        return options;
+      }(),
+      1,
+      true};
+  return spec;
+}
+
+namespace {
+
+Eigen::Vector3d vector3(const Options& options, const std::string& name) {
+  const auto v = option_numbers(options, name, 3);
+  return {v[0], v[1], v[2]};
+}
+
+int count_option(const Options& options, const std::string& name, long minimum) {
+  const long value = options.integer(name);
+  if (value < minimum) {
+    throw InputError("option --" + name + ": must be >= " + std::to_string(minimum) + ", got " +
+                     options.text(name));
+  }
+  return int(value);
+}
+
+// The triangles the generated --mesh KIND will have, before refinement (0 for
+// a mesh read from a file), computed without building it.
+double generated_triangles(const Options& options, const std::string& kind) {
+  const auto count = [&](const char* name) { return double(count_option(options, name, 0)); };
+  if (kind == "rectangle") return 2.0 * count("mesh-nx") * count("mesh-ny");
+  if (kind == "disk" || kind == "sphere_cap")
+    return 6.0 * count("mesh-rings") * count("mesh-rings");
+  if (kind == "cylinder_band") return 2.0 * count("mesh-segments") * count("mesh-rows");
+  if (kind == "annulus") return 2.0 * count("mesh-rings") * count("mesh-segments");
+  return 0.0;
+}
+
+// Moves the boundary vertices of a disk of `radius` centred at the origin
+// radially onto its circle, in position and in every corner's uv (disk: uv = x, y).
+void snap_to_circle(TriangleMesh& cloth, double radius) {
+  std::vector<bool> boundary(cloth.vertex_count(), false);
+  for (int v : boundary_vertices(cloth)) {
+    boundary[std::size_t(v)] = true;
+    Eigen::Vector3d& p = cloth.positions[std::size_t(v)];
+    const double r = std::hypot(p.x(), p.y());
+    if (r > 0.0) p.head<2>() *= radius / r;
+  }
+  for (std::size_t t = 0; t < cloth.triangle_count(); ++t) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (!boundary[std::size_t(cloth.triangles[t][c])]) continue;
+      Eigen::Vector2d& uv = cloth.material_uv[t][c];
+      if (uv.norm() > 0.0) uv *= radius / uv.norm();
+    }
+  }
+}
+
+// The mesh the options describe (or `given`, in place of --mesh), with
+// `extra_refinements` more uniform refinements than --mesh-refine asks for;
+// `refinements` gets the total.
+TriangleMesh build_mesh(const Options& options, int extra_refinements, int* refinements,
+                        const TriangleMesh* given) {
+  const std::string kind = options.text("mesh");
+  const int refine = count_option(options, "mesh-refine", 0);
+  check_mesh_size(generated_triangles(options, kind), refine + extra_refinements,
+                  "options --mesh-* and --mesh-refine");
+  TriangleMesh cloth;
+  if (given) {
+    cloth = *given;
+  } else if (kind == "rectangle") {
+    cloth =
+        mesh::rectangle(options.positive_real("mesh-width"), options.positive_real("mesh-height"),
+                        count_option(options, "mesh-nx", 1), count_option(options, "mesh-ny", 1),
+                        mesh::rectangle_pattern(options.text("mesh-pattern")));
+  } else if (kind == "disk") {
+    cloth =
+        mesh::disk(options.positive_real("mesh-radius"), count_option(options, "mesh-rings", 1));
+  } else if (kind == "annulus") {
+    // Refined in its polar parameters, so refined vertices stay on the circles.
+    const auto angles = option_numbers(options, "mesh-angles", 2);
+    cloth = mesh::annulus(
+        options.positive_real("mesh-inner-radius"), options.positive_real("mesh-radius"),
+        count_option(options, "mesh-rings", 1), count_option(options, "mesh-segments", 1),
+        angles[0] * M_PI / 180.0, angles[1] * M_PI / 180.0,
+        mesh::rectangle_pattern(options.text("mesh-pattern")), refine + extra_refinements,
+        options.real("mesh-lift"));
+  } else if (kind == "cylinder_band") {
+    cloth = mesh::cylinder_band(
+        options.positive_real("mesh-radius"), options.positive_real("mesh-height"),
+        count_option(options, "mesh-segments", 3), count_option(options, "mesh-rows", 1));
+  } else if (kind == "sphere_cap") {
+    cloth = mesh::sphere_cap(options.positive_real("mesh-radius"),
+                             options.positive_real("mesh-cap-angle"),
+                             count_option(options, "mesh-rings", 1));
+  } else if (kind == "tube_panels") {
+    cloth = tube_panels_mesh(options).mesh;
+  } else if (kind == "obj") {
+    if (!options.is_set("mesh-file")) throw InputError("mesh obj needs --mesh-file FILE.obj");
+    cloth = read_obj(options.text("mesh-file"));
+  } else {
+    throw InputError("option --mesh: unknown kind '" + kind +
+                     "' (rectangle, disk, annulus, cylinder_band, sphere_cap, tube_panels, obj)");
+  }
+  const bool snap = options.flag("mesh-snap-boundary");
+  if (snap && kind != "disk") {
+    throw InputError("option --mesh-snap-boundary applies to --mesh disk only (the mesh is " +
+                     kind + ")");
+  }
+  check_mesh_size(double(cloth.triangle_count()), refine + extra_refinements,
+                  "option --mesh-refine");
+  *refinements = refine + extra_refinements;
+  const bool refined_by_generator = !given && kind == "annulus";
+  for (int level = refined_by_generator ? 0 : *refinements; level > 0; --level) {
+    cloth = mesh::refine(cloth);
+    if (snap) snap_to_circle(cloth, options.positive_real("mesh-radius"));
+  }
+  apply_placement_waves(options, cloth);
+  const double angle = options.real("mesh-rotate-x") * M_PI / 180.0;
+  const Eigen::Matrix3d rotation =
+      Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const Eigen::Vector3d shift = vector3(options, "mesh-translate");
+  for (auto& p : cloth.positions)
+    p = rotation * p + shift;
+  return cloth;
+}
+
+// The material of `fabric` (a preset or FILE.yaml) with the options' moduli,
+// models, bending and density.
+element::MembraneModel membrane_model(const Options& options, const Fabric& fabric) {
+  if (!options.is_set("membrane-model") && fabric.stretching)
+    return element::MembraneModel::measured;
+  return element::membrane_model_named(options.text("membrane-model"), "option --membrane-model");
+}
+
+// The bending model of the options; a mesh with creases (rest angles on
+// edges, docs/pleats.md) takes the discrete shell unless a model is given,
+// since only the hinges carry a rest angle per edge.
+element::BendingModel bending_model(const Options& options, bool mesh_has_creases) {
+  if (mesh_has_creases && !options.is_set("bending-model"))
+    return element::BendingModel::discrete_shell;
+  return fem::bending_model_named(options.text("bending-model"), "option --bending-model");
+}
+
+// Bending from the options, or the fabric's curves when it has them and no
+// rigidity option is given (the hinge models take their initial rigidity).
+void set_bending(const Options& options, const Fabric& fabric, ClothMaterial& material) {
+  const bool options_given = options.is_set("bending-stiffness") ||
+                             options.is_set("bending-weft") || options.is_set("bending-twist");
+  if (fabric.bending && !options_given) {
+    material.bending_curves = std::make_shared<const FabricBending>(*fabric.bending);
+    material.bending_stiffness =
+        0.5 * (fabric.bending->warp.initial_rigidity() + fabric.bending->weft.initial_rigidity());
+    return;
+  }
+  material.bending_stiffness = options.nonnegative_real("bending-stiffness");
+  if (options.is_set("bending-weft") || options.is_set("bending-twist")) {
+    if (material.bending_model != element::BendingModel::patch) {
+      throw InputError("options --bending-weft and --bending-twist need --bending-model patch");
+    }
+    auto rigidity = element::BendingRigidity::isotropic(material.bending_stiffness);
+    if (options.is_set("bending-weft")) rigidity.weft = options.nonnegative_real("bending-weft");
+    if (options.is_set("bending-twist")) rigidity.twist = options.nonnegative_real("bending-twist");
+    material.bending_rigidity = rigidity;
+  }
+}
+
+// The material of `fabric` (a preset, FILE.yaml or a measured FILE.json)
+// with the options' moduli, models, bending and density; options given
+// explicitly override what the fabric holds (docs/fabrics.md).
+ClothMaterial build_material(const Options& options, const std::string& fabric_spec,
+                             bool mesh_has_creases) {
+  const auto choices = resolve_fabrics(fabric_spec);
+  const Fabric& fabric = choices.front().fabric;
+  print_warnings(fabric.warnings);
+  const element::MembraneModel model = membrane_model(options, fabric);
+  const auto curve = [&](const char* option, Direction direction) {
+    if (options.is_set(option)) {
+      return TensionCurve::linear(options.positive_real(option), std::string("--") + option);
+    }
+    const DirectionalMaterial& m = fabric.in(direction);
+    // Table curves are stored in the Baraff-Witkin measure; stvk reads Green strain.
+    if (!m.elastic_given && model == element::MembraneModel::saint_venant_kirchhoff) {
+      return table_tension_curve(fabric.stretching->table(), direction == Direction::weft, true,
+                                 fabric.source);
+    }
+    return m.elastic;
+  };
+  ClothMaterial material({curve("warp-modulus", Direction::warp),
+                          curve("weft-modulus", Direction::weft), 0.0, options.real("poisson")});
+  material.membrane_model = model;
+  material.membrane.stretching = fabric.stretching;
+  if (fabric.stretching && !options.is_set("poisson")) {
+    // c12 = k1 at zero strain.
+    material.membrane.poisson = table_stiffness(fabric.stretching->table(), 0.0, 0.0, 0.0)[1] /
+                                std::sqrt(material.membrane.warp.initial_modulus() *
+                                          material.membrane.weft.initial_modulus());
+  }
+  const double automatic_shear = fabric.shear_modulus
+                                     ? *fabric.shear_modulus
+                                     : 0.1 * std::sqrt(material.membrane.warp.initial_modulus() *
+                                                       material.membrane.weft.initial_modulus());
+  material.membrane.shear_modulus =
+      options.is_set("shear-modulus") ? options.nonnegative_real("shear-modulus") : automatic_shear;
+  material.bending_model = bending_model(options, mesh_has_creases);
+  set_bending(options, fabric, material);
+  material.areal_density = !options.is_set("density") && fabric.areal_density
+                               ? *fabric.areal_density
+                               : options.nonnegative_real("density");
+  material.project_membrane = options.flag("membrane-psd");
+  material.project_bending = options.flag("bending-psd");
+  return material;
+}
+
+// Whether p lies in the box x0,x1,y0,y1,z0,z1 starting at `box`.
+bool in_box(const double* box, const Eigen::Vector3d& p) {
+  bool inside = true;
+  for (std::size_t d = 0; d < 3; ++d)
+    inside = inside && p[long(d)] >= box[2 * d] && p[long(d)] <= box[2 * d + 1];
+  return inside;
+}
+
+std::vector<int> pinned_vertices(const Options& options, const TriangleMesh& mesh) {
+  std::vector<bool> pin(mesh.vertex_count(), false);
+  if (options.is_set("pin-box")) {
+    const auto boxes = option_numbers(options, "pin-box", 0);
+    if (boxes.empty() || boxes.size() % 6 != 0) {
+      throw InputError("option --pin-box: expected 6 numbers per box (x0,x1,y0,y1,z0,z1), got " +
+                       std::to_string(boxes.size()));
+    }
+    for (std::size_t b = 0; b < boxes.size(); b += 6) {
+      for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+        if (in_box(&boxes[b], mesh.positions[v])) pin[v] = true;
+    }
+  }
+  if (options.flag("pin-boundary")) {
+    for (int v : boundary_vertices(mesh))
+      pin[std::size_t(v)] = true;
+  }
+  if (options.is_set("pin-vertices")) {
+    for (double value : option_numbers(options, "pin-vertices", 0)) {
+      const auto v = long(value);
+      if (double(v) != value || v < 0 || std::size_t(v) >= mesh.vertex_count()) {
+        throw InputError("option --pin-vertices: " + format_number(value) +
+                         " is not a vertex of the mesh (0.." +
+                         std::to_string(mesh.vertex_count() - 1) + ")");
+      }
+      pin[std::size_t(v)] = true;
+    }
+  }
+  std::vector<int> pinned;
+  for (std::size_t v = 0; v < pin.size(); ++v) {
+    if (pin[v]) pinned.push_back(int(v));
+  }
+  return pinned;
+}
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::stringstream stream(text);
+  std::string part;
+  while (std::getline(stream, part, separator))
+    parts.push_back(part);
+  return parts;
+}
+
+// The --pin-motion groups: histories separated by '|', each moving every pin
+// or, with --pin-motion-boxes, the pins in the listed --pin-box boxes.
+std::vector<PinGroupMotion> pin_groups(const Options& options, const TriangleMesh& mesh,
+                                       const std::vector<int>& pinned) {
+  std::vector<PinGroupMotion> groups;
+  if (!options.is_set("pin-motion")) {
+    if (options.is_set("pin-motion-boxes")) {
+      throw InputError("option --pin-motion-boxes: there is no --pin-motion to apply");
+    }
+    return groups;
+  }
+  if (pinned.empty()) throw InputError("option --pin-motion: no vertex is pinned");
+  const auto histories = split(options.text("pin-motion"), '|');
+  Eigen::Vector3d axis = vector3(options, "pin-rotation-axis");
+  if (axis.norm() == 0.0) throw InputError("option --pin-rotation-axis: the axis is zero");
+  axis.normalize();
+  for (std::size_t g = 0; g < histories.size(); ++g) {
+    PinGroupMotion group;
+    group.history = PinHistory::parse(
+        histories[g],
+        "option --pin-motion" +
+            (histories.size() > 1 ? " (group " + std::to_string(g + 1) + ")" : std::string()));
+    group.axis = axis;
+    group.center = vector3(options, "pin-rotation-center");
+    groups.push_back(group);
+  }
+  if (!options.is_set("pin-motion-boxes")) {
+    if (groups.size() > 1) {
+      throw InputError("option --pin-motion: " + std::to_string(groups.size()) +
+                       " groups need --pin-motion-boxes to say which pins each moves");
+    }
+    for (std::size_t i = 0; i < pinned.size(); ++i)
+      groups[0].pins.push_back(i);
+    return groups;
+  }
+  const auto selections = split(options.text("pin-motion-boxes"), '|');
+  if (selections.size() != groups.size()) {
+    throw InputError("option --pin-motion-boxes: " + std::to_string(selections.size()) +
+                     " group(s) of boxes for " + std::to_string(groups.size()) +
+                     " --pin-motion group(s)");
+  }
+  const auto boxes =
+      options.is_set("pin-box") ? option_numbers(options, "pin-box", 0) : std::vector<double>{};
+  const std::size_t box_count = boxes.size() / 6;
+  std::vector<int> group_of(pinned.size(), 0);
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    std::stringstream list(selections[g]);
+    std::string item;
+    while (std::getline(list, item, ',')) {
+      std::size_t used = 0;
+      long box = 0;
+      try {
+        box = std::stol(item, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || item.find_first_not_of(" \t", used) != std::string::npos || box < 1 ||
+          std::size_t(box) > box_count) {
+        throw InputError("option --pin-motion-boxes: '" + item +
+                         "' is not a box of --pin-box (1.." + std::to_string(box_count) + ")");
+      }
+      const double* b = &boxes[6 * std::size_t(box - 1)];
+      for (std::size_t i = 0; i < pinned.size(); ++i) {
+        if (!in_box(b, mesh.positions[std::size_t(pinned[i])]) || group_of[i] == int(g + 1))
+          continue;
+        if (group_of[i] != 0) {
+          throw InputError("option --pin-motion-boxes: pinned vertex " + std::to_string(pinned[i]) +
+                           " is in groups " + std::to_string(group_of[i]) + " and " +
+                           std::to_string(g + 1));
+        }
+        group_of[i] = int(g + 1);
+        groups[g].pins.push_back(i);
+      }
+    }
+  }
+  return groups;
+}
+
+// --pin-release "BOX:TIME,...": per pinned vertex, the time its pin lets go
+// (infinity: never). A vertex is let go only when every --pin-box holding it
+// is, at the last of their times; pins of --pin-boundary and --pin-vertices
+// hold throughout.
+std::vector<double> pin_release_times(const Options& options, const TriangleMesh& mesh,
+                                      const std::vector<int>& pinned) {
+  std::vector<double> release(pinned.size(), INFINITY);
+  if (!options.is_set("pin-release")) return release;
+  const auto boxes =
+      options.is_set("pin-box") ? option_numbers(options, "pin-box", 0) : std::vector<double>{};
+  const std::size_t box_count = boxes.size() / 6;
+  std::vector<double> box_release(box_count, INFINITY);
+  for (const std::string& item : split(options.text("pin-release"), ',')) {
+    const auto colon = item.find(':');
+    std::size_t box_used = 0, time_used = 0;
+    long box = 0;
+    double time = NAN;
+    try {
+      if (colon != std::string::npos) {
+        box = std::stol(item.substr(0, colon), &box_used);
+        time = std::stod(item.substr(colon + 1), &time_used);
+      }
+    } catch (const std::exception&) {
+      box_used = 0;
+    }
+    const bool whole = colon != std::string::npos && box_used > 0 &&
+                       item.find_first_not_of(" \t", box_used) >= colon && time_used > 0 &&
+                       item.find_first_not_of(" \t", colon + 1 + time_used) == std::string::npos;
+    if (!whole || !std::isfinite(time) || time < 0.0) {
+      throw InputError("option --pin-release: '" + item +
+                       "' is not BOX:TIME (a --pin-box number and a time >= 0 in s)");
+    }
+    if (box < 1 || std::size_t(box) > box_count) {
+      throw InputError("option --pin-release: box " + std::to_string(box) +
+                       " is not a box of --pin-box (1.." + std::to_string(box_count) + ")");
+    }
+    box_release[std::size_t(box - 1)] = time;
+  }
+  std::vector<bool> listed(mesh.vertex_count(), false);
+  if (options.flag("pin-boundary")) {
+    for (int v : boundary_vertices(mesh))
+      listed[std::size_t(v)] = true;
+  }
+  if (options.is_set("pin-vertices")) {
+    for (double value : option_numbers(options, "pin-vertices", 0))
+      listed[std::size_t(value)] = true; // checked by pinned_vertices
+  }
+  for (std::size_t i = 0; i < pinned.size(); ++i) {
+    const Eigen::Vector3d& p = mesh.positions[std::size_t(pinned[i])];
+    if (listed[std::size_t(pinned[i])]) continue;
+    double latest = -INFINITY;
+    for (std::size_t b = 0; b < box_count; ++b)
+      if (in_box(&boxes[6 * b], p)) latest = std::max(latest, box_release[b]);
+    release[i] = latest;
+  }
+  return release;
+}
+
+// --edge-force: consistent nodal forces of a uniform line load on the
+// boundary edges whose both ends lie in --edge-force-box.
+void add_edge_force(const Options& options, const TriangleMesh& mesh, ClothLoads* loads) {
+  if (options.is_set("edge-force") != options.is_set("edge-force-box")) {
+    throw InputError("options --edge-force and --edge-force-box go together");
+  }
+  if (!options.is_set("edge-force")) return;
+  const Eigen::Vector3d force = vector3(options, "edge-force");
+  const auto box = option_numbers(options, "edge-force-box", 6);
+  const auto inside = [&](int v) {
+    const Eigen::Vector3d& p = mesh.positions[std::size_t(v)];
+    for (int d = 0; d < 3; ++d) {
+      if (p[d] < box[std::size_t(2 * d)] || p[d] > box[std::size_t(2 * d + 1)]) return false;
+    }
+    return true;
+  };
+  // Material lengths come from the corners' uv in a triangle holding the edge.
+  std::map<std::pair<int, int>, double> material_length;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      const int a = mesh.triangles[t][c], b = mesh.triangles[t][(c + 1) % 3];
+      material_length[{std::min(a, b), std::max(a, b)}] =
+          (mesh.material_uv[t][(c + 1) % 3] - mesh.material_uv[t][c]).norm();
+    }
+  }
+  std::vector<std::pair<std::array<int, 2>, double>> loaded;
+  double total = 0.0;
+  for (const auto& edge : boundary_edges(mesh)) {
+    if (!inside(edge[0]) || !inside(edge[1])) continue;
+    const double length = material_length.at({edge[0], edge[1]});
+    loaded.push_back({edge, length});
+    total += length;
+  }
+  if (loaded.empty()) {
+    throw InputError("option --edge-force-box: no boundary edge has both ends in the box");
+  }
+  std::map<int, Eigen::Vector3d> nodal;
+  for (const auto& [edge, length] : loaded) {
+    for (int v : edge) {
+      auto [entry, added] = nodal.try_emplace(v, Eigen::Vector3d::Zero());
+      entry->second += 0.5 * length / total * force;
+    }
+  }
+  for (const auto& [vertex, f] : nodal)
+    loads->point_forces.push_back({vertex, f});
+}
+
+// The static solver's options.
+StaticOptions static_options(const Options& options, const ClothProblem& problem) {
+  StaticOptions solve;
+  solve.load_steps = count_option(options, "load-steps", 1);
+  solve.minimise = minimiser_chosen(options, "static-solver");
+  solve.sewing_stages = count_option(options, "sewing-stages", 1);
+  if (solve.sewing_stages > 1 && !problem.seam_coupling()) {
+    throw InputError("option --sewing-stages: the case has no seams to sew (or they are merged)");
+  }
+  solve.converge_stages = options.flag("converge-stages");
+  if (solve.converge_stages && solve.sewing_stages < 2) {
+    throw InputError("option --converge-stages: needs --sewing-stages of 2 or more");
+  }
+  solve.max_offset_depth = options.nonnegative_real("contact-max-depth");
+  solve.max_contact_rounds = int(options.integer_in("contact-rounds", 0, 1000));
+  // A static solve that runs long says where it is (docs/drape.md).
+  solve.progress_interval = 10.0;
+  return solve;
+}
+
+DynamicOptions dynamic_options(const Options& options) {
+  DynamicOptions dynamic;
+  dynamic.time_end = options.positive_real("time-end");
+  dynamic.time_step = options.positive_real("time-step");
+  dynamic.damping = options.nonnegative_real("damping");
+  dynamic.kinetic_damping = options.flag("kinetic-damping");
+  dynamic.rest_tolerance = options.nonnegative_real("rest-tolerance");
+  dynamic.output_interval = options.nonnegative_real("output-interval");
+  check_simulated_time(dynamic.time_end, "time-end");
+  check_time_divisions(dynamic.time_end, "time-end", dynamic.time_step, "time-step");
+  check_time_divisions(dynamic.time_end, "time-end", dynamic.output_interval, "output-interval");
+  dynamic.settle = options.flag("settle");
+  dynamic.minimise = minimiser_chosen(options, "dynamic-solver");
+  dynamic.print_progress = true;
+  if (dynamic.time_step > 1.0 || dynamic.time_end > 600.0) {
+    print_warnings({"--time-step " + options.text("time-step") + " s, --time-end " +
+                    options.text("time-end") +
+                    " s: a cloth swings in seconds with steps of milliseconds (times in ms?)"});
+  }
+  return dynamic;
+}
+
+nlohmann::json vector_json(const Eigen::Vector3d& v) {
+  return {v[0], v[1], v[2]};
+}
+
+// The longest triangle edge in material coordinates, m.
+double longest_material_edge(const TriangleMesh& mesh) {
+  double longest = 0.0;
+  for (const auto& uv : mesh.material_uv) {
+    for (std::size_t c = 0; c < 3; ++c)
+      longest = std::max(longest, (uv[(c + 1) % 3] - uv[c]).norm());
+  }
+  return longest;
+}
+
+void broadcast(double* values, int count) {
+  MPI_Bcast(values, count, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
+}
+
+// Stages meant to converge that stopped at the iteration limit: the result
+// is an equilibrium, but one the stages' round-off may have chosen.
+void warn_unconverged_stages(const StaticReport& report) {
+  if (report.unconverged_stages.empty()) return;
+  std::string stages;
+  for (int stage : report.unconverged_stages)
+    stages += (stages.empty() ? "" : ", ") + std::to_string(stage);
+  print_warnings({"sewing stage(s) " + stages + " of " + std::to_string(report.sewing_stages) +
+                  " stopped at -snes_max_it before reaching the tolerance: the stages after "
+                  "them started from a state that round-off moves, so the drape may land "
+                  "elsewhere on another machine; raise -snes_max_it "
+                  "(docs/drape.md#sewing-by-continuation)"});
+}
+
+// A checkpoint within a level of a drape on several levels resumes that
+// level only, and a level resumes only from such a checkpoint.
+void check_drape_level(const CaseCheckpointing& checkpointing, const std::string& drape_level) {
+  if (drape_level.empty() == checkpointing.drape_level.empty()) return;
+  throw InputError(checkpointing.restart_file +
+                   (drape_level.empty()
+                        ? ": the checkpoint is of a run on one mesh (sartor run, or a drape "
+                          "with --levels 1); resume it as one"
+                        : ": the checkpoint is within a level of a drape on several levels; "
+                          "resume it with the same --levels"));
+}
+
+// --analysis dynamic: from rest, or from --restart's checkpoint, with
+// checkpoints as `checkpointing` says.
+void solve_dynamic_case(const Options& options, ClothProblem& problem, Vec x,
+                        const CaseStepObserver& observe, const CaseCheckpointing& checkpointing,
+                        CaseResult* result) {
+  // Starts at rest (or where a checkpoint left it); the probe is followed
+  // step by step for dynamics.csv.
+  Vec v = nullptr;
+  SartorPetscCall(VecDuplicate(x, &v));
+  SartorPetscCall(VecSet(v, 0.0));
+  DynamicReport report;
+  std::optional<DynamicResume> resume;
+  if (!checkpointing.restart_file.empty()) {
+    resume = read_dynamic_checkpoint(checkpointing.restart_file, problem);
+    check_drape_level(checkpointing, resume->drape_level);
+    if (options.positive_real("time-end") < resume->control.time) {
+      throw InputError("option --time-end: " + options.text("time-end") + " s is before " +
+                       checkpointing.restart_file + "'s time, " +
+                       format_number(resume->control.time) + " s");
+    }
+    SartorPetscCall(resume->restore(problem, x, v));
+    report = resume->report;
+    result->probe_history = resume->probe_history;
+    result->resumed_time = resume->control.time;
+    SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "sartor: resuming from %s at t = %g s\n",
+                                checkpointing.restart_file.c_str(), resume->control.time));
+  }
+  const DynamicObserver follow = [&](const DynamicStepReport& step, Vec state,
+                                     Vec) -> PetscErrorCode {
+    if (result->probe) {
+      std::vector<Eigen::Vector3d> positions;
+      SartorPetscCall(problem.gather_positions(state, &positions));
+      double d[3] = {0.0, 0.0, 0.0};
+      if (is_root()) {
+        const std::size_t p = result->probe->vertex;
+        for (int k = 0; k < 3; ++k)
+          d[k] = positions[p][k] - result->mesh.positions[p][k];
+      }
+      broadcast(d, 3);
+      result->probe_history.emplace_back(d[0], d[1], d[2]);
+    }
+    if (observe) observe(problem, state, {step.time, step.output, nullptr});
+    return 0;
+  };
+  DynamicCheckpoints checkpoints;
+  checkpoints.resume = resume ? &resume->control : nullptr;
+  checkpoints.interval = checkpointing.interval;
+  check_time_divisions(options.positive_real("time-end"), "time-end", checkpointing.interval,
+                       "checkpoint-interval");
+  if (checkpointing.interval > 0.0) {
+    checkpoints.write = dynamic_checkpoint_writer(
+        problem, checkpointing, report, result->probe_history, &result->checkpoints_written);
+  }
+  SartorPetscCall(
+      solve_dynamic(problem, x, v, dynamic_options(options), &report, follow, checkpoints));
+  SartorPetscCall(VecDestroy(&v));
+  result->converged = report.completed;
+  result->solve_seconds = report.solve_seconds;
+  result->dynamics = std::move(report);
+}
+
+// Statics: solve_static, from --restart's checkpoint when given, with a
+// checkpoint after every sewing stage and contact round when asked.
+void solve_static_case(ClothProblem& problem, Vec x, const StaticOptions& solve,
+                       const CaseCheckpointing& checkpointing, CaseResult* result) {
+  StaticOptions checkpointed = solve;
+  std::optional<StaticResume> resume;
+  if (!checkpointing.restart_file.empty()) {
+    resume = read_static_checkpoint(checkpointing.restart_file, problem);
+    check_drape_level(checkpointing, resume->drape_level);
+    SartorPetscCall(resume->restore(problem, x));
+    checkpointed.resume = &resume->report;
+    if (is_root())
+      result->last_checkpoint = std::make_shared<const RunCheckpoint>(resume->checkpoint);
+    result->resumed_time = 0.0;
+    SartorPetscCall(PetscPrintf(
+        PETSC_COMM_WORLD,
+        "sartor: resuming from %s after %zu load step(s) (load factor %g), %d contact round(s)\n",
+        checkpointing.restart_file.c_str(), resume->report.steps.size(),
+        resume->checkpoint.load_factor, resume->report.contact_rounds));
+  }
+  if (checkpointing.interval > 0.0)
+    checkpointed.checkpoint = static_checkpoint_writer(
+        problem, checkpointing, &result->checkpoints_written, &result->last_checkpoint);
+  SartorPetscCall(solve_static(problem, x, checkpointed, &result->report));
+  reject_unmet_residual(problem.force_scale(), &result->report);
+  warn_unconverged_stages(result->report);
+}
+
+// One material per fabric: the cloth's, or --fabric's.
+std::vector<ClothMaterial> case_materials(const Options& options, const TriangleMesh& mesh,
+                                          const CaseCloth* cloth) {
+  std::vector<ClothMaterial> materials;
+  for (const std::string& fabric :
+       cloth ? cloth->fabrics : std::vector<std::string>{options.text("fabric")})
+    materials.push_back(build_material(options, fabric, !mesh.creases.empty()));
+  if (!mesh.creases.empty() && !options.is_set("bending-model")) {
+    print_warnings({"the mesh has " + std::to_string(mesh.creases.size()) +
+                    " crease edges: bending by the discrete shell, the model with rest angles "
+                    "on edges (--bending-model discrete_shell; docs/pleats.md)"});
+  }
+  if (materials.size() > 1 && (options.flag("seam-merge") || options.text("analysis") == "creep")) {
+    throw InputError("the cloth has " + std::to_string(materials.size()) +
+                     " fabrics; --seam-merge and --analysis creep need one: give --fabric");
+  }
+  return materials;
+}
+
+// Seams take their automatic stiffness from the stiffest fabric.
+const ClothMaterial& stiffest_material(const std::vector<ClothMaterial>& materials) {
+  return *std::max_element(
+      materials.begin(), materials.end(), [](const ClothMaterial& a, const ClothMaterial& b) {
+        const auto stiffness = [](const ClothMaterial& m) {
+          return std::max(m.membrane.warp.initial_modulus(), m.membrane.weft.initial_modulus());
+        };
+        return stiffness(a) < stiffness(b);
+      });
+}
+
+// Gravity, pressure, --point-force and --edge-force.
+void set_case_loads(const Options& options, const TriangleMesh& mesh, ClothLoads* loads) {
+  loads->gravity = vector3(options, "gravity");
+  loads->pressure = options.real("pressure");
+  if (options.is_set("point-force")) {
+    const auto f = option_numbers(options, "point-force", 4);
+    const auto v = long(f[0]);
+    if (double(v) != f[0] || v < 0 || std::size_t(v) >= mesh.vertex_count()) {
+      throw InputError("option --point-force: vertex " + format_number(f[0]) +
+                       " is not in the mesh");
+    }
+    loads->point_forces.push_back({int(v), Eigen::Vector3d(f[1], f[2], f[3])});
+  }
+  add_edge_force(options, mesh, loads);
+}
+
+// --analysis, checked with the options that only some analyses take.
+std::string checked_analysis(const Options& options, const ClothProblem& problem,
+                             const TriangleMesh& mesh, const std::vector<ClothMaterial>& materials,
+                             const std::vector<int>& pinned, const ClothMaterial& material) {
+  const std::string analysis = options.text("analysis");
+  if (analysis != "static" && analysis != "dynamic" && analysis != "creep") {
+    throw InputError("option --analysis: unknown kind '" + analysis + "' (static, dynamic, creep)");
+  }
+  const bool dynamic = analysis == "dynamic";
+  const bool creep = analysis == "creep";
+  if (!dynamic && !creep && options.is_set("pin-release")) {
+    throw InputError("option --pin-release: pins let go in time; give --analysis dynamic or creep");
+  }
+  options.reject_inapplicable("analysis", {"static", "dynamic", "creep"});
+  reject_flat_membrane_without_bending(options, mesh, materials, pinned);
+  if ((dynamic || creep) && problem.pin_motion != Eigen::Vector3d::Zero()) {
+    throw InputError("option --pin-move ramps the pins with the load in statics; with --analysis " +
+                     analysis + " give a history in time: --pin-motion \"0:0,0,0; T:DX,DY,DZ\"");
+  }
+  if (dynamic && material.areal_density <= 0.0) {
+    throw InputError("option --density: --analysis dynamic needs a positive areal density, got " +
+                     options.text("density"));
+  }
+  return analysis;
+}
+
+// The mesh vertex nearest the --probe point.
+CaseProbe case_probe(const Options& options, const TriangleMesh& mesh) {
+  CaseProbe probe;
+  probe.point = vector3(options, "probe");
+  for (std::size_t v = 1; v < mesh.vertex_count(); ++v) {
+    if ((mesh.positions[v] - probe.point).norm() <
+        (mesh.positions[probe.vertex] - probe.point).norm())
+      probe.vertex = v;
+  }
+  probe.initial_position = mesh.positions[probe.vertex];
+  probe.displacement.setZero();
+  return probe;
+}
+
+// Creep: run_creep_case, the observer seeing the coupling's state.
+void solve_creep_case(const Options& options, ClothProblem& problem, Vec x,
+                      const CaseStepObserver& observe, const CaseCheckpointing& checkpointing,
+                      CaseResult* result) {
+  CreepCoupling coupling(problem, creep_materials(options));
+  const CreepStateObserver follow = [&](Vec state, const CreepStepReport& step) {
+    if (observe) observe(problem, state, {step.time, step.output, &coupling});
+  };
+  CreepRunResult run =
+      run_creep_case(options, problem, x, checkpointing,
+                     result->probe ? long(result->probe->vertex) : -1L, coupling, follow);
+  result->converged = run.report.completed;
+  result->solve_seconds = run.report.solve_seconds;
+  result->creep = std::move(run);
+}
+
+// The largest displacement and the probe's, from the positions rank 0
+// holds: it measures, everybody learns.
+void measure_displacements(const TriangleMesh& mesh, CaseResult* result) {
+  double measured[4] = {0.0, 0.0, 0.0, 0.0};
+  if (is_root()) {
+    for (std::size_t v = 0; v < result->positions.size(); ++v) {
+      measured[0] = std::max(measured[0], (result->positions[v] - mesh.positions[v]).norm());
+    }
+    if (result->probe) {
+      const Eigen::Vector3d d =
+          result->positions[result->probe->vertex] - mesh.positions[result->probe->vertex];
+      measured[1] = d.x();
+      measured[2] = d.y();
+      measured[3] = d.z();
+    }
+  }
+  broadcast(measured, 4);
+  result->max_displacement = measured[0];
+  if (result->probe) result->probe->displacement = {measured[1], measured[2], measured[3]};
+}
+
+} // namespace
+
+void assign_panel_fabrics(const std::vector<garment::Panel>& panels, CaseCloth* cloth) {
+  std::vector<int> fabric_of_panel;
+  for (const garment::Panel& panel : panels) {
+    auto found = std::find(cloth->fabrics.begin(), cloth->fabrics.end(), panel.fabric);
+    if (found == cloth->fabrics.end()) found = cloth->fabrics.insert(found, panel.fabric);
+    fabric_of_panel.push_back(int(found - cloth->fabrics.begin()));
+  }
+  for (int& id : cloth->mesh.material_ids)
+    id = fabric_of_panel[std::size_t(id)];
+}
+
+void name_single_fabric(const CaseCloth& cloth, Options* options) {
+  if (cloth.fabrics.size() == 1) options->set("fabric", cloth.fabrics.front());
+}
+
+CaseResult solve_case(const Options& options, int extra_refinements,
+                      const CaseStepObserver& observe, const CaseCheckpointing& checkpointing,
+                      const CaseCloth* cloth) {
+  const auto started = std::chrono::steady_clock::now();
+  CaseResult result;
+  result.mesh =
+      build_mesh(options, extra_refinements, &result.mesh_refine, cloth ? &cloth->mesh : nullptr);
+  const TriangleMesh& mesh = result.mesh;
+  const std::vector<ClothMaterial> materials = case_materials(options, mesh, cloth);
+  const ClothMaterial& material = stiffest_material(materials);
+  std::vector<int> pinned = pinned_vertices(options, mesh);
+  // Seams (app/seam_case.hpp): sewn by springs, or sewn first and merged.
+  const std::vector<Seam> seams = case_seams(options, mesh, result.mesh_refine);
+  if (!seams.empty()) result.seams = SeamReport{};
+  if (!seams.empty() && options.flag("seam-merge")) {
+    sew_and_merge(options, material, vector3(options, "gravity"),
+                  count_option(options, "load-steps", 1), seams, &result.mesh, &pinned,
+                  &*result.seams);
+  }
+  result.pinned_vertices = pinned.size();
+  result.h = longest_material_edge(mesh);
+
+  const std::vector<double> release_times = pin_release_times(options, mesh, pinned);
+  ClothProblem problem(PETSC_COMM_WORLD, mesh, materials, pinned, release_times);
+  set_case_loads(options, mesh, &problem.loads);
+  problem.pin_motion = vector3(options, "pin-move");
+  problem.pin_groups = pin_groups(options, mesh, pinned);
+  set_up_contact(options, problem);
+  problem.contact.project_hessian = options.flag("membrane-psd");
+  if (result.seams && !result.seams->merged) {
+    // Static sewing stages start from this pull (before the springs are made).
+    if (options.text("analysis") == "static" && count_option(options, "sewing-stages", 1) > 1)
+      problem.sewing_tension = options.positive_real("sewing-start-tension");
+    attach_seams(options, seams, material, problem, &*result.seams);
+  }
+  const std::string analysis =
+      checked_analysis(options, problem, mesh, materials, pinned, material);
+  const bool dynamic = analysis == "dynamic";
+  const bool creep = analysis == "creep";
+  const StaticOptions solve = static_options(options, problem);
+  if (options.is_set("probe")) result.probe = case_probe(options, mesh);
+  result.dofs = problem.global_dof_count();
+  const auto set_up = std::chrono::steady_clock::now();
+
+  Vec x = nullptr;
+  SartorPetscCall(problem.create_solution(&x));
+  if (dynamic) {
+    solve_dynamic_case(options, problem, x, observe, checkpointing, &result);
+  } else if (creep) {
+    solve_creep_case(options, problem, x, observe, checkpointing, &result);
+  } else {
+    solve_static_case(problem, x, solve, checkpointing, &result);
+  }
+  // The final state of statics, or of a settle, is certified (a saddle is not converged).
+  const bool settled = result.dynamics && result.dynamics->settled;
+  if (!creep && (!dynamic || settled) && !options.flag("no-certificate")) {
+    result.certified =
+        certify_case(options, problem, x, dynamic ? nullptr : &solve, &result.report);
+  }
+  if (!dynamic && !creep) {
+    reject_unmet_residual(problem.force_scale(), &result.report);
+    result.converged =
+        result.report.converged && !(result.certified && result.certified->certificate.saddle());
+    result.solve_seconds = result.report.solve_seconds;
+    if (!checkpointing.final_state.empty())
+      SartorPetscCall(write_final_static_state(problem, x, checkpointing, result.report));
+  }
+  result.cpu_at_end = process_cpu_seconds();
+  result.load_factor = problem.load_factor;
+
+  SartorPetscCall(problem.energy(x, &result.energy));
+  if (result.seams) SartorPetscCall(problem.seam_gap(x, &result.seams->gap));
+  SartorPetscCall(problem.pin_reaction(x, &result.pin_reaction));
+  SartorPetscCall(problem.gather_positions(x, &result.positions));
+  SartorPetscCall(problem.gather_strains(x, &result.strains));
+  SartorPetscCall(problem.gather_vertex_loads(x, &result.vertex_loads));
+  result.contact = measure_contact(options, problem, x, result.positions);
+  if (cloth && cloth->after_statics && !dynamic && !creep && result.converged) {
+    const bool springs = !seams.empty() && !(result.seams && result.seams->merged);
+    cloth->after_statics(problem, materials,
+                         springs ? case_seam_springs(options, mesh, seams, material)
+                                 : std::vector<SeamSpring>{},
+                         x, result.last_checkpoint);
+  }
+  SartorPetscCall(VecDestroy(&x));
+
+  measure_displacements(mesh, &result);
+  const auto finished = std::chrono::steady_clock::now();
+  result.setup_seconds = std::chrono::duration<double>(set_up - started).count();
+  result.total_seconds = std::chrono::duration<double>(finished - started).count();
+  return result;
+}
+
+namespace {
+
+void add_statics_summary(const StaticReport& report, nlohmann::json& summary) {
+  summary["solver"] = {{"reason", report.reason},
+                       {"load_steps", report.steps.size()},
+                       {"newton_iterations", report.newton_iterations},
+                       {"linear_iterations", report.linear_iterations},
+                       {"initial_residual_norm", report.initial_residual_norm},
+                       {"final_residual_norm", report.final_residual_norm},
+                       {"method", report.minimised ? "minimise" : "snes"}};
+  if (report.minimised) {
+    summary["solver"]["minimiser"] = {
+        {"step_bound_cuts", report.minimiser.step_bound_cuts},
+        {"regularised_steps", report.minimiser.regularised_steps},
+        {"residual_rule_trials", report.minimiser.residual_rule_trials},
+        {"failed_factorisations", report.minimiser.failed_factorisations},
+        {"exact_steps", report.minimiser.exact_steps},
+        {"sewing_stages", report.sewing_stages},
+        {"unconverged_stages", report.unconverged_stages},
+        {"contact_rounds", report.contact_rounds},
+        {"contact_round_failed", report.contact_round_failed},
+        {"contact_stiffness_scale", report.contact_stiffness_scale},
+        {"sliding_vertices", report.sliding_vertices},
+        {"friction_consistent", report.friction_consistent},
+        {"anchored_residual_N", report.anchored_residual_norm},
+        {"consistency_tolerance_N", report.consistency_tolerance}};
+    nlohmann::json rounds = nlohmann::json::array();
+    for (const ContactRound& round : report.rounds) {
+      rounds.push_back({{"newton_iterations", round.newton_iterations},
+                        {"anchored_residual_N", round.residual_norm},
+                        {"sliding_vertices", round.sliding_vertices},
+                        {"contact_stiffness_scale", round.contact_stiffness_scale}});
+    }
+    summary["solver"]["minimiser"]["rounds"] = rounds;
+  }
+  summary["load_steps"] = nlohmann::json::array();
+  for (const auto& step : report.steps) {
+    summary["load_steps"].push_back({{"load_factor", step.load_factor},
+                                     {"converged", step.converged},
+                                     {"reason", step.reason},
+                                     {"newton_iterations", step.newton_iterations},
+                                     {"linear_iterations", step.linear_iterations},
+                                     {"residual_norm", step.residual_norm}});
+  }
+}
+
+void add_dynamics_summary(const CaseResult& result, nlohmann::json& summary) {
+  const DynamicReport& report = *result.dynamics;
+  const std::size_t accepted = report.steps.empty() ? 0 : report.steps.size() - 1;
+  nlohmann::json history = nlohmann::json::array();
+  for (const auto& step : report.steps) {
+    history.push_back({{"step", step.step},
+                       {"time_s", step.time},
+                       {"dt_s", step.dt},
+                       {"newton_iterations", step.newton_iterations},
+                       {"linear_iterations", step.linear_iterations},
+                       {"rejected", step.rejected},
+                       {"kinetic_energy_J", step.kinetic_energy},
+                       {"potential_energy_J", step.potential_energy},
+                       {"static_residual_norm", step.static_residual_norm},
+                       {"velocities_reset", step.velocities_reset},
+                       {"output", step.output}});
+  }
+  summary["dynamics"] = {
+      {"completed", report.completed},
+      {"at_rest", report.at_rest},
+      {"reason",
+       report.completed ? (report.at_rest ? "at rest" : "reached the end time") : report.reason},
+      {"final_time_s", report.final_time},
+      {"steps", accepted},
+      {"rejected_steps", report.rejected_steps},
+      {"newton_iterations", report.newton_iterations},
+      {"linear_iterations", report.linear_iterations},
+      {"newton_iterations_per_step",
+       accepted ? double(report.newton_iterations) / double(accepted) : 0.0},
+      {"velocity_resets", report.velocity_resets},
+      {"settle", report.settle_reason.empty()
+                     ? nlohmann::json(nullptr)
+                     : nlohmann::json{{"converged", report.settled},
+                                      {"reason", report.settle_reason},
+                                      {"newton_iterations", report.settle_newton_iterations},
+                                      {"contact_rounds", report.settle_contact_rounds},
+                                      {"contact_round_failed", report.settle_contact_round_failed},
+                                      {"residual_norm", report.settle_residual_norm}}},
+      {"steps_per_second",
+       report.solve_seconds > 0 ? double(accepted) / report.solve_seconds : 0.0},
+      {"history", history},
+      {"checkpoints_written", result.checkpoints_written},
+      {"resumed", result.resumed_time >= 0.0}};
+  if (result.resumed_time >= 0.0) summary["dynamics"]["resumed_from_time_s"] = result.resumed_time;
+}
+
+void add_creep_summary(const CreepRunResult& run, nlohmann::json& summary) {
+  const CreepReport& report = run.report;
+  long accepted = 0;
+  for (const auto& step : report.steps)
+    accepted += step.step > 0 ? 1 : 0;
+  summary["creep"] = {{"scheme", run.scheme},
+                      {"completed", report.completed},
+                      {"reason", report.completed ? "reached the end time" : report.reason},
+                      {"final_time_s", report.final_time},
+                      {"steps", accepted},
+                      {"rejected_steps", report.rejected_steps},
+                      {"newton_iterations", report.newton_iterations},
+                      {"checkpoints_written", run.checkpoints_written},
+                      {"resumed", run.resumed}};
+  if (run.resumed) summary["creep"]["resumed_from_time_s"] = run.resumed_time;
+}
+
+// dynamics.csv: one row per state (the initial one first).
+std::string dynamics_csv(const CaseResult& result) {
+  std::ostringstream csv;
+  csv << "time_s,dt_s,kinetic_energy_J,potential_energy_J,total_energy_J,static_residual_N,"
+         "newton_iterations,rejected";
+  if (result.probe) csv << ",probe_dx_m,probe_dy_m,probe_dz_m";
+  csv << "\n";
+  const auto& steps = result.dynamics->steps;
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const DynamicStepReport& s = steps[k];
+    csv << format_number(s.time) << ',' << format_number(s.dt) << ','
+        << format_number(s.kinetic_energy) << ',' << format_number(s.potential_energy) << ','
+        << format_number(s.kinetic_energy + s.potential_energy) << ','
+        << format_number(s.static_residual_norm) << ',' << s.newton_iterations << ',' << s.rejected;
+    if (result.probe && k < result.probe_history.size()) {
+      for (int d = 0; d < 3; ++d)
+        csv << ',' << format_number(result.probe_history[k][d]);
+    }
+    csv << "\n";
+  }
+  return csv.str();
+}
+
+} // namespace
+
+void add_case_summary(const CaseResult& result, nlohmann::json& summary) {
+  summary["mesh"] = {{"vertices", result.mesh.vertex_count()},
+                     {"triangles", result.mesh.triangle_count()},
+                     {"pinned_vertices", result.pinned_vertices},
+                     {"dofs", result.dofs}};
+  summary["converged"] = result.converged;
+  if (result.dynamics) {
+    add_dynamics_summary(result, summary);
+  } else if (result.creep) {
+    add_creep_summary(*result.creep, summary);
+  } else {
+    add_statics_summary(result.report, summary);
+  }
+  summary["energy_J"] = {{"membrane", result.energy.membrane},
+                         {"bending", result.energy.bending},
+                         {"external", result.energy.external},
+                         {"total", result.energy.total()}};
+  if (result.seams) {
+    summary["energy_J"]["seam"] = result.energy.seam;
+    add_seam_summary(*result.seams, summary);
+  }
+  summary["pin_reaction_N"] = vector_json(result.pin_reaction);
+  summary["max_displacement_m"] = result.max_displacement;
+  if (result.probe) {
+    summary["probe"] = {{"vertex", result.probe->vertex},
+                        {"initial_position_m", vector_json(result.probe->initial_position)},
+                        {"displacement_m", vector_json(result.probe->displacement)}};
+  }
+  if (!result.contact.bodies.empty()) summary["contact"] = contact_summary(result.contact);
+  if (result.certified) {
+    summary["certificate"] = certificate_json(result.certified->certificate);
+    summary["certificate"]["saddle_escapes"] = result.certified->escapes;
+    summary["certificate"]["saddle_push_m"] = result.certified->push_size;
+  }
+  summary["timing_s"] = {{"setup", result.setup_seconds},
+                         {"solve", result.solve_seconds},
+                         {"total", result.total_seconds}};
+}
+
+void write_case_results(const std::string& directory, const CaseResult& result,
+                        const nlohmann::json& summary, const ClothOutputLabels& labels) {
+  if (!is_root()) return;
+  write_cloth_results(directory, result.mesh, result.positions, result.strains, labels,
+                      result.vertex_loads);
+  if (result.dynamics) write_file_atomically(directory + "/dynamics.csv", dynamics_csv(result));
+  if (result.creep) write_file_atomically(directory + "/creep.csv", result.creep->history_csv);
+  write_json(directory + "/summary.json", summary);
+}
+
+// PETSc lists one option a line, `-name value`, but reads a file back word by
+// word: a value with spaces (--body "mannequin mu=0.3") is quoted so that
+// `-options_file petsc_options.txt` re-runs the job. The command's own
+// defaults go in before the table's last line; -output names the directory
+// written (which a command may have chosen in place of the database's:
+// `sartor edit DRAPE_DIR` does not write into the drape's).
+std::string echoed_options(const std::string& path, const std::string& directory,
+                           const Options& options) {
+  std::ifstream lines(path);
+  std::vector<std::string> table;
+  for (std::string line; std::getline(lines, line);)
+    table.push_back(line);
+  const bool closed = !table.empty() && table.back().rfind("#End", 0) == 0;
+  auto end = closed ? table.end() - 1 : table.end();
+  for (const auto& [key, value] : options.command_defaults())
+    end = table.insert(end, key + " " + value) + 1;
+  std::string quoted;
+  for (std::string line : table) {
+    if (line.rfind("-output ", 0) == 0) line = "-output " + directory;
+    const std::size_t space = line.find(' ');
+    if (line.rfind('-', 0) == 0 && space != std::string::npos &&
+        line.find_first_of(" \t", space + 1) != std::string::npos) {
+      line = line.substr(0, space) + " \"" + line.substr(space + 1) + "\"";
+    }
+    quoted += line + "\n";
+  }
+  return quoted;
+}
+
+std::vector<Eigen::Vector3d> broadcast_positions(std::vector<Eigen::Vector3d> positions,
+                                                 std::size_t count) {
+  positions.resize(count);
+  static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double), "packed vectors");
+  SartorPetscCall(
+      MPI_Bcast(positions.data()->data(), int(3 * count), MPI_DOUBLE, 0, PETSC_COMM_WORLD));
+  return positions;
+}
+
+void write_petsc_options(const std::string& directory, const Options& options) {
+  const std::string path = directory + "/petsc_options.txt";
+  PetscViewer viewer = nullptr;
+  SartorPetscCall(PetscViewerASCIIOpen(PETSC_COMM_WORLD, path.c_str(), &viewer));
+  SartorPetscCall(PetscOptionsView(nullptr, viewer));
+  SartorPetscCall(PetscViewerDestroy(&viewer));
+  if (is_root()) write_file_atomically(path, echoed_options(path, directory, options));
+}
+
+CaseStepObserver series_writer(const std::string& directory, const ClothOutputLabels& labels,
+                               const std::string& resumed_from) {
+  auto series = std::make_shared<std::unique_ptr<ClothTimeSeries>>();
+  return [directory, series, labels, resumed_from](ClothProblem& problem, Vec x,
+                                                   const CaseState& state) {
+    if (!state.output) return;
+    std::vector<Eigen::Vector3d> positions;
+    std::vector<element::MembraneStrain> strains;
+    std::vector<ElementCreep> creep;
+    SartorPetscCall(problem.gather_positions(x, &positions));
+    SartorPetscCall(problem.gather_strains(x, &strains));
+    if (state.creep) SartorPetscCall(state.creep->gather(&creep));
+    if (!is_root()) return;
+    std::vector<ClothTimeSeries::CellField> fields;
+    if (state.creep) {
+      fields = {{"viscoelastic_warp", {}},
+                {"permanent_warp", {}},
+                {"viscoelastic_weft", {}},
+                {"permanent_weft", {}}};
+      for (const ElementCreep& c : creep) {
+        fields[0].values.push_back(c.warp.viscoelastic);
+        fields[1].values.push_back(c.warp.permanent);
+        fields[2].values.push_back(c.weft.viscoelastic);
+        fields[3].values.push_back(c.weft.permanent);
+      }
+    }
+    if (!*series && !resumed_from.empty()) {
+      *series = std::make_unique<ClothTimeSeries>(directory, problem.mesh(), labels,
+                                                  checkpoint_time(resumed_from));
+    }
+    if (!*series) *series = std::make_unique<ClothTimeSeries>(directory, problem.mesh(), labels);
+    (*series)->write(state.time, positions, strains, fields);
+  };
+}
+
+CaseCheckpointing case_checkpointing(const Options& options, const std::string& directory) {
+  CaseCheckpointing checkpointing;
+  checkpointing.interval = options.nonnegative_real("checkpoint-interval");
+  checkpointing.file =
+      options.is_set("checkpoint") ? options.text("checkpoint") : directory + "/checkpoint.h5";
+  if (options.is_set("restart")) checkpointing.restart_file = options.text("restart");
+  if (checkpointing.interval > 0.0 || !checkpointing.restart_file.empty()) {
+    if (is_root()) make_output_directory(directory);
+  }
+  return checkpointing;
+}
+
+int run_run(const Invocation& invocation) {
+  const Options& options = invocation.options;
+  const std::string directory = options.text("output");
+  // Dynamic runs write their states at output times into series.h5/.xmf.
+  const ClothOutputLabels labels{{options.text("fabric")}, {}, {}};
+  const CaseCheckpointing checkpointing = case_checkpointing(options, directory);
+  const CaseStepObserver write_state = series_writer(directory, labels, checkpointing.restart_file);
+  const CaseResult result = solve_case(options, 0, write_state, checkpointing);
+
+  nlohmann::json summary = run_metadata(invocation, "run");
+  summary["case"] = invocation.command_line.positionals.at(0);
+  add_case_summary(result, summary);
+  write_case_results(directory, result, summary, labels);
+  write_petsc_options(directory, options);
+  if (invocation.keep_result) invocation.keep_result(result, summary, labels);
+  if (!options.flag("no-plot")) make_plot("plot_result.py", directory);
+
+  if (result.creep) {
+    const CreepReport& report = result.creep->report;
+    SartorPetscCall(PetscPrintf(
+        PETSC_COMM_WORLD,
+        "sartor run: %zu triangles, creep to t = %g s in %zu steps (%ld rejected), %d Newton "
+        "iterations; wrote %s\n",
+        result.mesh.triangle_count(), report.final_time, report.steps.size(), report.rejected_steps,
+        int(report.newton_iterations), directory.c_str()));
+    if (!report.completed) {
+      throw SolveFailure("the creep run stopped at t = " + format_number(report.final_time) +
+                         " s: " + report.reason + "; " + directory +
+                         " holds the last accepted state. Try a smaller --creep-tolerance or "
+                         "-snes_monitor");
+    }
+    return 0;
+  }
+  if (result.dynamics) {
+    const DynamicReport& report = *result.dynamics;
+    SartorPetscCall(PetscPrintf(
+        PETSC_COMM_WORLD,
+        "sartor run: %zu triangles, dynamic to t = %g s in %zu steps (%d rejected), %d Newton "
+        "iterations%s%s%s; wrote %s\n",
+        result.mesh.triangle_count(), report.final_time, report.steps.size() - 1,
+        int(report.rejected_steps), int(report.newton_iterations),
+        report.at_rest ? ", at rest" : "", result.certified ? "; certificate of the settle: " : "",
+        result.certified ? result.certified->certificate.verdict().c_str() : "",
+        directory.c_str()));
+    if (!report.completed) {
+      throw SolveFailure(report.reason + "; " + directory +
+                         " holds the last accepted state. Try a smaller --time-step, --damping, "
+                         "or -snes_monitor");
+    }
+    return 0;
+  }
+  const std::string verdict = result.certified ? result.certified->certificate.verdict()
+                              : options.flag("no-certificate") ? "skipped"
+                                                               : "not certified";
+  SartorPetscCall(
+      PetscPrintf(PETSC_COMM_WORLD,
+                  "sartor run: %zu triangles, %s after %d Newton iterations in %zu load "
+                  "step(s), residual %.3e; certificate: %s; wrote %s\n",
+                  result.mesh.triangle_count(), result.report.reason.c_str(),
+                  int(result.report.newton_iterations), result.report.steps.size(),
+                  result.report.final_residual_norm, verdict.c_str(), directory.c_str()));
+  if (result.report.converged && result.certified && result.certified->certificate.saddle()) {
+    throw SolveFailure("the static solve ended on a saddle, not a minimum: the true Hessian has " +
+                       std::to_string(result.certified->certificate.stability.negative) +
+                       " direction(s) of descent (summary.json: certificate); " + directory +
+                       " holds it. Try --escape-saddles N or another start");
+  }
+  if (!result.converged) {
+    // The minimiser is globalised: smaller load steps rarely help it, a
+    // larger iteration budget does (a flat start far from equilibrium).
+    const std::string hint = result.report.minimised
+                                 ? "Try a larger -snes_max_it (Newton iterations per load step) "
+                                   "or -snes_monitor"
+                                 : "Try more --load-steps or -snes_monitor";
+    throw SolveFailure("the static solve did not converge (" + result.report.reason +
+                       " at load factor " + format_number(result.load_factor) + "); " + directory +
+                       " holds the last converged state. " + hint);
+  }
+  return 0;
+}
+
+} // namespace sartor

@@ -1,0 +1,183 @@
+#include "app/seam_case.hpp"
+
+#include "common/csv.hpp"
+#include "common/error.hpp"
+#include "fem/petsc_call.hpp"
+#include "fem/petsc_options.hpp"
+#include "mesh/merge.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+
+namespace sartor {
+
+namespace {
+
+int divisions(const Options& options, const std::string& name, const std::string& fallback) {
+  const std::string used = options.is_set(name) ? name : fallback;
+  const long value = options.integer(used);
+  if (value < 1) {
+    throw InputError("option --" + used + ": must be >= 1, got " + options.text(used));
+  }
+  return int(value);
+}
+
+// --sewing-tension and --sewing-time: the sewing stage of a dynamic run.
+void set_up_sewing(const Options& options, ClothProblem& problem, SeamReport* report) {
+  if (!options.is_set("sewing-tension")) return;
+  const double tension = options.nonnegative_real("sewing-tension");
+  if (tension == 0.0) return;
+  if (options.text("analysis") != "dynamic") {
+    throw InputError("option --sewing-tension: sewing is a stage of time stepping; give --analysis "
+                     "dynamic (or leave --sewing-tension out)");
+  }
+  const double time_end = options.positive_real("time-end");
+  const double end =
+      options.is_set("sewing-time") ? options.positive_real("sewing-time") : 0.5 * time_end;
+  if (end >= time_end) {
+    throw InputError("option --sewing-time: the sewing stage must end before --time-end (" +
+                     format_number(time_end) + " s), got " + format_number(end) + " s");
+  }
+  problem.sewing_tension = tension;
+  problem.sewing_end_time = end;
+  report->sewing_tension = problem.sewing_tension;
+  report->sewing_end_time = end;
+}
+
+} // namespace
+
+mesh::PanelMesh tube_panels_mesh(const Options& options) {
+  return mesh::tube_panels(
+      options.positive_real("mesh-width"), options.positive_real("mesh-height"),
+      divisions(options, "mesh-nx", "mesh-nx"), divisions(options, "mesh-ny", "mesh-ny"),
+      divisions(options, "mesh-nx-front", "mesh-nx"),
+      divisions(options, "mesh-ny-front", "mesh-ny"), options.nonnegative_real("mesh-gap"));
+}
+
+std::vector<Seam> case_seams(const Options& options, const TriangleMesh& mesh, int refinements) {
+  std::vector<Seam> seams;
+  if (options.is_set("seams-file")) {
+    seams = read_seams(options.text("seams-file"), mesh);
+  } else if (options.text("mesh") == "tube_panels") {
+    seams = tube_panels_mesh(options).seams;
+  }
+  if (!seams.empty() && refinements > 0) {
+    throw InputError("seams and uniform refinement (--mesh-refine " + std::to_string(refinements) +
+                     ") cannot be combined: refine the panels before listing their seam lines");
+  }
+  if (seams.empty() && (options.flag("seam-merge") || options.is_set("seam-stiffness") ||
+                        options.is_set("sewing-tension"))) {
+    throw InputError("options --seam-merge, --seam-stiffness and --sewing-tension need seams: give "
+                     "--seams-file or --mesh tube_panels");
+  }
+  return seams;
+}
+
+SeamStiffness case_seam_stiffness(const Options& options, const ClothMaterial& material) {
+  SeamStiffness stiffness;
+  stiffness.modulus =
+      std::max(material.membrane.warp.initial_modulus(), material.membrane.weft.initial_modulus());
+  stiffness.penalty = options.positive_real("seam-penalty");
+  if (options.is_set("seam-stiffness")) {
+    stiffness.per_length = options.positive_real("seam-stiffness");
+  }
+  return stiffness;
+}
+
+std::vector<SeamSpring> case_seam_springs(const Options& options, const TriangleMesh& mesh,
+                                          const std::vector<Seam>& seams,
+                                          const ClothMaterial& material) {
+  return seam_springs(mesh, seams, case_seam_stiffness(options, material));
+}
+
+void attach_seams(const Options& options, const std::vector<Seam>& seams,
+                  const ClothMaterial& material, ClothProblem& problem, SeamReport* report) {
+  // Sewing starts with the seam springs stretched across the gap: residuals
+  // of ~1e6 N, of which SNES's relative tolerance (1e-10) would accept a
+  // final residual of 1e-4 N, a good fraction of the cloth's weight. Sewn
+  // cases converge on the absolute tolerance instead (round-off of the
+  // membrane forces, IncrementalSystem); -snes_rtol still overrides.
+  SartorPetscCall(set_default_option("-snes_rtol", "0"));
+  set_up_sewing(options, problem, report);
+  const std::vector<SeamSpring> springs =
+      problem.set_seams(seams, case_seam_stiffness(options, material));
+  report->seams = seams.size();
+  report->springs = springs.size();
+  report->vertex_to_edge_springs = std::size_t(std::count_if(
+      springs.begin(), springs.end(), [](const SeamSpring& spring) { return spring.to_edge; }));
+  report->cross_rank_springs = problem.seam_coupling()->cross_rank_springs();
+}
+
+void sew_and_merge(const Options& options, const ClothMaterial& material,
+                   const Eigen::Vector3d& gravity, int load_steps, const std::vector<Seam>& seams,
+                   TriangleMesh* mesh, std::vector<int>* pinned, SeamReport* report) {
+  if (options.is_set("point-force")) {
+    throw InputError("option --point-force names a vertex of the unmerged mesh; it cannot be "
+                     "combined with --seam-merge");
+  }
+  // Fails early, before the solve, for seams that cannot be merged.
+  matched_vertex_pairs(*mesh, seams);
+  std::vector<Eigen::Vector3d> positions;
+  {
+    ClothProblem sewing(PETSC_COMM_WORLD, *mesh, material, *pinned);
+    sewing.loads.gravity = gravity;
+    attach_seams(options, seams, material, sewing, report);
+    StaticOptions solve;
+    solve.load_steps = load_steps;
+    Vec x = nullptr;
+    SartorPetscCall(sewing.create_solution(&x));
+    SartorPetscCall(solve_static(sewing, x, solve, &report->sewing));
+    SartorPetscCall(sewing.seam_gap(x, &report->gap_before_merge));
+    SartorPetscCall(sewing.gather_positions(x, &positions));
+    SartorPetscCall(VecDestroy(&x));
+  }
+  if (!report->sewing.converged) {
+    throw SolveFailure("option --seam-merge: the sewing solve did not converge (" +
+                       report->sewing.reason + "); try more --load-steps or -snes_monitor");
+  }
+  const double tolerance = options.positive_real("seam-merge-gap");
+  if (report->gap_before_merge > tolerance) {
+    throw SolveFailure("option --seam-merge: the seams did not close (largest gap " +
+                       format_number(report->gap_before_merge) + " m > --seam-merge-gap " +
+                       format_number(tolerance) + " m); raise --seam-penalty or --seam-stiffness");
+  }
+  // Every rank holds the whole mesh: share the sewn placement.
+  positions.resize(mesh->vertex_count());
+  SartorPetscCall(
+      MPI_Bcast(positions.data(), int(3 * positions.size()), MPI_DOUBLE, 0, PETSC_COMM_WORLD));
+  TriangleMesh sewn = *mesh;
+  sewn.positions = positions;
+  const MergedMesh merged = merge_vertices(sewn, matched_vertex_pairs(sewn, seams));
+  for (int& v : *pinned)
+    v = merged.vertex_map[std::size_t(v)];
+  std::sort(pinned->begin(), pinned->end());
+  pinned->erase(std::unique(pinned->begin(), pinned->end()), pinned->end());
+  report->merged = true;
+  report->vertices_before_merge = mesh->vertex_count();
+  report->vertices_after_merge = merged.mesh.vertex_count();
+  *mesh = merged.mesh;
+}
+
+void add_seam_summary(const SeamReport& report, nlohmann::json& summary) {
+  nlohmann::json seams = {{"seams", report.seams},
+                          {"springs", report.springs},
+                          {"vertex_to_edge_springs", report.vertex_to_edge_springs},
+                          {"cross_rank_springs", report.cross_rank_springs},
+                          {"largest_gap_m", report.gap},
+                          {"sewing_tension_N_per_m", report.sewing_tension},
+                          {"sewing_end_time_s", report.sewing_end_time},
+                          {"merged", report.merged}};
+  if (report.merged) {
+    seams["merge"] = {{"gap_before_m", report.gap_before_merge},
+                      {"vertices_before", report.vertices_before_merge},
+                      {"vertices_after", report.vertices_after_merge},
+                      {"sewing_converged", report.sewing.converged},
+                      {"sewing_newton_iterations", report.sewing.newton_iterations},
+                      {"sewing_pseudo_steps", report.sewing.pseudo_steps},
+                      {"sewing_seconds", report.sewing.solve_seconds}};
+  }
+  summary["seams"] = seams;
+}
+
+} // namespace sartor

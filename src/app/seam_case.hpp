@@ -1,0 +1,72 @@
+#pragma once
+// Seams in the case pipeline of `sartor run` (solve_case): the seams of the
+// case's mesh (the tube_panels generator's, or a seam file's), their springs
+// with the stiffness the options choose, the optional sew-then-merge stage,
+// and the "seams" part of summary.json. docs/seams.md describes them.
+
+#include "app/cli.hpp"
+#include "fem/cloth_problem.hpp"
+#include "mesh/panels.hpp"
+#include "mesh/seams.hpp"
+#include "solvers/statics.hpp"
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace sartor {
+
+struct SeamReport {
+  std::size_t seams = 0;
+  std::size_t springs = 0;
+  std::size_t vertex_to_edge_springs = 0;
+  PetscInt cross_rank_springs = 0; // springs whose vertices live on different ranks
+  double gap = 0.0;                // largest seam gap at the solution, m (0 once merged)
+  double sewing_tension = 0.0;     // --sewing-tension: the springs' pull limit, N/m (0: none)
+  double sewing_end_time = 0.0;    // the end of the sewing stage, s
+  // --seam-merge: the sewing solve, its gap, and the vertices before and after.
+  bool merged = false;
+  double gap_before_merge = 0.0; // m
+  std::size_t vertices_before_merge = 0;
+  std::size_t vertices_after_merge = 0;
+  StaticReport sewing;
+};
+
+// --mesh tube_panels from --mesh-width, --mesh-height, --mesh-nx, --mesh-ny,
+// --mesh-nx-front, --mesh-ny-front and --mesh-gap.
+mesh::PanelMesh tube_panels_mesh(const Options& options);
+
+// The case's seams: --seams-file's, else the tube_panels generator's, else
+// none. Throws InputError when seams meet uniform refinement (the seam lines
+// would miss the new vertices).
+std::vector<Seam> case_seams(const Options& options, const TriangleMesh& mesh, int refinements);
+
+// The seams' stiffness settings: --seam-stiffness, or --seam-penalty with the
+// material's largest initial modulus.
+SeamStiffness case_seam_stiffness(const Options& options, const ClothMaterial& material);
+// The springs of `seams` with those settings.
+std::vector<SeamSpring> case_seam_springs(const Options& options, const TriangleMesh& mesh,
+                                          const std::vector<Seam>& seams,
+                                          const ClothMaterial& material);
+
+// Adds the springs to `problem` (from the seam lines, so that they have a
+// rest derivative) and records their counts in `report`.
+void attach_seams(const Options& options, const std::vector<Seam>& seams,
+                  const ClothMaterial& material, ClothProblem& problem, SeamReport* report);
+
+// --seam-merge: sews `mesh` with its seams under gravity alone (collective
+// statics with continuation), checks that every seam closed to within
+// --seam-merge-gap, and replaces `mesh` by the sewn mesh with each matched
+// vertex pair merged and `pinned` by the merged pins. Throws InputError when
+// the sewing fails, a seam stays open, or a seam is not matched vertex to
+// vertex.
+void sew_and_merge(const Options& options, const ClothMaterial& material,
+                   const Eigen::Vector3d& gravity, int load_steps, const std::vector<Seam>& seams,
+                   TriangleMesh* mesh, std::vector<int>* pinned, SeamReport* report);
+
+// summary["seams"].
+void add_seam_summary(const SeamReport& report, nlohmann::json& summary);
+
+} // namespace sartor
