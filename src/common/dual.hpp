@@ -38,8 +38,14 @@ inline Dual operator/(Dual a, Dual b) {
 inline Dual& operator+=(Dual& a, Dual b) {
   return a = a + b;
 }
+inline Dual& operator-=(Dual& a, Dual b) {
+  return a = a - b;
+}
 inline Dual& operator*=(Dual& a, Dual b) {
   return a = a * b;
+}
+inline Dual& operator/=(Dual& a, Dual b) {
+  return a = a / b;
 }
 
 inline bool operator<(Dual a, Dual b) {
@@ -56,6 +62,9 @@ inline bool operator>=(Dual a, Dual b) {
 }
 inline bool operator==(Dual a, Dual b) {
   return a.value == b.value;
+}
+inline bool operator!=(Dual a, Dual b) {
+  return a.value != b.value;
 }
 
 inline Dual exp(Dual a) {

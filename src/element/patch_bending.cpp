@@ -1,5 +1,6 @@
 #include "element/patch_bending.hpp"
 
+#include "common/dual_eigen.hpp"
 #include "common/error.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -27,7 +28,15 @@ using Jacobian9 = Eigen::Matrix<double, 3, 9>; // of a 3-vector with respect to 
 // the longest edge squared) have no normal.
 constexpr double degenerate_ratio = 1e-12;
 
-double cross2(const Vector2d& a, const Vector2d& b) {
+template <typename Scalar>
+using Point = PatchPoint<Scalar>;
+template <typename Scalar>
+using Matrix3 = Eigen::Matrix<Scalar, 3, 3>;
+template <typename Scalar>
+using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
+
+template <typename Scalar>
+Scalar cross2(const Point<Scalar>& a, const Point<Scalar>& b) {
   return a.x() * b.y() - a.y() * b.x();
 }
 
@@ -35,6 +44,14 @@ Matrix3d cross(const Vector3d& v) {
   Matrix3d m;
   m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
   return m;
+}
+
+template <typename Scalar>
+std::array<Vector2d, 3> triangle_values(const PatchTriangle<Scalar>& uv) {
+  std::array<Vector2d, 3> values;
+  for (std::size_t k = 0; k < 3; ++k)
+    values[k] = {value_of(uv[k].x()), value_of(uv[k].y())};
+  return values;
 }
 
 std::string point_list(const std::array<Vector2d, 3>& uv) {
@@ -47,22 +64,24 @@ std::string point_list(const std::array<Vector2d, 3>& uv) {
 
 // The triangle's barycentric coordinates: lambda(p) = gradients^T (p - p0) +
 // (1, 0, 0) shifted; gradients.col(k) = grad lambda_k.
+template <typename Scalar>
 struct Barycentric {
-  Vector2d origin;
-  Eigen::Matrix<double, 2, 3> gradients;
-  Vector3d at(const Vector2d& p) const {
-    Vector3d lambda = gradients.transpose() * (p - origin);
+  Point<Scalar> origin;
+  Eigen::Matrix<Scalar, 2, 3> gradients;
+  Vector3<Scalar> at(const Point<Scalar>& p) const {
+    Vector3<Scalar> lambda = gradients.transpose() * (p - origin);
     lambda(0) += 1.0;
     return lambda;
   }
 };
 
-Barycentric barycentric(const std::array<Vector2d, 3>& uv) {
-  Eigen::Matrix2d frame;
+template <typename Scalar>
+Barycentric<Scalar> barycentric(const PatchTriangle<Scalar>& uv) {
+  Eigen::Matrix<Scalar, 2, 2> frame;
   frame.col(0) = uv[1] - uv[0];
   frame.col(1) = uv[2] - uv[0];
-  const Eigen::Matrix2d inverse = frame.inverse();
-  Barycentric b;
+  const Eigen::Matrix<Scalar, 2, 2> inverse = frame.inverse();
+  Barycentric<Scalar> b;
   b.origin = uv[0];
   b.gradients.col(1) = inverse.row(0).transpose();
   b.gradients.col(2) = inverse.row(1).transpose();
@@ -71,7 +90,8 @@ Barycentric barycentric(const std::array<Vector2d, 3>& uv) {
 }
 
 // (d_uu, d_vv, d_uv) of lambda_i lambda_j.
-Vector3d second_derivatives(const Vector2d& gi, const Vector2d& gj) {
+template <typename Scalar>
+Vector3<Scalar> second_derivatives(const Point<Scalar>& gi, const Point<Scalar>& gj) {
   return {2.0 * gi.x() * gj.x(), 2.0 * gi.y() * gj.y(), gi.x() * gj.y() + gi.y() * gj.x()};
 }
 
@@ -91,19 +111,23 @@ void check_rigidity(const BendingRigidity& d) {
 
 // Row of the free-edge condition M_nn = 0 on the edge coefficients, scaled to
 // order one (the node rows are of order one).
-Eigen::RowVector3d free_edge_row(const Vector2d& edge, const Matrix3d& second,
-                                 const Matrix3d& rigidity) {
-  const Vector2d normal = Vector2d(edge.y(), -edge.x()).normalized();
-  const Eigen::RowVector3d moment_nn(normal.x() * normal.x(), normal.y() * normal.y(),
-                                     2.0 * normal.x() * normal.y());
-  const Matrix3d voigt = Eigen::Vector3d(1.0, 1.0, 2.0).asDiagonal() * second;
-  Eigen::RowVector3d row = moment_nn * rigidity * voigt;
+template <typename Scalar>
+Eigen::Matrix<Scalar, 1, 3> free_edge_row(const Point<Scalar>& edge, const Matrix3<Scalar>& second,
+                                          const Matrix3d& rigidity) {
+  const Point<Scalar> normal = Point<Scalar>(edge.y(), -edge.x()).normalized();
+  const Eigen::Matrix<Scalar, 1, 3> moment_nn(normal.x() * normal.x(), normal.y() * normal.y(),
+                                              2.0 * normal.x() * normal.y());
+  const Matrix3<Scalar> voigt = Vector3<Scalar>(1.0, 1.0, 2.0).asDiagonal() * second;
+  Eigen::Matrix<Scalar, 1, 3> row = moment_nn * rigidity.cast<Scalar>() * voigt;
   // Without rigidity the condition is kappa_nn = 0.
   if (!(row.cwiseAbs().maxCoeff() > 0.0)) row = moment_nn * voigt;
   return row / row.cwiseAbs().maxCoeff();
 }
 
-void check_triangle(const std::array<Vector2d, 3>& triangle, double twice_area) {
+template <typename Scalar>
+void check_triangle(const PatchTriangle<Scalar>& uv, Scalar twice_area_of) {
+  const std::array<Vector2d, 3> triangle = triangle_values(uv);
+  const double twice_area = value_of(twice_area_of);
   const double longest = std::max({(triangle[1] - triangle[0]).squaredNorm(),
                                    (triangle[2] - triangle[0]).squaredNorm(),
                                    (triangle[2] - triangle[1]).squaredNorm()});
@@ -114,12 +138,59 @@ void check_triangle(const std::array<Vector2d, 3>& triangle, double twice_area) 
 }
 
 // Unit in-plane normal of edge k (opposite corner k), pointing out of the triangle.
-Vector2d outward_normal(const std::array<Vector2d, 3>& triangle, int k) {
-  const Vector2d edge = triangle[std::size_t((k + 2) % 3)] - triangle[std::size_t((k + 1) % 3)];
-  Vector2d normal = Vector2d(edge.y(), -edge.x()).normalized();
+template <typename Scalar>
+Point<Scalar> outward_normal(const PatchTriangle<Scalar>& triangle, int k) {
+  const Point<Scalar> edge =
+      triangle[std::size_t((k + 2) % 3)] - triangle[std::size_t((k + 1) % 3)];
+  Point<Scalar> normal = Point<Scalar>(edge.y(), -edge.x()).normalized();
   if (normal.dot(triangle[std::size_t(k)] - triangle[std::size_t((k + 1) % 3)]) > 0.0)
     normal = -normal;
   return normal;
+}
+
+// The edge coefficients c of the patch quadratic, system * c = nodes (as
+// weights over the six nodes): by LU, or where the system is ill-conditioned
+// in the least-squares sense with a Tikhonov term tau = ill_conditioned
+// sigma_max, V diag(sigma / (sigma^2 + tau^2)) U^T nodes.
+Eigen::Matrix<double, 3, 6> edge_coefficients(const Matrix3d& system,
+                                              const Eigen::Matrix<double, 3, 6>& nodes) {
+  const Eigen::JacobiSVD<Matrix3d> svd(system, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Vector3d sigma = svd.singularValues();
+  if (sigma(2) >= ill_conditioned * sigma(0)) return system.partialPivLu().solve(nodes);
+  const double tau2 = std::pow(ill_conditioned * sigma(0), 2);
+  const Vector3d filter = sigma.array() / (sigma.array().square() + tau2);
+  return svd.matrixV() * filter.asDiagonal() * svd.matrixU().transpose() * nodes;
+}
+
+// Their derivative: c = A^-1 N moves by A^-1 (dN - dA c); the regularised c
+// = (A^T A + tau^2)^-1 A^T N (the same as the SVD's filter) by
+// (A^T A + tau^2)^-1 (dA^T N + A^T dN - (dA^T A + A^T dA + d tau^2) c), with
+// d sigma_max = u_1^T dA v_1 (a simple largest singular value).
+Eigen::Matrix<Dual, 3, 6> edge_coefficients(const Matrix3<Dual>& dual_system,
+                                            const Eigen::Matrix<Dual, 3, 6>& dual_nodes) {
+  const Matrix3d system = values(dual_system), d_system = derivatives(dual_system);
+  const Eigen::Matrix<double, 3, 6> nodes = values(dual_nodes), d_nodes = derivatives(dual_nodes);
+  const Eigen::Matrix<double, 3, 6> c = edge_coefficients(system, nodes);
+  const Eigen::JacobiSVD<Matrix3d> svd(system, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Vector3d sigma = svd.singularValues();
+  Eigen::Matrix<double, 3, 6> dc;
+  if (sigma(2) >= ill_conditioned * sigma(0)) {
+    dc = system.partialPivLu().solve(d_nodes - d_system * c);
+  } else {
+    const double tau2 = std::pow(ill_conditioned * sigma(0), 2);
+    const double d_sigma = svd.matrixU().col(0).dot(d_system * svd.matrixV().col(0));
+    const double d_tau2 = 2.0 * ill_conditioned * ill_conditioned * sigma(0) * d_sigma;
+    const Matrix3d normal = system.transpose() * system + tau2 * Matrix3d::Identity();
+    const Matrix3d d_normal = d_system.transpose() * system + system.transpose() * d_system +
+                              d_tau2 * Matrix3d::Identity();
+    dc = normal.partialPivLu().solve(d_system.transpose() * nodes + system.transpose() * d_nodes -
+                                     d_normal * c);
+  }
+  Eigen::Matrix<Dual, 3, 6> result;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 6; ++j)
+      result(i, j) = Dual(c(i, j), dc(i, j));
+  return result;
 }
 
 constexpr int nodes = 12;
@@ -133,72 +204,83 @@ Matrix3d BendingRigidity::matrix() const {
   return d;
 }
 
-Vector2d node_across(const Vector2d& a, const Vector2d& b, const Vector2d& c,
-                     const Vector2d& a_other, const Vector2d& b_other, const Vector2d& p_other) {
-  const Vector2d edge_other = b_other - a_other;
-  const double length2 = edge_other.squaredNorm();
-  const double along = (p_other - a_other).dot(edge_other) / length2;
-  const double off = std::abs(cross2(edge_other, p_other - a_other)) / length2;
-  const Vector2d edge = b - a;
-  Vector2d normal(-edge.y(), edge.x()); // |normal| = |edge|
+template <typename Scalar>
+PatchPoint<Scalar> node_across(const PatchPoint<Scalar>& a, const PatchPoint<Scalar>& b,
+                               const PatchPoint<Scalar>& c, const PatchPoint<Scalar>& a_other,
+                               const PatchPoint<Scalar>& b_other,
+                               const PatchPoint<Scalar>& p_other) {
+  using std::abs;
+  const Point<Scalar> edge_other = b_other - a_other;
+  const Scalar length2 = edge_other.squaredNorm();
+  const Scalar along = (p_other - a_other).dot(edge_other) / length2;
+  const Scalar off = abs(cross2<Scalar>(edge_other, p_other - a_other)) / length2;
+  const Point<Scalar> edge = b - a;
+  Point<Scalar> normal(-edge.y(), edge.x()); // |normal| = |edge|
   if (normal.dot(c - a) > 0.0) normal = -normal;
   return a + along * edge + off * normal;
 }
 
-std::array<Eigen::Matrix<double, 1, 6>, 3> midedge_slopes(const std::array<Vector2d, 3>& triangle,
-                                                          const std::array<Vector2d, 3>& across,
-                                                          const std::array<bool, 3>& has_node,
-                                                          const BendingRigidity& rigidity) {
-  check_rigidity(rigidity);
-  const double twice_area = cross2(triangle[1] - triangle[0], triangle[2] - triangle[0]);
-  check_triangle(triangle, twice_area);
-  const Barycentric lambda = barycentric(triangle);
-  Matrix3d second; // column e: (d_uu, d_vv, d_uv) of the edge function of edge e
+namespace {
+
+// The rows of the patch's edge system for the nodes across (and, for
+// boundary edges, the free-edge condition), with their right-hand sides.
+template <typename Scalar>
+void edge_system(const PatchTriangle<Scalar>& triangle, const PatchTriangle<Scalar>& across,
+                 const std::array<bool, 3>& has_node, const BendingRigidity& rigidity,
+                 const Barycentric<Scalar>& lambda, Matrix3<Scalar>* system,
+                 Eigen::Matrix<Scalar, 3, 6>* right_side) {
+  Matrix3<Scalar> second; // column e: (d_uu, d_vv, d_uv) of the edge function of edge e
   for (int e = 0; e < 3; ++e)
-    second.col(e) =
-        second_derivatives(lambda.gradients.col((e + 1) % 3), lambda.gradients.col((e + 2) % 3));
-  // system * c = nodes * x: one row per edge, c the edge coefficients.
-  Matrix3d system;
-  Eigen::Matrix<double, 3, 6> nodes = Eigen::Matrix<double, 3, 6>::Zero();
+    second.col(e) = second_derivatives<Scalar>(lambda.gradients.col((e + 1) % 3),
+                                               lambda.gradients.col((e + 2) % 3));
+  right_side->setZero();
   for (int k = 0; k < 3; ++k) {
     const int i = (k + 1) % 3, j = (k + 2) % 3;
     if (has_node[std::size_t(k)]) {
-      const Vector3d at = lambda.at(across[std::size_t(k)]);
+      const Vector3<Scalar> at = lambda.at(across[std::size_t(k)]);
       if (!(at(k) < 0.0)) {
         throw InputError("bending patch: the node across an edge of triangle " +
-                         point_list(triangle) + " is not on the edge's other side");
+                         point_list(triangle_values(triangle)) +
+                         " is not on the edge's other side");
       }
       for (int e = 0; e < 3; ++e)
-        system(k, e) = at((e + 1) % 3) * at((e + 2) % 3);
-      nodes(k, 3 + k) = 1.0;
-      nodes.block<1, 3>(k, 0) = -at.transpose();
+        (*system)(k, e) = at((e + 1) % 3) * at((e + 2) % 3);
+      (*right_side)(k, 3 + k) = 1.0;
+      right_side->template block<1, 3>(k, 0) = -at.transpose();
     } else {
-      system.row(k) = free_edge_row(triangle[std::size_t(j)] - triangle[std::size_t(i)], second,
-                                    rigidity.matrix());
+      system->row(k) = free_edge_row<Scalar>(triangle[std::size_t(j)] - triangle[std::size_t(i)],
+                                             second, rigidity.matrix());
     }
   }
-  const Eigen::JacobiSVD<Matrix3d> svd(system, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Vector3d sigma = svd.singularValues();
-  Eigen::Matrix<double, 3, 6> coefficients;
-  if (sigma(2) >= ill_conditioned * sigma(0)) {
-    coefficients = system.partialPivLu().solve(nodes);
-  } else {
-    const double tau2 = std::pow(ill_conditioned * sigma(0), 2);
-    const Vector3d filter = sigma.array() / (sigma.array().square() + tau2);
-    coefficients = svd.matrixV() * filter.asDiagonal() * svd.matrixU().transpose() * nodes;
-  }
+}
+
+} // namespace
+
+template <typename Scalar>
+EdgeSlopes<Scalar>
+midedge_slopes(const PatchTriangle<Scalar>& triangle, const PatchTriangle<Scalar>& across,
+               const std::array<bool, 3>& has_node, const BendingRigidity& rigidity) {
+  check_rigidity(rigidity);
+  check_triangle(triangle, cross2<Scalar>(triangle[1] - triangle[0], triangle[2] - triangle[0]));
+  const Barycentric<Scalar> lambda = barycentric(triangle);
+  // system * c = right_side * x: one row per edge, c the edge coefficients.
+  Matrix3<Scalar> system;
+  Eigen::Matrix<Scalar, 3, 6> right_side;
+  edge_system(triangle, across, has_node, rigidity, lambda, &system, &right_side);
+  const Eigen::Matrix<Scalar, 3, 6> coefficients = edge_coefficients(system, right_side);
   // The quadratic's gradient at the midpoint of edge k (lambda_k = 0,
   // the others 1/2) along the edge's outward normal.
-  std::array<Eigen::Matrix<double, 1, 6>, 3> slopes;
+  EdgeSlopes<Scalar> slopes;
   for (int k = 0; k < 3; ++k) {
-    const Vector2d outward = outward_normal(triangle, k);
-    Eigen::Matrix<double, 1, 6> slope = Eigen::Matrix<double, 1, 6>::Zero();
+    const Point<Scalar> outward = outward_normal(triangle, k);
+    Eigen::Matrix<Scalar, 1, 6> slope = Eigen::Matrix<Scalar, 1, 6>::Zero();
     for (int c = 0; c < 3; ++c)
       slope(c) = outward.dot(lambda.gradients.col(c));
     for (int e = 0; e < 3; ++e) {
       const int a = (e + 1) % 3, b = (e + 2) % 3;
       const Vector3d mid = Vector3d::Constant(0.5) - 0.5 * Vector3d::Unit(k);
-      const Vector2d gradient = mid(a) * lambda.gradients.col(b) + mid(b) * lambda.gradients.col(a);
+      const Point<Scalar> gradient =
+          mid(a) * lambda.gradients.col(b) + mid(b) * lambda.gradients.col(a);
       slope += outward.dot(gradient) * coefficients.row(e);
     }
     slopes[std::size_t(k)] = slope;
@@ -206,10 +288,11 @@ std::array<Eigen::Matrix<double, 1, 6>, 3> midedge_slopes(const std::array<Vecto
   return slopes;
 }
 
-std::array<Eigen::Matrix<double, 1, 6>, 3> plane_slopes(const std::array<Vector2d, 3>& triangle) {
-  check_triangle(triangle, cross2(triangle[1] - triangle[0], triangle[2] - triangle[0]));
-  const Barycentric lambda = barycentric(triangle);
-  std::array<Eigen::Matrix<double, 1, 6>, 3> slopes;
+template <typename Scalar>
+EdgeSlopes<Scalar> plane_slopes(const PatchTriangle<Scalar>& triangle) {
+  check_triangle(triangle, cross2<Scalar>(triangle[1] - triangle[0], triangle[2] - triangle[0]));
+  const Barycentric<Scalar> lambda = barycentric(triangle);
+  EdgeSlopes<Scalar> slopes;
   for (int k = 0; k < 3; ++k) {
     slopes[std::size_t(k)].setZero();
     for (int c = 0; c < 3; ++c)
@@ -218,32 +301,30 @@ std::array<Eigen::Matrix<double, 1, 6>, 3> plane_slopes(const std::array<Vector2
   return slopes;
 }
 
-PatchRest patch_rest(const std::array<Vector2d, 3>& triangle,
-                     const std::array<Eigen::Matrix<double, 1, 12>, 3>& normal_slopes,
-                     const BendingRigidity& rigidity, const Vector3d& rest_curvature) {
-  check_rigidity(rigidity);
-  if (!rest_curvature.allFinite()) throw InputError("bending patch: rest curvature not finite");
-  const double twice_area = cross2(triangle[1] - triangle[0], triangle[2] - triangle[0]);
+template <typename Scalar>
+PatchWeights<Scalar>
+patch_weights(const PatchTriangle<Scalar>& triangle,
+              const std::array<Eigen::Matrix<Scalar, 1, 12>, 3>& normal_slopes) {
+  using std::abs;
+  const Scalar twice_area = cross2<Scalar>(triangle[1] - triangle[0], triangle[2] - triangle[0]);
   check_triangle(triangle, twice_area);
-  PatchRest rest;
-  rest.area = 0.5 * std::abs(twice_area);
-  rest.rigidity = rigidity.matrix();
-  rest.rest_curvature = rest_curvature;
+  PatchWeights<Scalar> rest;
+  rest.area = 0.5 * abs(twice_area);
   // H_ab = (1/A) sum_k |e_k| sym(g_k,a nu_k,b), g_k = x_,u at edge k's
   // midpoint: along the edge the chord's slope (exact for a quadratic), across
   // it the shared normal slope.
   rest.weights.setZero();
   for (int k = 0; k < 3; ++k) {
     const int i = (k + 1) % 3, j = (k + 2) % 3;
-    const Vector2d edge = triangle[std::size_t(j)] - triangle[std::size_t(i)];
-    const double length = edge.norm();
-    const Vector2d tangent = edge / length;
-    const Vector2d outward = outward_normal(triangle, k);
+    const Point<Scalar> edge = triangle[std::size_t(j)] - triangle[std::size_t(i)];
+    const Scalar length = edge.norm();
+    const Point<Scalar> tangent = edge / length;
+    const Point<Scalar> outward = outward_normal(triangle, k);
     // d x / d u_a = tangent_a (x_j - x_i) / |e| + outward_a slope . x
-    Eigen::Matrix<double, 2, 12> gradient = outward * normal_slopes[std::size_t(k)];
+    Eigen::Matrix<Scalar, 2, 12> gradient = outward * normal_slopes[std::size_t(k)];
     gradient.col(j) += tangent / length;
     gradient.col(i) -= tangent / length;
-    const double scale = length / rest.area;
+    const Scalar scale = length / rest.area;
     rest.weights.row(0) += scale * outward.x() * gradient.row(0);
     rest.weights.row(1) += scale * outward.y() * gradient.row(1);
     rest.weights.row(2) +=
@@ -251,6 +332,34 @@ PatchRest patch_rest(const std::array<Vector2d, 3>& triangle,
   }
   return rest;
 }
+
+PatchRest patch_rest(const std::array<Vector2d, 3>& triangle,
+                     const std::array<Eigen::Matrix<double, 1, 12>, 3>& normal_slopes,
+                     const BendingRigidity& rigidity, const Vector3d& rest_curvature) {
+  check_rigidity(rigidity);
+  if (!rest_curvature.allFinite()) throw InputError("bending patch: rest curvature not finite");
+  const PatchWeights<double> geometry = patch_weights(triangle, normal_slopes);
+  PatchRest rest;
+  rest.area = geometry.area;
+  rest.weights = geometry.weights;
+  rest.rigidity = rigidity.matrix();
+  rest.rest_curvature = rest_curvature;
+  return rest;
+}
+
+#define SARTOR_PATCH_GEOMETRY(Scalar)                                                              \
+  template PatchPoint<Scalar> node_across(const PatchPoint<Scalar>&, const PatchPoint<Scalar>&,    \
+                                          const PatchPoint<Scalar>&, const PatchPoint<Scalar>&,    \
+                                          const PatchPoint<Scalar>&, const PatchPoint<Scalar>&);   \
+  template EdgeSlopes<Scalar> midedge_slopes(const PatchTriangle<Scalar>&,                         \
+                                             const PatchTriangle<Scalar>&,                         \
+                                             const std::array<bool, 3>&, const BendingRigidity&);  \
+  template EdgeSlopes<Scalar> plane_slopes(const PatchTriangle<Scalar>&);                          \
+  template PatchWeights<Scalar> patch_weights(const PatchTriangle<Scalar>&,                        \
+                                              const std::array<Eigen::Matrix<Scalar, 1, 12>, 3>&);
+SARTOR_PATCH_GEOMETRY(double)
+SARTOR_PATCH_GEOMETRY(Dual)
+#undef SARTOR_PATCH_GEOMETRY
 
 PatchResponse patch_response(const PatchRest& rest, const Vector3d& strain) {
   PatchResponse r;

@@ -97,26 +97,51 @@ struct PatchRest {
 // system) below which it is solved with regularisation.
 constexpr double ill_conditioned = 1e-2;
 
+// The patch's geometry on the material coordinates (steps 1-3 below) is
+// written once for either scalar: double for the rest data, Dual
+// (common/dual.hpp) for their exact derivative along a change of the
+// material coordinates, which the design sensitivity needs
+// (docs/sensitivity.md). Both are instantiated.
+template <typename Scalar>
+using PatchPoint = Eigen::Matrix<Scalar, 2, 1>;
+template <typename Scalar>
+using PatchTriangle = std::array<PatchPoint<Scalar>, 3>;
+template <typename Scalar>
+using EdgeSlopes = std::array<Eigen::Matrix<Scalar, 1, 6>, 3>;
+
 // Step 1: for each edge k, the weights over the patch's six nodes of the
 // quadratic's slope along the edge's outward normal at its midpoint.
 // `triangle`: material coordinates; `across[k]`: the node across edge
 // (k+1, k+2) placed in the triangle's frame, absent (boundary edge) when
 // `has_node[k]` is false. Throws InputError for a degenerate triangle, a
 // node across on the triangle's side of its edge, or bad rigidities.
-std::array<Eigen::Matrix<double, 1, 6>, 3>
-midedge_slopes(const std::array<Eigen::Vector2d, 3>& triangle,
-               const std::array<Eigen::Vector2d, 3>& across, const std::array<bool, 3>& has_node,
-               const BendingRigidity& rigidity);
+template <typename Scalar>
+EdgeSlopes<Scalar>
+midedge_slopes(const PatchTriangle<Scalar>& triangle, const PatchTriangle<Scalar>& across,
+               const std::array<bool, 3>& has_node, const BendingRigidity& rigidity);
 
 // The slopes of the triangle's own plane (the linear interpolation of its
 // corners; zero weight on the nodes across): what a clamped (fixed) triangle
 // imposes on the edges it shares with free ones.
-std::array<Eigen::Matrix<double, 1, 6>, 3>
-plane_slopes(const std::array<Eigen::Vector2d, 3>& triangle);
+template <typename Scalar>
+EdgeSlopes<Scalar> plane_slopes(const PatchTriangle<Scalar>& triangle);
 
-// Steps 2-3: from each edge's (shared) outward normal slope, as weights over
-// the twelve nodes. Throws InputError for a degenerate triangle, negative
-// rigidities or a non-finite rest curvature.
+// Steps 2-3, the geometric part of the rest data: the triangle's area and
+// the weights of its second derivatives over the twelve nodes, from each
+// edge's (shared) outward normal slope. Throws InputError for a degenerate
+// triangle.
+template <typename Scalar>
+struct PatchWeights {
+  Scalar area;                          // m^2
+  Eigen::Matrix<Scalar, 3, 12> weights; // as PatchRest's, 1/m^2
+};
+template <typename Scalar>
+PatchWeights<Scalar>
+patch_weights(const PatchTriangle<Scalar>& triangle,
+              const std::array<Eigen::Matrix<Scalar, 1, 12>, 3>& normal_slopes);
+
+// The rest data: patch_weights with the rigidity and rest curvature. Throws
+// InputError also for negative rigidities or a non-finite rest curvature.
 PatchRest patch_rest(const std::array<Eigen::Vector2d, 3>& triangle,
                      const std::array<Eigen::Matrix<double, 1, 12>, 3>& normal_slopes,
                      const BendingRigidity& rigidity,
@@ -126,9 +151,11 @@ PatchRest patch_rest(const std::array<Eigen::Vector2d, 3>& triangle,
 // neighbour in another panel): (a', b', p') there, placed in this frame with
 // the same position relative to the edge, on the other side of it from `c`,
 // the triangle's third corner.
-Eigen::Vector2d node_across(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                            const Eigen::Vector2d& c, const Eigen::Vector2d& a_other,
-                            const Eigen::Vector2d& b_other, const Eigen::Vector2d& p_other);
+template <typename Scalar>
+PatchPoint<Scalar> node_across(const PatchPoint<Scalar>& a, const PatchPoint<Scalar>& b,
+                               const PatchPoint<Scalar>& c, const PatchPoint<Scalar>& a_other,
+                               const PatchPoint<Scalar>& b_other,
+                               const PatchPoint<Scalar>& p_other);
 
 // Energy density (J/m^2), moments (dW/ds) and tangent (d2W/ds2) at the
 // bending strain s = k - k_rest: the quadratic form of the rigidity matrix,

@@ -58,8 +58,8 @@ BentPatch bent_patch() {
   const std::array<Vector2d, 6> uv = {Vector2d(0.0, 0.0), Vector2d(1.0, 0.1),  Vector2d(0.3, 0.9),
                                       Vector2d(1.1, 1.0), Vector2d(-0.6, 0.4), Vector2d(0.6, -0.8)};
   const BendingRigidity rigidity{2.0, 0.7, 0.3, 0.4};
-  const auto own =
-      midedge_slopes({uv[0], uv[1], uv[2]}, {uv[3], uv[4], uv[5]}, {true, true, true}, rigidity);
+  const auto own = midedge_slopes<double>({uv[0], uv[1], uv[2]}, {uv[3], uv[4], uv[5]},
+                                          {true, true, true}, rigidity);
   std::array<Eigen::Matrix<double, 1, 12>, 3> slopes;
   for (std::size_t k = 0; k < 3; ++k) {
     slopes[k].setZero();

@@ -197,7 +197,7 @@ TEST(PatchBending, NodeAcrossFromAnotherPanel) {
   const Eigen::Rotation2Dd turn(2.1);
   const Vector2d shift(4.0, -1.0);
   const Vector2d placed =
-      node_across(a, b, c, turn * a + shift, turn * b + shift, turn * p + shift);
+      node_across<double>(a, b, c, turn * a + shift, turn * b + shift, turn * p + shift);
   EXPECT_LT((placed - p).norm(), 1e-12);
 }
 

@@ -1,9 +1,12 @@
 // The kernels' rest-coordinate derivatives (element/rest_derivative.hpp,
-// membrane_rest_derivative, membrane_tension_rest_derivative): each against
-// central differences of the kernel's own force (or tensions) with its rest
-// data rebuilt at X +- h dX.
+// membrane_rest_derivative, membrane_tension_rest_derivative, the patch
+// geometry on dual numbers): each against central differences of the
+// kernel's own force (or tensions, or rest data) with its rest data rebuilt
+// at X +- h dX.
 
+#include "common/dual_eigen.hpp"
 #include "element/membrane.hpp"
+#include "element/patch_bending.hpp"
 #include "element/rest_derivative.hpp"
 #include "element/seam.hpp"
 #include "tests/element/finite_difference.hpp"
@@ -11,6 +14,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+
+#include <cmath>
 
 namespace sartor::element {
 namespace {
@@ -176,6 +181,77 @@ TEST(RestDerivative, PatchForces) {
     return patch_bending(r, x, Want::gradient).gradient;
   };
   EXPECT_LT(relative_error(central(force, 1e-6), exact), 1e-7);
+}
+
+// A patch's rest data (edge slopes, curvature weights, area) as one vector,
+// on either scalar.
+template <typename Scalar>
+Eigen::Matrix<Scalar, Eigen::Dynamic, 1>
+patch_data(const PatchTriangle<Scalar>& triangle, const PatchTriangle<Scalar>& across,
+           const std::array<bool, 3>& has_node, const BendingRigidity& rigidity) {
+  const EdgeSlopes<Scalar> own = midedge_slopes(triangle, across, has_node, rigidity);
+  std::array<Eigen::Matrix<Scalar, 1, 12>, 3> twelve;
+  for (std::size_t k = 0; k < 3; ++k) {
+    twelve[k].setZero();
+    twelve[k].template head<6>() = own[k];
+    twelve[k].template tail<6>() = 0.3 * own[(k + 1) % 3]; // as a neighbour's share
+  }
+  const PatchWeights<Scalar> weights = patch_weights(triangle, twelve);
+  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> data(18 + 36 + 1);
+  for (std::size_t k = 0; k < 3; ++k)
+    data.template segment<6>(6 * long(k)) = own[k].transpose();
+  data.template segment<36>(18) = weights.weights.reshaped();
+  data(54) = weights.area;
+  return data;
+}
+
+PatchTriangle<Dual> carrying(const std::array<Vector2d, 3>& uv,
+                             const std::array<Vector2d, 3>& change) {
+  PatchTriangle<Dual> points;
+  for (std::size_t i = 0; i < 3; ++i)
+    points[i] = {Dual(uv[i].x(), change[i].x()), Dual(uv[i].y(), change[i].y())};
+  return points;
+}
+
+// The patch geometry run on dual numbers against central differences
+// (Richardson-extrapolated) of it on double, for patches with three nodes
+// across, with a boundary edge (the free-edge row), and with six nodes near
+// a conic (an ellipse), where the edge system is nearly singular and is
+// solved with its Tikhonov term.
+TEST(RestDerivative, PatchRestDataMatchesDifferences) {
+  const auto ellipse = [](double degrees, double stretch) {
+    const double a = degrees * M_PI / 180.0;
+    return Vector2d(0.05 * stretch * std::cos(a), 0.03 * stretch * std::sin(a));
+  };
+  struct Case {
+    const char* name;
+    std::array<Vector2d, 3> triangle, across;
+    std::array<bool, 3> has_node;
+  };
+  const std::array<Vector2d, 3> triangle = {Vector2d(0.0, 0.0), Vector2d(0.1, 0.01),
+                                            Vector2d(0.03, 0.09)};
+  const std::array<Vector2d, 3> across = {Vector2d(0.11, 0.1), Vector2d(-0.06, 0.04),
+                                          Vector2d(0.06, -0.08)};
+  const std::vector<Case> cases = {{"three nodes across", triangle, across, {true, true, true}},
+                                   {"a boundary edge", triangle, across, {true, false, true}},
+                                   {"near a conic",
+                                    {ellipse(10, 1), ellipse(130, 1), ellipse(250, 1)},
+                                    {ellipse(190, 1.002), ellipse(310, 1), ellipse(70, 1)},
+                                    {true, true, true}}};
+  const BendingRigidity rigidity{2.0, 1.5, 0.4, 0.6};
+  const std::array<Vector2d, 3> d_across = {Vector2d(-0.3, 0.2), Vector2d(0.1, 0.6),
+                                            Vector2d(0.4, -0.5)};
+  for (const Case& c : cases) {
+    const auto data = [&](double h) {
+      return patch_data<double>(moved(c.triangle, triangle_change, h), moved(c.across, d_across, h),
+                                c.has_node, rigidity);
+    };
+    const double h = 1e-6;
+    const Eigen::VectorXd difference = (4.0 * central(data, 0.5 * h) - central(data, h)) / 3.0;
+    const Eigen::VectorXd exact = derivatives(patch_data<Dual>(
+        carrying(c.triangle, triangle_change), carrying(c.across, d_across), c.has_node, rigidity));
+    EXPECT_LT(relative_error(difference, exact), 1e-7) << c.name;
+  }
 }
 
 TEST(RestDerivative, SeamSprings) {

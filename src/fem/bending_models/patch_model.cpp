@@ -2,6 +2,7 @@
 // triangle whose curvature comes from its own and its neighbours' patches,
 // and which converges to plate theory (docs/finite-elements.md#bending).
 
+#include "common/dual_eigen.hpp"
 #include "common/error.hpp"
 #include "fem/bending_models.hpp"
 #include "fem/forms/bending_forms.hpp"
@@ -43,18 +44,24 @@ std::vector<Across> neighbours(const TriangleMesh& mesh) {
 // A triangle's six-node patch: its corners, the vertices across its edges
 // (a corner repeated across a boundary edge), and the patch's outward
 // normal slopes at the edges' midpoints.
+// Of either scalar: double, or Dual for the rest data's derivative along a
+// change of the pattern.
+template <typename Scalar>
 struct Patch {
   std::array<int, 6> vertices;
-  std::array<Eigen::Matrix<double, 1, 6>, 3> slopes;
+  element::EdgeSlopes<Scalar> slopes;
 };
 
-using TriangleUV = std::array<Eigen::Vector2d, 3>;
-// The material coordinates of a triangle's corners: the mesh's, or a moved
-// pattern's.
-using UVOf = std::function<TriangleUV(std::size_t triangle)>;
+template <typename Scalar>
+using TriangleUV = element::PatchTriangle<Scalar>;
+// The material coordinates of a triangle's corners: the mesh's, or the
+// mesh's carrying a change of the pattern.
+template <typename Scalar>
+using UVOf = std::function<TriangleUV<Scalar>(std::size_t triangle)>;
 
 // What the patches are built from besides the material coordinates; kept by
-// the form's rest derivative, which rebuilds them on moved patterns.
+// the form's rest derivative, which builds them again carrying a change of
+// the pattern.
 struct PatchGeometry {
   const TriangleMesh& mesh;
   std::vector<Across> across;
@@ -65,12 +72,13 @@ struct PatchGeometry {
   std::vector<element::BendingRigidity> rigidity; // per triangle
 };
 
-Patch free_patch(const PatchGeometry& g, const UVOf& uv_of, std::size_t t) {
+template <typename Scalar>
+Patch<Scalar> free_patch(const PatchGeometry& g, const UVOf<Scalar>& uv_of, std::size_t t) {
   const auto& corners = g.mesh.triangles[t];
-  const TriangleUV uv = uv_of(t);
-  Patch patch;
+  const TriangleUV<Scalar> uv = uv_of(t);
+  Patch<Scalar> patch;
   patch.vertices = {corners[0], corners[1], corners[2], corners[0], corners[1], corners[2]};
-  std::array<Eigen::Vector2d, 3> nodes;
+  TriangleUV<Scalar> nodes;
   std::array<bool, 3> has_node{};
   for (std::size_t k = 0; k < 3; ++k) {
     const Across& neighbour = g.across[3 * t + k];
@@ -79,7 +87,7 @@ Patch free_patch(const PatchGeometry& g, const UVOf& uv_of, std::size_t t) {
     patch.vertices[3 + k] = neighbour.vertex;
     const std::size_t i = (k + 1) % 3, j = (k + 2) % 3;
     const auto& other_corners = g.mesh.triangles[std::size_t(neighbour.triangle)];
-    const TriangleUV other_uv = uv_of(std::size_t(neighbour.triangle));
+    const TriangleUV<Scalar> other_uv = uv_of(std::size_t(neighbour.triangle));
     const auto other = [&](int vertex) {
       return other_uv[std::size_t(std::find(other_corners.begin(), other_corners.end(), vertex) -
                                   other_corners.begin())];
@@ -91,10 +99,11 @@ Patch free_patch(const PatchGeometry& g, const UVOf& uv_of, std::size_t t) {
   return patch;
 }
 
-Patch patch_of(const PatchGeometry& g, const UVOf& uv_of, std::size_t t) {
+template <typename Scalar>
+Patch<Scalar> patch_of(const PatchGeometry& g, const UVOf<Scalar>& uv_of, std::size_t t) {
   if (!g.fixed[t]) return free_patch(g, uv_of, t);
   const auto& corners = g.mesh.triangles[t];
-  Patch patch;
+  Patch<Scalar> patch;
   patch.vertices = {corners[0], corners[1], corners[2], corners[0], corners[1], corners[2]};
   patch.slopes = element::plane_slopes(uv_of(t));
   return patch;
@@ -114,26 +123,30 @@ std::size_t slot_of(std::array<int, 12>& stencil, std::size_t& next, int vertex)
 // and its edges' outward normal slopes over it: the mean of both patches'
 // (the neighbour's outward normal is this triangle's inward one), or a
 // clamp's own.
+template <typename Scalar>
 struct Stencil {
   std::array<int, 12> vertices;
-  std::array<Eigen::Matrix<double, 1, 12>, 3> slopes;
+  std::array<Eigen::Matrix<Scalar, 1, 12>, 3> slopes;
 };
 
-Stencil stencil_of(const PatchGeometry& g, const std::function<const Patch&(std::size_t)>& patch,
-                   std::size_t t) {
-  Stencil stencil;
+template <typename Scalar>
+using PatchOf = std::function<const Patch<Scalar>&(std::size_t)>;
+
+template <typename Scalar>
+Stencil<Scalar> stencil_of(const PatchGeometry& g, const PatchOf<Scalar>& patch, std::size_t t) {
+  Stencil<Scalar> stencil;
   stencil.vertices.fill(g.mesh.triangles[t][0]);
-  const Patch& own = patch(t);
+  const Patch<Scalar>& own = patch(t);
   std::copy(own.vertices.begin(), own.vertices.end(), stencil.vertices.begin());
   for (std::size_t k = 0; k < 3; ++k) {
     auto& slope = stencil.slopes[k];
     slope.setZero();
-    slope.head<6>() = own.slopes[k];
+    slope.template head<6>() = own.slopes[k];
     const Across& neighbour = g.across[3 * t + k];
     if (neighbour.triangle < 0) continue;
     const double share = g.fixed[std::size_t(neighbour.triangle)] ? 1.0 : 0.5;
     slope *= 1.0 - share;
-    const Patch& other = patch(std::size_t(neighbour.triangle));
+    const Patch<Scalar>& other = patch(std::size_t(neighbour.triangle));
     const auto& other_corners = g.mesh.triangles[std::size_t(neighbour.triangle)];
     const auto edge =
         std::size_t(std::find(other_corners.begin(), other_corners.end(), neighbour.vertex) -
@@ -148,37 +161,10 @@ Stencil stencil_of(const PatchGeometry& g, const std::function<const Patch&(std:
   return stencil;
 }
 
-// Triangle t's rest data on the pattern moved by `step` times `change`
-// (curves, rest curvature and rigidity as the form's).
-element::PatchRest moved_rest(const PatchGeometry& g, std::size_t t, const RestChange& change,
-                              double step) {
-  const UVOf uv_of = [&](std::size_t triangle) {
-    TriangleUV uv = g.mesh.material_uv[triangle];
-    for (std::size_t c = 0; c < 3; ++c)
-      uv[c] += step * change[triangle][c];
-    return uv;
-  };
-  std::vector<std::pair<std::size_t, Patch>> patches{{t, patch_of(g, uv_of, t)}};
-  for (std::size_t k = 0; k < 3; ++k) {
-    const int neighbour = g.across[3 * t + k].triangle;
-    if (neighbour >= 0) patches.emplace_back(neighbour, patch_of(g, uv_of, std::size_t(neighbour)));
-  }
-  const auto patch = [&](std::size_t triangle) -> const Patch& {
-    return std::find_if(patches.begin(), patches.end(),
-                        [&](const auto& entry) { return entry.first == triangle; })
-        ->second;
-  };
-  return element::patch_rest(uv_of(t), stencil_of(g, patch, t).slopes, g.rigidity[t]);
-}
-
-// Relative to the triangle's longest edge, the step of the differences of
-// its rest data (fourth order after extrapolation: truncation ~1e-16, round-off
-// ~1e-12 relative).
-constexpr double relative_step = 1e-4;
-
 // The change of triangle t's rest data (area and curvature weights) when the
-// pattern moves by `change`: the patches rebuilt on the pattern moved by
-// +-h and +-h/2 times it, differenced and extrapolated, (4 D(h/2) - D(h)) / 3.
+// pattern moves by `change`: the patches of t and its neighbours built on
+// material coordinates carrying the change (dual numbers), their exact
+// derivative.
 element::PatchRestChange rest_change(const PatchGeometry& g, std::size_t t,
                                      const RestChange& change) {
   // The patches of t and its neighbours reach the triangles across the
@@ -192,23 +178,35 @@ element::PatchRestChange rest_change(const PatchGeometry& g, std::size_t t,
           involved.push_back(std::size_t(other));
     first = last;
   }
-  double largest = 0.0;
-  for (const std::size_t triangle : involved)
-    for (const Eigen::Vector2d& d : change[triangle])
-      largest = std::max(largest, d.norm());
   element::PatchRestChange result;
-  if (largest == 0.0) return result;
-  const TriangleUV& uv = g.mesh.material_uv[t];
-  const double edge =
-      std::max({(uv[1] - uv[0]).norm(), (uv[2] - uv[1]).norm(), (uv[0] - uv[2]).norm()});
-  const double h = relative_step * edge / largest;
-  for (const auto& [step, weight] : {std::pair{h, -1.0 / 3.0}, std::pair{0.5 * h, 4.0 / 3.0}}) {
-    const element::PatchRest plus = moved_rest(g, t, change, step);
-    const element::PatchRest minus = moved_rest(g, t, change, -step);
-    const double scale = weight / (2.0 * step);
-    result.area += scale * (plus.area - minus.area);
-    result.weights += scale * (plus.weights - minus.weights);
+  const bool unchanged = std::all_of(involved.begin(), involved.end(), [&](std::size_t triangle) {
+    return std::all_of(change[triangle].begin(), change[triangle].end(),
+                       [](const Eigen::Vector2d& d) { return d.isZero(0.0); });
+  });
+  if (unchanged) return result;
+  const UVOf<Dual> uv_of = [&](std::size_t triangle) {
+    TriangleUV<Dual> uv;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const Eigen::Vector2d& at = g.mesh.material_uv[triangle][c];
+      const Eigen::Vector2d& d = change[triangle][c];
+      uv[c] = {Dual(at.x(), d.x()), Dual(at.y(), d.y())};
+    }
+    return uv;
+  };
+  std::vector<std::pair<std::size_t, Patch<Dual>>> patches{{t, patch_of(g, uv_of, t)}};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const int neighbour = g.across[3 * t + k].triangle;
+    if (neighbour >= 0) patches.emplace_back(neighbour, patch_of(g, uv_of, std::size_t(neighbour)));
   }
+  const PatchOf<Dual> patch = [&](std::size_t triangle) -> const Patch<Dual>& {
+    return std::find_if(patches.begin(), patches.end(),
+                        [&](const auto& entry) { return entry.first == triangle; })
+        ->second;
+  };
+  const element::PatchWeights<Dual> moving =
+      element::patch_weights(uv_of(t), stencil_of(g, patch, t).slopes);
+  result.area = moving.area.derivative;
+  result.weights = derivatives(moving.weights);
   return result;
 }
 
@@ -224,17 +222,17 @@ std::unique_ptr<Form> patch_form(const BendingSetUp& setup, element::BendingMode
     geometry->rigidity.push_back(geometry->fixed.back() ? element::BendingRigidity{}
                                                         : setup.material(t).patch_rigidity());
   }
-  const UVOf mesh_uv = [&](std::size_t t) { return mesh.material_uv[t]; };
-  std::vector<Patch> patches;
+  const UVOf<double> mesh_uv = [&](std::size_t t) { return mesh.material_uv[t]; };
+  std::vector<Patch<double>> patches;
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
     patches.push_back(patch_of(*geometry, mesh_uv, t));
-  const auto patch = [&](std::size_t t) -> const Patch& { return patches[t]; };
+  const PatchOf<double> patch = [&](std::size_t t) -> const Patch<double>& { return patches[t]; };
   std::vector<LocalPatch> local_patches;
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
     if (!setup.triangle_owned[t] || geometry->fixed[t]) continue;
     const ClothMaterial& material = setup.material(t);
     if (!material.has_bending()) continue;
-    const Stencil stencil = stencil_of(*geometry, patch, t);
+    const Stencil<double> stencil = stencil_of(*geometry, patch, t);
     LocalPatch local;
     local.triangle = int(t);
     local.dofs = setup.dofs<36>(stencil.vertices);
