@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 #include "solvers/incremental_system.hpp"
 #include "solvers/progress_clock.hpp"
+#include "solvers/step_controller.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -34,15 +35,8 @@ void check(const CreepOptions& options, double start) {
   }
 }
 
-// The first multiple of `interval` after `time` (times within `tiny` of a
-// multiple count as on it); infinity without an interval.
-double next_multiple(double time, double interval, double tiny) {
-  if (interval <= 0.0) return INFINITY;
-  return (std::floor((time + tiny) / interval) + 1.0) * interval;
-}
-
-// The times steps must end on, increasing: the knots of the load history,
-// of pin and body motions, the pins' release times, the end.
+// The times steps must end on besides the end: the knots of the load
+// history, of pin and body motions, the pins' release times.
 std::vector<double> step_landings(const ClothProblem& problem, const CreepOptions& options) {
   std::vector<double> landings = options.load.times();
   for (const PinGroupMotion& group : problem.pin_groups) {
@@ -57,8 +51,6 @@ std::vector<double> step_landings(const ClothProblem& problem, const CreepOption
          {body.motion.translation.times(), body.motion.angle.times(), body.motion.scale.times()})
       landings.insert(landings.end(), times.begin(), times.end());
   }
-  landings.push_back(options.time_end);
-  std::sort(landings.begin(), landings.end());
   return landings;
 }
 
@@ -128,20 +120,6 @@ PetscErrorCode initial_creep_state(ClothProblem& problem, CreepCoupling& creep,
   report->steps.push_back(first);
   if (observe) PetscCall(observe(first, x));
   PetscFunctionReturn(0);
-}
-
-// Where the step from t must end: the end, the next output or checkpoint,
-// or the next landing, whichever comes first.
-double step_target(double t, double end, double next_output, double next_checkpoint,
-                   const std::vector<double>& landings, double tiny) {
-  double target = std::min({end, next_output, next_checkpoint});
-  for (double landing : landings) {
-    if (landing > t + tiny) {
-      target = std::min(target, landing);
-      break;
-    }
-  }
-  return target;
 }
 
 // One time step of length h from the last accepted state `last` (and, in
@@ -340,16 +318,14 @@ double next_creep_step(const CreepOptions& options, double h, double dt, bool sh
 }
 
 PetscErrorCode print_creep_progress(const ClothProblem& problem, ProgressClock& progress,
-                                    const CreepStepReport& accepted, double start, double end,
-                                    bool finished) {
+                                    const CreepStepReport& accepted, const StepController& clock) {
   PetscFunctionBeginUser;
-  const double t = accepted.time;
+  const double done = clock.fraction_done();
   PetscCall(PetscPrintf(problem.comm(),
                         "  creep t = %-10.4g s (%3.0f %%): step %ld, dt %.3g s, load %.3g, "
                         "creep increment %.2e; %s\n",
-                        t, 100.0 * (t - start) / (end - start), accepted.step, accepted.dt,
-                        problem.load_factor, accepted.increment,
-                        progress.timing(finished ? 1.0 : (t - start) / (end - start)).c_str()));
+                        clock.time(), 100.0 * done, accepted.step, accepted.dt, problem.load_factor,
+                        accepted.increment, progress.timing(done).c_str()));
   PetscFunctionReturn(0);
 }
 
@@ -379,8 +355,6 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
   // Every way out of this function destroys both.
   const DestroyAtExit destroy_at_exit{&last, &velocity};
 
-  const std::vector<double> landings = step_landings(problem, options);
-
   long step = resume ? resume->step : 0;
   double dt = resume ? resume->next_step : options.time_step;
   if (!resume) {
@@ -389,17 +363,14 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
     if (!ok) PetscFunctionReturn(0);
   }
 
-  double t = start;
-  double next_output = next_multiple(t, options.output_interval, tiny);
-  double next_checkpoint = next_multiple(t, restart.checkpoint_interval, tiny);
+  StepController clock(start, end, tiny, step_landings(problem, options));
+  clock.output_every(options.output_interval, 0.0);
+  clock.checkpoint_every(restart.checkpoint_interval, PeriodicEvent::Landing::steps_end_on_it);
   ProgressClock progress;
   int rejected = 0;
-  while (t < end - tiny) {
-    const double target = step_target(t, end, next_output, next_checkpoint, landings, tiny);
-    double h = std::min(dt, target - t);
-    if (target - t - h < 1e-3 * h) h = target - t; // no sliver before a landing
-    const bool shortened = h < dt;
-    const double t1 = h == target - t ? target : t + h;
+  while (!clock.finished()) {
+    const StepPlan plan = clock.plan(dt);
+    const double t = clock.time(), h = plan.length;
     const double factor_before = problem.load_factor;
     PetscCall(VecCopy(x, last));
     ContactState contact_before;
@@ -407,11 +378,11 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
 
     CreepStep attempt_step{problem, system, options, x, last, velocity, h};
     StepAttempt attempt;
-    PetscCall(attempt_creep_step(attempt_step, creep, t1, monolithic, report, &attempt));
+    PetscCall(attempt_creep_step(attempt_step, creep, plan.to, monolithic, report, &attempt));
     report->newton_iterations += attempt_step.newton_iterations;
     if (!attempt.converged || attempt.too_large) {
       PetscCall(
-          PetscInfo(nullptr, "creep step from %g s to %g s rejected: %s\n", t, t1,
+          PetscInfo(nullptr, "creep step from %g s to %g s rejected: %s\n", t, plan.to,
                     attempt.too_large ? "creep increment too large" : report->reason.c_str()));
       PetscCall(roll_back_creep_step(attempt_step, creep, t, factor_before, contact_before));
       dt = retry_creep_step(options, h, attempt);
@@ -425,36 +396,35 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
       continue;
     }
     PetscCall(accept_creep_step(attempt_step, creep));
-    t = t1;
+    clock.accept(plan);
     ++step;
-    dt = next_creep_step(options, h, dt, shortened, attempt.increment);
+    dt = next_creep_step(options, h, dt, plan.shortened, attempt.increment);
 
     CreepStepReport accepted;
     accepted.step = step;
-    accepted.time = t;
+    accepted.time = plan.to;
     accepted.dt = h;
     accepted.load_factor = problem.load_factor;
     accepted.newton_iterations = attempt_step.newton_iterations;
     accepted.rejected = rejected;
     accepted.increment = attempt.increment;
     rejected = 0;
-    if (t >= next_output - tiny || t >= end - tiny || options.output_interval <= 0.0) {
+    if (clock.output_due()) {
       accepted.output = true;
-      next_output = next_multiple(t, options.output_interval, tiny);
+      clock.pass_output();
     }
     report->steps.push_back(accepted);
     if (observe) PetscCall(observe(accepted, x));
-    if (restart.every_step || t >= next_checkpoint - tiny) {
-      next_checkpoint = next_multiple(t, restart.checkpoint_interval, tiny);
+    if (restart.every_step || clock.checkpoint_due()) {
+      clock.pass_checkpoint();
       if (restart.write) PetscCall(restart.write(accepted, x, velocity, dt));
     }
-    const bool finished = t >= end - tiny;
-    if (options.print_progress && progress.due(finished))
-      PetscCall(print_creep_progress(problem, progress, accepted, start, end, finished));
+    if (options.print_progress && progress.due(clock.finished()))
+      PetscCall(print_creep_progress(problem, progress, accepted, clock));
   }
-  report->completed = t >= end - tiny;
+  report->completed = clock.finished();
   if (report->completed) report->reason.clear();
-  report->final_time = t;
+  report->final_time = clock.time();
   report->solve_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   PetscFunctionReturn(0);

@@ -4,6 +4,7 @@
 #include "solvers/incremental_system.hpp"
 #include "solvers/progress_clock.hpp"
 #include "solvers/statics.hpp"
+#include "solvers/step_controller.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -38,13 +39,6 @@ void check(const DynamicOptions& options, double start) {
     throw InputError("dynamics: damping, output interval, rest tolerance and cut-backs must "
                      "not be negative");
   }
-}
-
-// The first multiple of `interval` after `time` (within `tiny` of one counts
-// as on it); infinity without an interval.
-double next_checkpoint_time(double time, double interval, double tiny) {
-  if (interval <= 0.0) return INFINITY;
-  return (std::floor((time + tiny) / interval) + 1.0) * interval;
 }
 
 // The problem and its vectors as the time steps see them: positions x,
@@ -257,7 +251,10 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
   double previous_kinetic = control.previous_kinetic;
   ProgressClock progress;
   PetscInt step_index = control.step;
-  double next_checkpoint = next_checkpoint_time(clock.t, checkpoints.interval, tiny);
+  // A step is not cut to reach a checkpoint: checkpoints do not change the answer.
+  PeriodicEvent next_checkpoint(checkpoints.interval, 0.0, tiny,
+                                PeriodicEvent::Landing::first_step_past_it);
+  next_checkpoint.passed(clock.t);
   report->completed = true;
   while (!report->at_rest && options.time_end - clock.t > tiny) {
     DynamicStepReport step;
@@ -292,8 +289,8 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
     const bool finished = at_rest || options.time_end - t <= tiny;
     if (options.print_progress && progress.due(finished))
       PetscCall(print_dynamic_progress(problem, progress, step, *report, t, start, span, finished));
-    if (checkpoints.write && t >= next_checkpoint - tiny) {
-      next_checkpoint = next_checkpoint_time(t, checkpoints.interval, tiny);
+    if (checkpoints.write && next_checkpoint.reached(t)) {
+      next_checkpoint.passed(t);
       PetscCall(checkpoints.write(
           {start, t, clock.dt, step_index, clock.next_output, previous_kinetic, initial_residual},
           x, v));

@@ -1,6 +1,7 @@
 #include "solvers/statics.hpp"
 
 #include "solvers/incremental_system.hpp"
+#include "solvers/step_controller.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -88,9 +89,12 @@ PetscErrorCode ramp_load(IncrementalSystem& system, Vec x, const StaticOptions& 
   const auto load_at = [&](double fraction) { return start + fraction * (target - start); };
   LoadRamp& ramp = report->ramp;
   if (!ramp.under_way) ramp = {true, 0.0, 1.0 / std::max(1, options.load_steps), 0};
-  while (ramp.reached < 1.0) {
-    const double next = std::min(1.0, ramp.reached + ramp.increment);
-    problem.load_factor = next < 1.0 ? load_at(next) : target;
+  // The clock of the ramp runs over its fraction, from where it stands.
+  StepController fraction(0.0, 1.0, 0.0);
+  fraction.resume(ramp.reached);
+  while (!fraction.finished()) {
+    const StepPlan next = fraction.plan(ramp.increment);
+    problem.load_factor = next.to < 1.0 ? load_at(next.to) : target;
     PetscCall(VecCopy(x, last));
     LoadStepReport step;
     step.load_factor = problem.load_factor;
@@ -105,7 +109,8 @@ PetscErrorCode ramp_load(IncrementalSystem& system, Vec x, const StaticOptions& 
     report->pseudo_steps += step.pseudo_steps;
     report->reason = step.reason;
     if (step.converged) {
-      ramp.reached = next;
+      fraction.accept(next);
+      ramp.reached = next.to;
       PetscCall(problem.accept_step(x));
       if (ramp.reached < 1.0) PetscCall(checkpoint(system, x, options, report));
       continue;
@@ -120,7 +125,7 @@ PetscErrorCode ramp_load(IncrementalSystem& system, Vec x, const StaticOptions& 
                         problem.load_factor, step.reason.c_str(),
                         ramp.increment * (target - start)));
   }
-  *converged = ramp.reached >= 1.0;
+  *converged = fraction.finished();
   ramp.under_way = false;
   PetscFunctionReturn(0);
 }

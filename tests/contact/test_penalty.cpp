@@ -168,11 +168,12 @@ TEST(Penalty, SurfaceAnchorSpringPullsInThePlaneAtTheVertex) {
         return surface_anchor_spring(stiffness, x, anchor, here, bound, Want::gradient).gradient;
       };
       const Vector3d by_stiffness = (force_at(1.001 * k) - force_at(0.999 * k)) / (0.002 * k);
-      if (std::abs(k * slip / bound - 1.0) > 0.01)
+      if (std::abs(k * slip / bound - 1.0) > 0.01) {
         EXPECT_LT(
             (surface_anchor_spring_stiffness_derivative(k, x, anchor, here, bound) - by_stiffness)
                 .norm(),
             1e-9 * force / k);
+      }
       const Eigen::Matrix3d differenced = numeric_jacobian<3, 3>(gradient, x, 1e-7);
       EXPECT_LT((differenced - exact.hessian).norm(), 1e-6 * differenced.norm())
           << body->name() << " slip " << slip;

@@ -1,0 +1,113 @@
+#pragma once
+// The clock of a stepping loop: statics' load ramp (over the fraction of
+// the load) and creep (over time) step by it. It ends steps on the end, on
+// the times events fall on (load knots, body motions, pin releases) and on
+// periodic events that land steps (outputs; creep's checkpoints), merges a
+// sliver before such a time into the step, and says which periodic events a
+// step reached. The length of the next attempt after an accepted or a
+// rejected step, and when to give up, are each solver's own rule (creep's
+// tolerance, halving).
+//
+// Dynamics shares the periodic events (its checkpoints) but keeps its own
+// landing (solvers/dynamics.cpp, take_step): on this clock its time grid
+// moves by round-offs (outputs at exact multiples, steps of exactly dt), and
+// the coarse skirt's dynamic drape then rejects a step natively that it
+// accepts under OPENBLAS_CORETYPE=Prescott (a Newton solve ending on a
+// shrunk step at t = 1.0 s, the end of its sewing), which
+// reliability.prescott_drape_skirt_dynamic catches.
+
+#include <cmath>
+#include <vector>
+
+namespace sartor {
+
+// An event at every multiple of an interval counted from an origin (none
+// without an interval). Times within `tiny` of one count as on it.
+class PeriodicEvent {
+public:
+  // Whether steps must end on the event, or it is taken at the first step
+  // that reaches it (a checkpoint that should not change the answer).
+  enum class Landing { steps_end_on_it, first_step_past_it };
+
+  PeriodicEvent() = default; // never
+  PeriodicEvent(double interval, double origin, double tiny, Landing landing)
+      : interval_(interval), origin_(origin), tiny_(tiny), landing_(landing) {}
+
+  bool periodic() const { return interval_ > 0.0; }
+  bool lands_steps() const { return landing_ == Landing::steps_end_on_it; }
+  double next() const { return next_; }
+  bool reached(double time) const { return time >= next_ - tiny_; }
+
+  // The next event is the first multiple after `time`.
+  void passed(double time) {
+    next_ = periodic()
+                ? origin_ + (std::floor((time - origin_ + tiny_) / interval_) + 1.0) * interval_
+                : INFINITY;
+  }
+
+private:
+  double interval_ = 0.0;
+  double origin_ = 0.0;
+  double tiny_ = 0.0;
+  Landing landing_ = Landing::first_step_past_it;
+  double next_ = INFINITY;
+};
+
+// One attempt: from `from` to `to`, of `length` (to - from, or exactly the
+// length asked for when no landing cut it).
+struct StepPlan {
+  double from = 0.0;
+  double to = 0.0;
+  double length = 0.0;
+  bool shortened = false; // cut short of the length asked for, to land on a time
+};
+
+class StepController {
+public:
+  // From `start` to `end`; times closer than `tiny` are the same time;
+  // `landings` are the event times steps end on (any order; those outside
+  // (start, end) are never reached).
+  StepController(double start, double end, double tiny, std::vector<double> landings = {});
+
+  // Outputs at the multiples of `interval` from `origin`, which steps end
+  // on; every step without an interval.
+  void output_every(double interval, double origin);
+  // Checkpoints at the multiples of `interval` (none without one).
+  void checkpoint_every(double interval, PeriodicEvent::Landing landing);
+  // The clock continues from `time` (a resumed run); the periodic events
+  // are the first multiples after it.
+  void resume(double time);
+
+  double time() const { return time_; }
+  double tiny() const { return tiny_; }
+  bool finished() const { return time_ >= end_ - tiny_; }
+  // Of the way from the start to the end (1 once finished), for progress.
+  double fraction_done() const { return finished() ? 1.0 : (time_ - start_) / (end_ - start_); }
+
+  // The next attempt for a step of `asked` length: it ends on the first of
+  // the end, the next landing and the next landing periodic event when that
+  // comes within the step, or within 1e-3 of its length after it.
+  StepPlan plan(double asked) const;
+
+  // The plan's step was accepted: the clock is at its end. Whether that is
+  // an output (every step without an output interval, and the last) or a
+  // checkpoint is asked then; passing an event moves it past the time.
+  void accept(const StepPlan& step) { time_ = step.to; }
+  bool output_due() const { return !outputs_.periodic() || outputs_.reached(time_) || finished(); }
+  bool checkpoint_due() const { return checkpoints_.reached(time_); }
+  void pass_output() { outputs_.passed(time_); }
+  void pass_checkpoint() { checkpoints_.passed(time_); }
+
+private:
+  double next_landing() const;
+
+  double start_;
+  double end_;
+  double tiny_;
+  double time_;
+  std::vector<double> landings_; // sorted
+  PeriodicEvent outputs_;
+  PeriodicEvent checkpoints_;
+};
+
+} // namespace sartor
