@@ -364,7 +364,7 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
   }
 
   StepController clock(start, end, tiny, step_landings(problem, options));
-  clock.output_every(options.output_interval, 0.0);
+  clock.output_every(options.output_interval);
   clock.checkpoint_every(restart.checkpoint_interval, PeriodicEvent::Landing::steps_end_on_it);
   ProgressClock progress;
   int rejected = 0;

@@ -252,7 +252,7 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
   ProgressClock progress;
   PetscInt step_index = control.step;
   // A step is not cut to reach a checkpoint: checkpoints do not change the answer.
-  PeriodicEvent next_checkpoint(checkpoints.interval, 0.0, tiny,
+  PeriodicEvent next_checkpoint(checkpoints.interval, tiny,
                                 PeriodicEvent::Landing::first_step_past_it);
   next_checkpoint.passed(clock.t);
   report->completed = true;

@@ -10,13 +10,13 @@ StepController::StepController(double start, double end, double tiny, std::vecto
   std::sort(landings_.begin(), landings_.end());
 }
 
-void StepController::output_every(double interval, double origin) {
-  outputs_ = PeriodicEvent(interval, origin, tiny_, PeriodicEvent::Landing::steps_end_on_it);
+void StepController::output_every(double interval) {
+  outputs_ = PeriodicEvent(interval, tiny_, PeriodicEvent::Landing::steps_end_on_it);
   outputs_.passed(time_);
 }
 
 void StepController::checkpoint_every(double interval, PeriodicEvent::Landing landing) {
-  checkpoints_ = PeriodicEvent(interval, 0.0, tiny_, landing);
+  checkpoints_ = PeriodicEvent(interval, tiny_, landing);
   checkpoints_.passed(time_);
 }
 
@@ -36,7 +36,6 @@ StepPlan StepController::plan(double asked) const {
   for (const PeriodicEvent* event : {&outputs_, &checkpoints_})
     if (event->lands_steps()) target = std::min(target, event->next());
   StepPlan step;
-  step.from = time_;
   step.length = std::min(asked, target - time_);
   // No sliver is left before a landing: the step reaches it.
   if (target - time_ - step.length < 1e-3 * step.length) step.length = target - time_;

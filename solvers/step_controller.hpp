@@ -21,8 +21,8 @@
 
 namespace sartor {
 
-// An event at every multiple of an interval counted from an origin (none
-// without an interval). Times within `tiny` of one count as on it.
+// An event at every multiple of an interval (none without an interval). Times within `tiny` of one
+// count as on it.
 class PeriodicEvent {
 public:
   // Whether steps must end on the event, or it is taken at the first step
@@ -30,8 +30,8 @@ public:
   enum class Landing { steps_end_on_it, first_step_past_it };
 
   PeriodicEvent() = default; // never
-  PeriodicEvent(double interval, double origin, double tiny, Landing landing)
-      : interval_(interval), origin_(origin), tiny_(tiny), landing_(landing) {}
+  PeriodicEvent(double interval, double tiny, Landing landing)
+      : interval_(interval), tiny_(tiny), landing_(landing) {}
 
   bool periodic() const { return interval_ > 0.0; }
   bool lands_steps() const { return landing_ == Landing::steps_end_on_it; }
@@ -40,23 +40,19 @@ public:
 
   // The next event is the first multiple after `time`.
   void passed(double time) {
-    next_ = periodic()
-                ? origin_ + (std::floor((time - origin_ + tiny_) / interval_) + 1.0) * interval_
-                : INFINITY;
+    next_ = periodic() ? (std::floor((time + tiny_) / interval_) + 1.0) * interval_ : INFINITY;
   }
 
 private:
   double interval_ = 0.0;
-  double origin_ = 0.0;
   double tiny_ = 0.0;
   Landing landing_ = Landing::first_step_past_it;
   double next_ = INFINITY;
 };
 
-// One attempt: from `from` to `to`, of `length` (to - from, or exactly the
-// length asked for when no landing cut it).
+// One attempt from the clock's time: to `to`, of `length` (to minus the
+// time, or exactly the length asked for when no landing cut it).
 struct StepPlan {
-  double from = 0.0;
   double to = 0.0;
   double length = 0.0;
   bool shortened = false; // cut short of the length asked for, to land on a time
@@ -69,9 +65,9 @@ public:
   // (start, end) are never reached).
   StepController(double start, double end, double tiny, std::vector<double> landings = {});
 
-  // Outputs at the multiples of `interval` from `origin`, which steps end
-  // on; every step without an interval.
-  void output_every(double interval, double origin);
+  // Outputs at the multiples of `interval`, which steps end on; every step
+  // without an interval.
+  void output_every(double interval);
   // Checkpoints at the multiples of `interval` (none without one).
   void checkpoint_every(double interval, PeriodicEvent::Landing landing);
   // The clock continues from `time` (a resumed run); the periodic events

@@ -32,7 +32,7 @@ std::vector<Step> run(StepController& clock, double asked) {
 
 TEST(StepController, StepsEndOnOutputsAndLandings) {
   StepController clock(0.0, 1.0, 1e-9, {0.8, 0.35, -1.0, 2.0});
-  clock.output_every(0.5, 0.0);
+  clock.output_every(0.5);
   const std::vector<Step> steps = run(clock, 0.21);
   // 0.21, the landing 0.35, 0.5 (an output), 0.71, the landing 0.8, the end.
   const std::vector<double> ends{0.21, 0.35, 0.5, 0.71, 0.8, 1.0};
@@ -94,17 +94,16 @@ TEST(StepController, LandingCheckpointsCutSteps) {
   }
 }
 
-// Outputs count from their origin; a resumed clock's next output is the
-// one the uninterrupted clock had.
-TEST(StepController, OutputsCountFromTheirOriginAndResume) {
+// A resumed clock's next output is the one the uninterrupted clock had:
+// the multiples of the interval, not counted from the start.
+TEST(StepController, OutputsAreMultiplesAndResume) {
   StepController clock(0.35, 1.0, 1e-9);
-  clock.output_every(0.25, 0.35);
-  const StepPlan first = clock.plan(1.0);
-  EXPECT_NEAR(first.to, 0.6, 1e-12);
+  clock.output_every(0.25);
+  EXPECT_NEAR(clock.plan(1.0).to, 0.5, 1e-12);
   StepController resumed(0.35, 1.0, 1e-9);
-  resumed.output_every(0.25, 0.35);
+  resumed.output_every(0.25);
   resumed.resume(0.7);
-  EXPECT_NEAR(resumed.plan(1.0).to, 0.85, 1e-12);
+  EXPECT_NEAR(resumed.plan(1.0).to, 0.75, 1e-12);
   EXPECT_NEAR(resumed.fraction_done(), (0.7 - 0.35) / 0.65, 1e-12);
 }
 
