@@ -148,6 +148,24 @@ Point<Scalar> outward_normal(const PatchTriangle<Scalar>& triangle, int k) {
   return normal;
 }
 
+// Whether a patch's edge system is solved by LU (else by the Tikhonov
+// filter of edge_coefficients, with tau^2 of tikhonov_tau2).
+bool well_conditioned(const Eigen::JacobiSVD<Matrix3d>& svd) {
+  const Vector3d& sigma = svd.singularValues();
+  return sigma(2) >= ill_conditioned * sigma(0);
+}
+
+double tikhonov_tau2(const Eigen::JacobiSVD<Matrix3d>& svd) {
+  return std::pow(ill_conditioned * svd.singularValues()(0), 2);
+}
+
+Eigen::Matrix<double, 3, 6> regularised_solve(const Eigen::JacobiSVD<Matrix3d>& svd,
+                                              const Eigen::Matrix<double, 3, 6>& nodes) {
+  const Vector3d& sigma = svd.singularValues();
+  const Vector3d filter = sigma.array() / (sigma.array().square() + tikhonov_tau2(svd));
+  return svd.matrixV() * filter.asDiagonal() * svd.matrixU().transpose() * nodes;
+}
+
 // The edge coefficients c of the patch quadratic, system * c = nodes (as
 // weights over the six nodes): by LU, or where the system is ill-conditioned
 // in the least-squares sense with a Tikhonov term tau = ill_conditioned
@@ -155,11 +173,8 @@ Point<Scalar> outward_normal(const PatchTriangle<Scalar>& triangle, int k) {
 Eigen::Matrix<double, 3, 6> edge_coefficients(const Matrix3d& system,
                                               const Eigen::Matrix<double, 3, 6>& nodes) {
   const Eigen::JacobiSVD<Matrix3d> svd(system, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Vector3d sigma = svd.singularValues();
-  if (sigma(2) >= ill_conditioned * sigma(0)) return system.partialPivLu().solve(nodes);
-  const double tau2 = std::pow(ill_conditioned * sigma(0), 2);
-  const Vector3d filter = sigma.array() / (sigma.array().square() + tau2);
-  return svd.matrixV() * filter.asDiagonal() * svd.matrixU().transpose() * nodes;
+  if (well_conditioned(svd)) return system.partialPivLu().solve(nodes);
+  return regularised_solve(svd, nodes);
 }
 
 // Their derivative: c = A^-1 N moves by A^-1 (dN - dA c); the regularised c
@@ -170,16 +185,18 @@ Eigen::Matrix<Dual, 3, 6> edge_coefficients(const Matrix3<Dual>& dual_system,
                                             const Eigen::Matrix<Dual, 3, 6>& dual_nodes) {
   const Matrix3d system = values(dual_system), d_system = derivatives(dual_system);
   const Eigen::Matrix<double, 3, 6> nodes = values(dual_nodes), d_nodes = derivatives(dual_nodes);
-  const Eigen::Matrix<double, 3, 6> c = edge_coefficients(system, nodes);
   const Eigen::JacobiSVD<Matrix3d> svd(system, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Vector3d sigma = svd.singularValues();
-  Eigen::Matrix<double, 3, 6> dc;
-  if (sigma(2) >= ill_conditioned * sigma(0)) {
-    dc = system.partialPivLu().solve(d_nodes - d_system * c);
+  Eigen::Matrix<double, 3, 6> c, dc;
+  if (well_conditioned(svd)) {
+    const Eigen::PartialPivLU<Matrix3d> lu = system.partialPivLu();
+    c = lu.solve(nodes);
+    dc = lu.solve(d_nodes - d_system * c);
   } else {
-    const double tau2 = std::pow(ill_conditioned * sigma(0), 2);
+    c = regularised_solve(svd, nodes);
+    const double tau2 = tikhonov_tau2(svd);
+    const double sigma_max = svd.singularValues()(0);
     const double d_sigma = svd.matrixU().col(0).dot(d_system * svd.matrixV().col(0));
-    const double d_tau2 = 2.0 * ill_conditioned * ill_conditioned * sigma(0) * d_sigma;
+    const double d_tau2 = 2.0 * ill_conditioned * ill_conditioned * sigma_max * d_sigma;
     const Matrix3d normal = system.transpose() * system + tau2 * Matrix3d::Identity();
     const Matrix3d d_normal = d_system.transpose() * system + system.transpose() * d_system +
                               d_tau2 * Matrix3d::Identity();
