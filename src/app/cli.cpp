@@ -23,6 +23,19 @@ std::string database_key(const std::string& name) {
 
 namespace {
 
+constexpr int largest_list_index = 99;
+
+} // namespace
+
+std::vector<std::string> option_entries(const OptionSpec& option) {
+  std::vector<std::string> names{option.name};
+  for (int index = 2; option.indexed && index <= largest_list_index; ++index)
+    names.push_back(option.name + std::to_string(index));
+  return names;
+}
+
+namespace {
+
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);
   for (std::size_t j = 0; j <= b.size(); ++j)
@@ -39,9 +52,24 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
+// The index of `name` in the list option `list` ("body5" of "body" is 5),
+// or 0 where it is not one of its numbered entries (2 to 99, no leading 0).
+int list_index(const std::string& list, const std::string& name) {
+  if (name.size() <= list.size() || name.compare(0, list.size(), list) != 0) return 0;
+  const std::string digits = name.substr(list.size());
+  if (digits.size() > 2 || digits[0] == '0' ||
+      digits.find_first_not_of("0123456789") != std::string::npos)
+    return 0;
+  const int index = std::stoi(digits);
+  return index >= 2 ? index : 0;
+}
+
 const OptionSpec* lookup(const CommandSpec& spec, const std::string& name) {
   for (const auto& option : spec.options) {
     if (option.name == name) return &option;
+  }
+  for (const auto& option : spec.options) {
+    if (option.indexed && list_index(option.name, name) > 0) return &option;
   }
   return nullptr;
 }
@@ -183,7 +211,7 @@ std::string help_text(const CommandSpec& spec) {
   std::ostringstream out;
   out << "usage: " << spec.usage << "\n\n" << spec.description << "\n\noptions:\n";
   for (const auto& option : spec.options) {
-    std::string left = "  --" + option.name;
+    std::string left = "  --" + option.name + (option.indexed ? "[N]" : "");
     if (!option.value_name.empty()) left += " " + option.value_name;
     out << left;
     if (left.size() < 30) {
@@ -193,6 +221,11 @@ std::string help_text(const CommandSpec& spec) {
     }
     out << option.help;
     if (!option.fallback.empty()) out << " [" << option.fallback << "]";
+    if (option.indexed) {
+      out << "\n"
+          << std::string(30, ' ') << "a list: --" << option.name << ", --" << option.name
+          << "2, ... --" << option.name << largest_list_index;
+    }
     out << "\n";
   }
   out << "  -h, --help                  this text\n\n"
@@ -358,10 +391,21 @@ bool Options::flag(const std::string& name) const {
   throw InputError("option --" + name + ": '" + value + "' is not true or false");
 }
 
+std::vector<std::pair<std::string, std::string>> Options::indexed(const std::string& name) const {
+  if (!find(name).indexed) throw std::logic_error("option --" + name + " is not a list");
+  std::vector<std::pair<std::string, std::string>> entries;
+  for (const std::string& entry : option_entries(find(name)))
+    if (is_set(entry)) entries.emplace_back(entry, text(entry));
+  return entries;
+}
+
 std::vector<std::pair<std::string, std::string>> Options::effective() const {
   std::vector<std::pair<std::string, std::string>> values;
   for (const auto& option : spec_.options) {
-    if (option.value_name.empty()) {
+    if (option.indexed) {
+      const auto entries = indexed(option.name);
+      values.insert(values.end(), entries.begin(), entries.end());
+    } else if (option.value_name.empty()) {
       values.emplace_back(option.name, flag(option.name) ? "true" : "false");
     } else if (is_set(option.name) || !option.fallback.empty()) {
       values.emplace_back(option.name, text(option.name));

@@ -24,6 +24,9 @@ struct OptionSpec {
   std::string value_name; // e.g. "SECONDS"; empty for a flag
   std::string fallback;   // default value as text; empty: no default
   std::string help;       // one line, with units
+  // An indexed list: `name`, `name2`, `name3`, ... up to `name99` (gaps
+  // allowed), read in that order by Options::indexed. The first has no number.
+  bool indexed = false;
 };
 
 struct CommandSpec {
@@ -42,6 +45,10 @@ struct CommandSpec {
   std::function<std::vector<std::string>(const std::vector<std::string>& positionals)>
       options_from_positionals = {};
 };
+
+// The names an option is given by: its own, and for an indexed list its
+// numbered entries too ("body", "body2", ... "body99").
+std::vector<std::string> option_entries(const OptionSpec& option);
 
 // The options database's key of option `name`: "-" with its dashes as
 // underscores ("bending-model" is "-bending_model").
@@ -73,6 +80,9 @@ public:
   double nonnegative_real(const std::string& name) const;
   long integer(const std::string& name) const;
   bool flag(const std::string& name) const;
+  // The entries of an indexed list option (OptionSpec::indexed) as
+  // (option name, value), in index order: --body, --body2, --body5, ...
+  std::vector<std::pair<std::string, std::string>> indexed(const std::string& name) const;
   // An integer in [minimum, maximum]; the message names the option and the range.
   long integer_in(const std::string& name, long minimum, long maximum) const;
   // Options whose help is scoped to some of the `kinds` of `selector`

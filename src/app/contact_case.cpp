@@ -16,8 +16,6 @@ namespace sartor {
 
 namespace {
 
-const char* const body_options[] = {"body", "body2", "body3", "body4"};
-
 nlohmann::json vector_json(const Eigen::Vector3d& v) {
   return {v[0], v[1], v[2]};
 }
@@ -33,25 +31,32 @@ double material_area(const TriangleMesh& mesh) {
 
 } // namespace
 
-void set_up_contact(const Options& options, ClothProblem& problem) {
+ContactCase read_contact_case(const Options& options) {
+  ContactCase contact;
   std::set<std::string> names;
-  for (const char* option : body_options) {
-    if (!options.is_set(option)) continue;
-    contact::Body body =
-        contact::parse_body(options.text(option), std::string("option --") + option, option);
+  for (const auto& [option, spec] : options.indexed("body")) {
+    contact::Body body = contact::parse_body(spec, "option --" + option, option);
     if (!names.insert(body.name()).second) {
-      throw InputError(std::string("option --") + option + ": a body is already named '" +
-                       body.name() + "'");
+      throw InputError("option --" + option + ": a body is already named '" + body.name() + "'");
     }
-    problem.bodies.push_back(std::move(body));
+    contact.bodies.push_back(std::move(body));
   }
-  problem.contact.offset = options.positive_real("contact-offset");
+  contact.settings.offset = options.positive_real("contact-offset");
   if (options.is_set("contact-stiffness")) {
-    problem.contact.stiffness = options.positive_real("contact-stiffness");
+    contact.settings.stiffness = options.positive_real("contact-stiffness");
   }
-  problem.contact.stiffness_factor = options.positive_real("contact-stiffness-factor");
-  problem.contact.edge_sample_spacing = options.nonnegative_real("contact-edge-spacing");
+  contact.settings.stiffness_factor = options.positive_real("contact-stiffness-factor");
+  contact.settings.edge_sample_spacing = options.nonnegative_real("contact-edge-spacing");
   if (options.is_set("drape-support-radius")) options.positive_real("drape-support-radius");
+  return contact;
+}
+
+void set_up_contact(const ContactCase& contact, ClothProblem& problem) {
+  problem.bodies.insert(problem.bodies.end(), contact.bodies.begin(), contact.bodies.end());
+  problem.contact.offset = contact.settings.offset;
+  problem.contact.stiffness = contact.settings.stiffness;
+  problem.contact.stiffness_factor = contact.settings.stiffness_factor;
+  problem.contact.edge_sample_spacing = contact.settings.edge_sample_spacing;
 }
 
 void apply_placement_waves(const Options& options, TriangleMesh& mesh) {

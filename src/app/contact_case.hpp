@@ -16,11 +16,20 @@
 
 namespace sartor {
 
-// Parses the options --body, --body2 ... --body4, --contact-offset,
-// --contact-stiffness, --contact-stiffness-factor (declared with the case's
-// options in run_command.cpp) onto `problem`.
-// Throws InputError naming the option for a bad specification.
-void set_up_contact(const Options& options, ClothProblem& problem);
+// The contact part of a case: the bodies, an indexed list (--body,
+// --body2, ... --body99, in that order), and the penalty settings
+// (--contact-offset, --contact-stiffness, --contact-stiffness-factor,
+// --contact-edge-spacing), declared with the case's options in run_command.cpp.
+struct ContactCase {
+  std::vector<contact::Body> bodies;
+  ContactSettings settings;
+};
+
+// Throws InputError naming the option for a bad specification or two bodies
+// of one name.
+ContactCase read_contact_case(const Options& options);
+
+void set_up_contact(const ContactCase& contact, ClothProblem& problem);
 
 // --mesh-waves N,A,R0: a small out-of-plane imperfection of the placement,
 // applied in the mesh's own frame (before --mesh-rotate-x and

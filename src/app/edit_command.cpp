@@ -133,22 +133,22 @@ bool may_differ_from_drape(const std::string& name) {
   return free.count(name) > 0;
 }
 
-// A drape option's value in the drape resumed, and in this edit.
+// A drape option entry's value in the drape resumed, and in this edit.
 struct OptionValues {
   std::string drape, edit;
   bool differ = false;
 };
 
-OptionValues option_values(const OptionSpec& option, const std::string* echoed,
-                           const Options& options) {
+OptionValues option_values(const OptionSpec& option, const std::string& name,
+                           const std::string* echoed, const Options& options) {
   OptionValues values;
   if (option.value_name.empty()) {
     const bool drape = echoed && *echoed != "false" && *echoed != "0" && *echoed != "no";
-    const bool edit = options.flag(option.name);
+    const bool edit = options.flag(name);
     values = {drape ? "true" : "false", edit ? "true" : "false", drape != edit};
   } else {
     values.drape = echoed ? *echoed : option.fallback;
-    values.edit = options.text(option.name);
+    values.edit = options.text(name);
     values.differ = !same_value(values.drape, values.edit);
   }
   return values;
@@ -160,35 +160,43 @@ std::string edit_fallback(const std::string& name) {
   throw std::logic_error("sartor edit has no option --" + name);
 }
 
-// Takes the drape's options into `options` (the edit's own defaults give way
-// to the drape's) and refuses a drape option this edit sets otherwise.
-// Returns the pattern to construct.
+// Takes the drape's value of option entry `name` (of `option`) into
+// `options` (the edit's own default gives way to the drape's), and refuses
+// an edit's value that differs from the drape's.
+void keep_drape_value(const DrapeDirectory& drape, const OptionSpec& option,
+                      const std::string& name, Options* options) {
+  const auto found = drape.options.find(database_key(name));
+  const std::string* echoed = found == drape.options.end() ? nullptr : &found->second;
+  if (!echoed && edit_fallback(option.name) != option.fallback)
+    options->set_default(name, option.fallback);
+  if (may_differ_from_drape(option.name)) return;
+  const OptionValues values = option_values(option, name, echoed, *options);
+  if (!values.differ) return;
+  if (option.name == "restart") {
+    throw InputError("option --restart: an edit of " + drape.directory + " resumes from its " +
+                     drape_state_file);
+  }
+  throw InputError("option --" + name + ": " + drape.directory + " was draped with " +
+                   (values.drape.empty() ? "none" : "'" + values.drape + "'") + ", not '" +
+                   values.edit +
+                   "'; an edit of a drape keeps the drape's options (give PATTERN.json to "
+                   "drape afresh with others)");
+}
+
+// Takes the drape's options into `options` and refuses a drape option this
+// edit sets otherwise. Returns the pattern to construct.
 std::string resume_drape_directory(const DrapeDirectory& drape,
                                    const ParsedCommandLine& command_line, Options* options) {
   const auto& given = command_line.petsc_arguments;
   const bool output_given = std::find(given.begin(), given.end(), "-output") != given.end();
   for (const OptionSpec& option : drape_command().options) {
-    const auto found = drape.options.find(database_key(option.name));
-    const std::string* echoed = found == drape.options.end() ? nullptr : &found->second;
     if (option.name == "output") {
       // The drape's own output is not where its edits go.
-      if (echoed && !output_given) options->clear("output");
+      if (drape.options.count(database_key("output")) && !output_given) options->clear("output");
       continue;
     }
-    if (!echoed && edit_fallback(option.name) != option.fallback)
-      options->set_default(option.name, option.fallback);
-    if (may_differ_from_drape(option.name)) continue;
-    const OptionValues values = option_values(option, echoed, *options);
-    if (!values.differ) continue;
-    if (option.name == "restart") {
-      throw InputError("option --restart: an edit of " + drape.directory + " resumes from its " +
-                       drape_state_file);
-    }
-    throw InputError("option --" + option.name + ": " + drape.directory + " was draped with " +
-                     (values.drape.empty() ? "none" : "'" + values.drape + "'") + ", not '" +
-                     values.edit +
-                     "'; an edit of a drape keeps the drape's options (give PATTERN.json to "
-                     "drape afresh with others)");
+    for (const std::string& name : option_entries(option))
+      keep_drape_value(drape, option, name, options);
   }
   options->set("restart", drape.directory + "/" + drape_state_file);
   const std::string output = options->text("output");

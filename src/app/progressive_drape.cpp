@@ -1,6 +1,7 @@
 #include "app/progressive_drape.hpp"
 
 #include "app/commands.hpp"
+#include "app/contact_case.hpp"
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "contact/body_spec.hpp"
@@ -155,16 +156,13 @@ void lift_edges_out_of_body(const contact::Body& body, double offset, double spa
 // T-shirt's 2 N) would throw the static solve far off. Half the offset
 // keeps them in contact, so that friction anchors them at the start.
 // Returns the deepest vertex's start, m below the offset surface.
-double lift_out_of_bodies(const Options& options, const TriangleMesh& mesh,
+double lift_out_of_bodies(const ContactCase& contact, const TriangleMesh& mesh,
                           std::vector<Eigen::Vector3d>* positions) {
-  const double offset = options.positive_real("contact-offset");
-  const double spacing = options.nonnegative_real("contact-edge-spacing");
+  const double offset = contact.settings.offset;
+  const double spacing = contact.settings.edge_sample_spacing;
   const std::vector<std::array<int, 2>> edges = mesh_edges(mesh);
   double deepest = 0.0;
-  for (const char* name : {"body", "body2", "body3", "body4"}) {
-    if (!options.is_set(name)) continue;
-    const contact::Body body =
-        contact::parse_body(options.text(name), std::string("option --") + name, name);
+  for (const contact::Body& body : contact.bodies) {
     Eigen::Vector3d displacement;
     for (Eigen::Vector3d& x : *positions)
       deepest = std::max(deepest, lift_point(body, offset, &x, &displacement));
@@ -414,7 +412,8 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
         run.seam_gap_prolonged = closure.gap_before;
         run.seam_gap_start = closure.gap_after;
         run.outside_distance = prolongation.largest_outside_distance();
-        run.deepest_start = lift_out_of_bodies(level_options, level.cloth.mesh, &start);
+        run.deepest_start =
+            lift_out_of_bodies(read_contact_case(level_options), level.cloth.mesh, &start);
         level.cloth.mesh.positions = start;
       }
       set_finer_level_options(&level_options);

@@ -152,10 +152,7 @@ const std::vector<OptionSpec>& load_option_specs() {
 const std::vector<OptionSpec>& contact_option_specs() {
   static const std::vector<OptionSpec> specs{
       {"body", "SPEC", "",
-       "a rigid body, e.g. \"sphere center=0,0,0 radius=0.3 mu=0.3\" (docs/contact.md)"},
-      {"body2", "SPEC", "", "a second body"},
-      {"body3", "SPEC", "", "a third body"},
-      {"body4", "SPEC", "", "a fourth body"},
+       "a rigid body, e.g. \"sphere center=0,0,0 radius=0.3 mu=0.3\" (docs/contact.md)", true},
       {"contact-offset", "M", "0.001", "distance kept between cloth vertices and bodies, m"},
       {"contact-stiffness", "N/M", "",
        "penalty stiffness per vertex, N/m [factor * E_max * vertex area / h^2]"},
@@ -1082,7 +1079,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   set_case_loads(options, mesh, &problem.loads);
   problem.pin_motion = vector3(options, "pin-move");
   problem.pin_groups = pin_groups(options, mesh, pinned);
-  set_up_contact(options, problem);
+  set_up_contact(read_contact_case(options), problem);
   problem.contact.project_hessian = options.flag("membrane-psd");
   if (result.seams && !result.seams->merged) {
     // Static sewing stages start from this pull (before the springs are made).

@@ -219,13 +219,15 @@ int run_wrap(const Invocation& invocation) {
   for (const OptionSpec& option : case_option_specs()) {
     const bool is_own = std::any_of(own.begin(), own.end(),
                                     [&](const OptionSpec& o) { return o.name == option.name; });
-    if (is_own || !options.is_set(option.name)) continue;
+    const std::vector<std::string> entries = option_entries(option);
+    const auto given = std::find_if(entries.begin(), entries.end(),
+                                    [&](const std::string& name) { return options.is_set(name); });
+    if (is_own || given == entries.end()) continue;
     if (describes_wrapped_garment(option.name))
-      throw InputError("option --" + option.name +
+      throw InputError("option --" + *given +
                        " does not apply to sartor wrap: the wrapped garment is the mesh and the "
                        "marks file gives the body");
-    if (!drape)
-      throw InputError("option --" + option.name + " applies to the drape only: add --drape");
+    if (!drape) throw InputError("option --" + *given + " applies to the drape only: add --drape");
   }
   std::vector<garment::ClothMark> pattern_marks;
   const garment::Pattern pattern = garment::read_pattern_with_marks(pattern_path, pattern_marks);

@@ -3,11 +3,15 @@
 // options database keeps what the user gave.
 
 #include "app/cli.hpp"
+#include "common/error.hpp"
 
 #include <gtest/gtest.h>
 #include <petscsys.h>
 
+#include <algorithm>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace {
 
@@ -19,7 +23,8 @@ const sartor::CommandSpec& spec() {
                                            {{"density", "KG_M2", "0.2", "areal density"},
                                             {"seams-file", "FILE", "", "seams"},
                                             {"settle", "", "", "a flag"},
-                                            {"time-end", "SECONDS", "1", "end time"}}};
+                                            {"time-end", "SECONDS", "1", "end time"},
+                                            {"body", "SPEC", "", "a body", true}}};
   return command;
 }
 
@@ -91,6 +96,38 @@ TEST_F(OptionsOverlay, ADefaultAfterAClearIsTheCommands) {
   EXPECT_EQ(options.text("time-end"), "2");
   options.set_default("time-end", "3"); // given already: the first stays
   EXPECT_EQ(options.text("time-end"), "2");
+}
+
+// --body, --body2, ... --body99: the entries given, in index order, gaps
+// allowed; the command line knows them all and no other.
+TEST(IndexedOption, EntriesComeInIndexOrder) {
+  for (const auto& [key, value] :
+       {std::pair{"-body12", "twelve"}, {"-body", "one"}, {"-body3", "three"}, {"-body99", "last"}})
+    ASSERT_EQ(PetscOptionsSetValue(nullptr, key, value), 0);
+  const sartor::Options options(spec());
+  const auto entries = options.indexed("body");
+  ASSERT_EQ(entries.size(), 4u);
+  const std::vector<std::pair<std::string, std::string>> expected{
+      {"body", "one"}, {"body3", "three"}, {"body12", "twelve"}, {"body99", "last"}};
+  for (std::size_t k = 0; k < expected.size(); ++k)
+    EXPECT_EQ(entries[k], expected[k]) << k;
+  const auto effective = options.effective();
+  EXPECT_EQ(std::count_if(effective.begin(), effective.end(),
+                          [](const auto& entry) { return entry.first.rfind("body", 0) == 0; }),
+            4);
+  for (const char* key : {"-body", "-body3", "-body12", "-body99"})
+    PetscOptionsClearValue(nullptr, key);
+  EXPECT_THROW(options.indexed("density"), std::logic_error);
+}
+
+TEST(IndexedOption, TheCommandLineTakesNumberedEntriesOnly) {
+  const auto parsed = sartor::parse_command_line(spec(), "probe", {"--body7", "sphere"});
+  ASSERT_EQ(parsed.petsc_arguments.size(), 3u);
+  EXPECT_EQ(parsed.petsc_arguments[1], "-body7");
+  for (const char* bad : {"--body1", "--body0", "--body07", "--body100", "--bodyx"})
+    EXPECT_THROW(sartor::parse_command_line(spec(), "probe", {bad, "sphere"}), sartor::InputError)
+        << bad;
+  EXPECT_NE(sartor::help_text(spec()).find("--body[N] SPEC"), std::string::npos);
 }
 
 } // namespace
