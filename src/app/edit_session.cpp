@@ -247,7 +247,7 @@ ProblemFactory EditSession::factory(const ClothProblem& base,
     auto problem = std::make_unique<ClothProblem>(comm, mesh, floored, pinned);
     problem->sewing_tension = tension;
     if (!garment_.seams.empty())
-      problem->set_seams(garment_.seams, case_seam_stiffness(options_, stiffest));
+      problem->set_seams(garment_.seams, case_seam_stiffness(read_seam_case(options_), stiffest));
     return problem;
   };
 }

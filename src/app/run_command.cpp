@@ -1064,10 +1064,16 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   const ClothMaterial& material = stiffest_material(materials);
   std::vector<int> pinned = pinned_vertices(options, mesh);
   // Seams (app/seam_case.hpp): sewn by springs, or sewn first and merged.
-  const std::vector<Seam> seams = case_seams(options, mesh, result.mesh_refine);
+  const SeamCase seam_case = read_seam_case(options);
+  const CaseClock clock{options.text("analysis"), options.positive_real("time-end")};
+  const std::vector<Seam> seams = case_seams(seam_case, options, mesh, result.mesh_refine);
   if (!seams.empty()) result.seams = SeamReport{};
-  if (!seams.empty() && options.flag("seam-merge")) {
-    sew_and_merge(options, material, vector3(options, "gravity"),
+  if (!seams.empty() && seam_case.merge) {
+    if (options.is_set("point-force")) {
+      throw InputError("option --point-force names a vertex of the unmerged mesh; it cannot be "
+                       "combined with --seam-merge");
+    }
+    sew_and_merge(seam_case, clock, material, vector3(options, "gravity"),
                   count_option(options, "load-steps", 1), seams, &result.mesh, &pinned,
                   &*result.seams);
   }
@@ -1085,7 +1091,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
     // Static sewing stages start from this pull (before the springs are made).
     if (options.text("analysis") == "static" && count_option(options, "sewing-stages", 1) > 1)
       problem.sewing_tension = options.positive_real("sewing-start-tension");
-    attach_seams(options, seams, material, problem, &*result.seams);
+    attach_seams(seam_case, clock, seams, material, problem, &*result.seams);
   }
   const std::string analysis =
       checked_analysis(options, problem, mesh, materials, pinned, material);
@@ -1132,7 +1138,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   if (cloth && cloth->after_statics && !dynamic && !creep && result.converged) {
     const bool springs = !seams.empty() && !(result.seams && result.seams->merged);
     cloth->after_statics(problem, materials,
-                         springs ? case_seam_springs(options, mesh, seams, material)
+                         springs ? case_seam_springs(seam_case, mesh, seams, material)
                                  : std::vector<SeamSpring>{},
                          x, result.last_checkpoint);
   }

@@ -24,28 +24,39 @@ int divisions(const Options& options, const std::string& name, const std::string
 }
 
 // --sewing-tension and --sewing-time: the sewing stage of a dynamic run.
-void set_up_sewing(const Options& options, ClothProblem& problem, SeamReport* report) {
-  if (!options.is_set("sewing-tension")) return;
-  const double tension = options.nonnegative_real("sewing-tension");
-  if (tension == 0.0) return;
-  if (options.text("analysis") != "dynamic") {
+void set_up_sewing(const SeamCase& seam_case, const CaseClock& clock, ClothProblem& problem,
+                   SeamReport* report) {
+  if (!seam_case.sewing_tension || *seam_case.sewing_tension == 0.0) return;
+  if (clock.analysis != "dynamic") {
     throw InputError("option --sewing-tension: sewing is a stage of time stepping; give --analysis "
                      "dynamic (or leave --sewing-tension out)");
   }
-  const double time_end = options.positive_real("time-end");
-  const double end =
-      options.is_set("sewing-time") ? options.positive_real("sewing-time") : 0.5 * time_end;
-  if (end >= time_end) {
+  const double end = seam_case.sewing_time.value_or(0.5 * clock.time_end);
+  if (end >= clock.time_end) {
     throw InputError("option --sewing-time: the sewing stage must end before --time-end (" +
-                     format_number(time_end) + " s), got " + format_number(end) + " s");
+                     format_number(clock.time_end) + " s), got " + format_number(end) + " s");
   }
-  problem.sewing_tension = tension;
+  problem.sewing_tension = *seam_case.sewing_tension;
   problem.sewing_end_time = end;
   report->sewing_tension = problem.sewing_tension;
   report->sewing_end_time = end;
 }
 
 } // namespace
+
+SeamCase read_seam_case(const Options& options) {
+  SeamCase seam_case;
+  if (options.is_set("seams-file")) seam_case.seams_file = options.text("seams-file");
+  seam_case.penalty = options.positive_real("seam-penalty");
+  if (options.is_set("seam-stiffness"))
+    seam_case.stiffness = options.positive_real("seam-stiffness");
+  seam_case.merge = options.flag("seam-merge");
+  seam_case.merge_gap = options.positive_real("seam-merge-gap");
+  if (options.is_set("sewing-tension"))
+    seam_case.sewing_tension = options.nonnegative_real("sewing-tension");
+  if (options.is_set("sewing-time")) seam_case.sewing_time = options.positive_real("sewing-time");
+  return seam_case;
+}
 
 mesh::PanelMesh tube_panels_mesh(const Options& options) {
   return mesh::tube_panels(
@@ -55,43 +66,41 @@ mesh::PanelMesh tube_panels_mesh(const Options& options) {
       divisions(options, "mesh-ny-front", "mesh-ny"), options.nonnegative_real("mesh-gap"));
 }
 
-std::vector<Seam> case_seams(const Options& options, const TriangleMesh& mesh, int refinements) {
+std::vector<Seam> case_seams(const SeamCase& seam_case, const Options& mesh_options,
+                             const TriangleMesh& mesh, int refinements) {
   std::vector<Seam> seams;
-  if (options.is_set("seams-file")) {
-    seams = read_seams(options.text("seams-file"), mesh);
-  } else if (options.text("mesh") == "tube_panels") {
-    seams = tube_panels_mesh(options).seams;
+  if (!seam_case.seams_file.empty()) {
+    seams = read_seams(seam_case.seams_file, mesh);
+  } else if (mesh_options.text("mesh") == "tube_panels") {
+    seams = tube_panels_mesh(mesh_options).seams;
   }
   if (!seams.empty() && refinements > 0) {
     throw InputError("seams and uniform refinement (--mesh-refine " + std::to_string(refinements) +
                      ") cannot be combined: refine the panels before listing their seam lines");
   }
-  if (seams.empty() && (options.flag("seam-merge") || options.is_set("seam-stiffness") ||
-                        options.is_set("sewing-tension"))) {
+  if (seams.empty() && (seam_case.merge || seam_case.stiffness || seam_case.sewing_tension)) {
     throw InputError("options --seam-merge, --seam-stiffness and --sewing-tension need seams: give "
                      "--seams-file or --mesh tube_panels");
   }
   return seams;
 }
 
-SeamStiffness case_seam_stiffness(const Options& options, const ClothMaterial& material) {
+SeamStiffness case_seam_stiffness(const SeamCase& seam_case, const ClothMaterial& material) {
   SeamStiffness stiffness;
   stiffness.modulus =
       std::max(material.membrane.warp.initial_modulus(), material.membrane.weft.initial_modulus());
-  stiffness.penalty = options.positive_real("seam-penalty");
-  if (options.is_set("seam-stiffness")) {
-    stiffness.per_length = options.positive_real("seam-stiffness");
-  }
+  stiffness.penalty = seam_case.penalty;
+  if (seam_case.stiffness) stiffness.per_length = *seam_case.stiffness;
   return stiffness;
 }
 
-std::vector<SeamSpring> case_seam_springs(const Options& options, const TriangleMesh& mesh,
+std::vector<SeamSpring> case_seam_springs(const SeamCase& seam_case, const TriangleMesh& mesh,
                                           const std::vector<Seam>& seams,
                                           const ClothMaterial& material) {
-  return seam_springs(mesh, seams, case_seam_stiffness(options, material));
+  return seam_springs(mesh, seams, case_seam_stiffness(seam_case, material));
 }
 
-void attach_seams(const Options& options, const std::vector<Seam>& seams,
+void attach_seams(const SeamCase& seam_case, const CaseClock& clock, const std::vector<Seam>& seams,
                   const ClothMaterial& material, ClothProblem& problem, SeamReport* report) {
   // Sewing starts with the seam springs stretched across the gap: residuals
   // of ~1e6 N, of which SNES's relative tolerance (1e-10) would accept a
@@ -99,9 +108,9 @@ void attach_seams(const Options& options, const std::vector<Seam>& seams,
   // cases converge on the absolute tolerance instead (round-off of the
   // membrane forces, IncrementalSystem); -snes_rtol still overrides.
   SartorPetscCall(set_default_option("-snes_rtol", "0"));
-  set_up_sewing(options, problem, report);
+  set_up_sewing(seam_case, clock, problem, report);
   const std::vector<SeamSpring> springs =
-      problem.set_seams(seams, case_seam_stiffness(options, material));
+      problem.set_seams(seams, case_seam_stiffness(seam_case, material));
   report->seams = seams.size();
   report->springs = springs.size();
   report->vertex_to_edge_springs = std::size_t(std::count_if(
@@ -109,20 +118,16 @@ void attach_seams(const Options& options, const std::vector<Seam>& seams,
   report->cross_rank_springs = problem.seam_coupling()->cross_rank_springs();
 }
 
-void sew_and_merge(const Options& options, const ClothMaterial& material,
+void sew_and_merge(const SeamCase& seam_case, const CaseClock& clock, const ClothMaterial& material,
                    const Eigen::Vector3d& gravity, int load_steps, const std::vector<Seam>& seams,
                    TriangleMesh* mesh, std::vector<int>* pinned, SeamReport* report) {
-  if (options.is_set("point-force")) {
-    throw InputError("option --point-force names a vertex of the unmerged mesh; it cannot be "
-                     "combined with --seam-merge");
-  }
   // Fails early, before the solve, for seams that cannot be merged.
   matched_vertex_pairs(*mesh, seams);
   std::vector<Eigen::Vector3d> positions;
   {
     ClothProblem sewing(PETSC_COMM_WORLD, *mesh, material, *pinned);
     sewing.loads.gravity = gravity;
-    attach_seams(options, seams, material, sewing, report);
+    attach_seams(seam_case, clock, seams, material, sewing, report);
     StaticOptions solve;
     solve.load_steps = load_steps;
     Vec x = nullptr;
@@ -136,7 +141,7 @@ void sew_and_merge(const Options& options, const ClothMaterial& material,
     throw SolveFailure("option --seam-merge: the sewing solve did not converge (" +
                        report->sewing.reason + "); try more --load-steps or -snes_monitor");
   }
-  const double tolerance = options.positive_real("seam-merge-gap");
+  const double tolerance = seam_case.merge_gap;
   if (report->gap_before_merge > tolerance) {
     throw SolveFailure("option --seam-merge: the seams did not close (largest gap " +
                        format_number(report->gap_before_merge) + " m > --seam-merge-gap " +

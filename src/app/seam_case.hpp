@@ -14,9 +14,33 @@
 
 #include <Eigen/Core>
 
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace sartor {
+
+// The seams module's options (declared with the case's in run_command.cpp),
+// read once and checked for their own values.
+struct SeamCase {
+  std::string seams_file;               // --seams-file; empty: the mesh generator's, if any
+  double penalty = 100.0;               // --seam-penalty
+  std::optional<double> stiffness;      // --seam-stiffness, N/m^2; none: automatic
+  bool merge = false;                   // --seam-merge
+  double merge_gap = 1e-4;              // --seam-merge-gap, m
+  std::optional<double> sewing_tension; // --sewing-tension, N/m
+  std::optional<double> sewing_time;    // --sewing-time, s
+};
+
+// Throws InputError naming the option for a malformed value.
+SeamCase read_seam_case(const Options& options);
+
+// When the case runs, which the sewing stage is checked against (it is a
+// stage of time stepping, ending before its end).
+struct CaseClock {
+  std::string analysis;  // --analysis
+  double time_end = 0.0; // --time-end, s
+};
 
 struct SeamReport {
   std::size_t seams = 0;
@@ -41,19 +65,21 @@ mesh::PanelMesh tube_panels_mesh(const Options& options);
 // The case's seams: --seams-file's, else the tube_panels generator's, else
 // none. Throws InputError when seams meet uniform refinement (the seam lines
 // would miss the new vertices).
-std::vector<Seam> case_seams(const Options& options, const TriangleMesh& mesh, int refinements);
+std::vector<Seam> case_seams(const SeamCase& seam_case, const Options& mesh_options,
+                             const TriangleMesh& mesh, int refinements);
 
 // The seams' stiffness settings: --seam-stiffness, or --seam-penalty with the
 // material's largest initial modulus.
-SeamStiffness case_seam_stiffness(const Options& options, const ClothMaterial& material);
+SeamStiffness case_seam_stiffness(const SeamCase& seam_case, const ClothMaterial& material);
 // The springs of `seams` with those settings.
-std::vector<SeamSpring> case_seam_springs(const Options& options, const TriangleMesh& mesh,
+std::vector<SeamSpring> case_seam_springs(const SeamCase& seam_case, const TriangleMesh& mesh,
                                           const std::vector<Seam>& seams,
                                           const ClothMaterial& material);
 
 // Adds the springs to `problem` (from the seam lines, so that they have a
 // rest derivative) and records their counts in `report`.
-void attach_seams(const Options& options, const std::vector<Seam>& seams,
+// Throws InputError for a sewing stage outside time stepping or past its end.
+void attach_seams(const SeamCase& seam_case, const CaseClock& clock, const std::vector<Seam>& seams,
                   const ClothMaterial& material, ClothProblem& problem, SeamReport* report);
 
 // --seam-merge: sews `mesh` with its seams under gravity alone (collective
@@ -62,7 +88,7 @@ void attach_seams(const Options& options, const std::vector<Seam>& seams,
 // vertex pair merged and `pinned` by the merged pins. Throws InputError when
 // the sewing fails, a seam stays open, or a seam is not matched vertex to
 // vertex.
-void sew_and_merge(const Options& options, const ClothMaterial& material,
+void sew_and_merge(const SeamCase& seam_case, const CaseClock& clock, const ClothMaterial& material,
                    const Eigen::Vector3d& gravity, int load_steps, const std::vector<Seam>& seams,
                    TriangleMesh* mesh, std::vector<int>* pinned, SeamReport* report);
 
