@@ -392,9 +392,10 @@ bool Options::flag(const std::string& name) const {
 }
 
 std::vector<std::pair<std::string, std::string>> Options::indexed(const std::string& name) const {
-  if (!find(name).indexed) throw std::logic_error("option --" + name + " is not a list");
+  const OptionSpec& list = find(name);
+  if (!list.indexed) throw std::logic_error("option --" + name + " is not a list");
   std::vector<std::pair<std::string, std::string>> entries;
-  for (const std::string& entry : option_entries(find(name)))
+  for (const std::string& entry : option_entries(list))
     if (is_set(entry)) entries.emplace_back(entry, text(entry));
   return entries;
 }

@@ -6,6 +6,7 @@
 #include "app/commands.hpp"
 #include "app/edit_case.hpp"
 #include "app/edit_design.hpp"
+#include "app/material_case.hpp"
 #include "app/seam_case.hpp"
 #include "common/error.hpp"
 #include "common/gmls.hpp"
@@ -232,22 +233,18 @@ private:
 ProblemFactory EditSession::factory(const ClothProblem& base,
                                     const std::vector<ClothMaterial>& materials) {
   // Seams take their stiffness from the stiffest fabric, as the drape's.
-  const ClothMaterial stiffest = *std::max_element(
-      materials.begin(), materials.end(), [](const ClothMaterial& a, const ClothMaterial& b) {
-        const auto k = [](const ClothMaterial& m) {
-          return std::max(m.membrane.warp.initial_modulus(), m.membrane.weft.initial_modulus());
-        };
-        return k(a) < k(b);
-      });
-  return [this, materials, stiffest, pinned = base.pinned(),
+  const ClothMaterial& stiffest = stiffest_material(materials);
+  const SeamStiffness seam_stiffness =
+      garment_.seams.empty() ? SeamStiffness{}
+                             : case_seam_stiffness(read_seam_case(options_), stiffest);
+  return [this, materials, seam_stiffness, pinned = base.pinned(),
           tension = base.sewing_tension](MPI_Comm comm, const TriangleMesh& mesh, double floor) {
     std::vector<ClothMaterial> floored = materials;
     for (ClothMaterial& m : floored)
       m.bending_stiffness = std::max(m.bending_stiffness, floor);
     auto problem = std::make_unique<ClothProblem>(comm, mesh, floored, pinned);
     problem->sewing_tension = tension;
-    if (!garment_.seams.empty())
-      problem->set_seams(garment_.seams, case_seam_stiffness(read_seam_case(options_), stiffest));
+    if (!garment_.seams.empty()) problem->set_seams(garment_.seams, seam_stiffness);
     return problem;
   };
 }

@@ -7,14 +7,14 @@
 #include "app/cloth_case.hpp"
 #include "app/commands.hpp"
 #include "app/dynamic_case.hpp"
+#include "app/load_case.hpp"
+#include "app/material_case.hpp"
 #include "app/static_checkpoint.hpp"
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
-#include "fem/bending_models.hpp"
 #include "fem/cloth_output.hpp"
 #include "fem/petsc_call.hpp"
-#include "material/fabric.hpp"
 #include "mesh/generators.hpp"
 #include "mesh/obj.hpp"
 #include "solvers/statics.hpp"
@@ -28,7 +28,6 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
-#include <map>
 #include <sstream>
 
 namespace sartor {
@@ -69,81 +68,6 @@ const std::vector<OptionSpec>& mesh_option_specs() {
        "at the rim, growing from radius R0 (m) (docs/contact.md)"},
       {"mesh-rotate-x", "DEG", "0", "rotate the placement about the x axis, degrees"},
       {"mesh-translate", "X,Y,Z", "0,0,0", "then translate it, m"},
-  };
-  return specs;
-}
-
-// "a, b or c".
-std::string alternatives(const std::vector<std::string>& names) {
-  std::string text;
-  for (std::size_t i = 0; i < names.size(); ++i)
-    text += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
-  return text;
-}
-
-// The registered bending models (fem/bending_models.hpp), each with its summary.
-std::string bending_model_help() {
-  std::vector<std::string> described;
-  const std::size_t models = fem::bending_model_names().size();
-  for (std::size_t i = 0; i < models; ++i) {
-    const auto& entry = fem::bending_model_entry(element::BendingModel(int(i)));
-    described.push_back(entry.name + " (" + entry.summary + ")");
-  }
-  return alternatives(described);
-}
-
-// The cloth's material: fabric, membrane and bending models (as registered:
-// element/membrane_models.hpp, fem/bending_models.hpp).
-const std::vector<OptionSpec>& material_option_specs() {
-  static const std::vector<OptionSpec> specs{
-      {"fabric", "SPEC", "cotton_twill",
-       "preset, FILE.yaml or measured FILE.json: membrane, bending, density (docs/fabrics.md)"},
-      {"warp-modulus", "N/M", "", "linear warp modulus, N/m (replaces the fabric's curve)"},
-      {"weft-modulus", "N/M", "", "linear weft modulus, N/m (replaces the fabric's curve)"},
-      {"shear-modulus", "N/M", "",
-       "in-plane shear modulus, N/m [the fabric's, else 0.1 sqrt(k_warp k_weft)]"},
-      {"poisson", "NU", "0", "warp-weft Poisson coupling (stvk model)"},
-      {"membrane-model", "M", "baraff_witkin",
-       alternatives(element::membrane_model_names()) +
-           " [measured (a Wang et al. table) for a fabric with one]"},
-      {"membrane-psd", "", "",
-       "project membrane (and contact) Hessians to PSD (compression stabilisation)"},
-      {"bending-model", "M", "patch",
-       bending_model_help() + " [discrete_shell for a mesh with creases]"},
-      {"bending-stiffness", "N*M", "1e-6",
-       "bending stiffness (warp, patch), N m (0: no bending) [the fabric's curves if any]"},
-      {"bending-weft", "N*M", "", "patch model: weft rigidity, N m [--bending-stiffness]"},
-      {"bending-twist", "N*M", "", "patch model: twist rigidity, N m [half the warp's]"},
-      {"bending-psd", "", "", "project bending Hessians to PSD"},
-      {"density", "KG/M2", "0.2", "areal density, kg/m^2 [the fabric's if it has one]"},
-  };
-  return specs;
-}
-
-// Loads, pins and the probe.
-const std::vector<OptionSpec>& load_option_specs() {
-  static const std::vector<OptionSpec> specs{
-      {"gravity", "X,Y,Z", "0,0,-9.80665", "gravitational acceleration, m/s^2"},
-      {"pressure", "PA", "0", "follower pressure on the triangles' normal side, Pa"},
-      {"point-force", "V,FX,FY,FZ", "", "a force (N) on vertex V"},
-      {"edge-force", "FX,FY,FZ", "",
-       "a total force (N) spread over the boundary edges inside --edge-force-box as a uniform "
-       "line load (per unit material length)"},
-      {"edge-force-box", "X0,X1,Y0,Y1,Z0,Z1", "", "the box of the --edge-force edges, m"},
-      {"pin-box", "X0,X1,Y0,Y1,Z0,Z1", "", "pin the vertices inside these boxes (6 numbers each)"},
-      {"pin-boundary", "", "", "pin every boundary vertex"},
-      {"pin-vertices", "I,J,...", "", "pin these vertices"},
-      {"pin-move", "X,Y,Z", "0,0,0", "move the pins by this much as the load ramps, m"},
-      {"pin-motion", "HISTORY", "",
-       "pins follow 'T:DX,DY,DZ[,DEG]; ...' (m, degrees; T: load factor, or time in s with "
-       "--analysis dynamic); groups separated by '|'"},
-      {"pin-motion-boxes", "I,..|J,..", "",
-       "the --pin-box boxes (numbered from 1) each --pin-motion group moves [all pins]"},
-      {"pin-release", "BOX:T,...", "",
-       "dynamic, creep: the pins of --pin-box BOX (numbered from 1) let go at time T, s"},
-      {"pin-rotation-axis", "X,Y,Z", "0,0,1", "axis of the --pin-motion angles"},
-      {"pin-rotation-center", "X,Y,Z", "0,0,0", "a point of that axis, m"},
-      {"probe", "X,Y,Z", "", "report the displacement of the vertex nearest this point"},
   };
   return specs;
 }
@@ -301,11 +225,6 @@ const CommandSpec& run_command() {
 
 namespace {
 
-Eigen::Vector3d vector3(const Options& options, const std::string& name) {
-  const auto v = option_numbers(options, name, 3);
-  return {v[0], v[1], v[2]};
-}
-
 int count_option(const Options& options, const std::string& name, long minimum) {
   const long value = options.integer(name);
   if (value < minimum) {
@@ -409,332 +328,10 @@ TriangleMesh build_mesh(const Options& options, int extra_refinements, int* refi
   const double angle = options.real("mesh-rotate-x") * M_PI / 180.0;
   const Eigen::Matrix3d rotation =
       Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  const Eigen::Vector3d shift = vector3(options, "mesh-translate");
+  const Eigen::Vector3d shift = option_vector3(options, "mesh-translate");
   for (auto& p : cloth.positions)
     p = rotation * p + shift;
   return cloth;
-}
-
-// The material of `fabric` (a preset or FILE.yaml) with the options' moduli,
-// models, bending and density.
-element::MembraneModel membrane_model(const Options& options, const Fabric& fabric) {
-  if (!options.is_set("membrane-model") && fabric.stretching)
-    return element::MembraneModel::measured;
-  return element::membrane_model_named(options.text("membrane-model"), "option --membrane-model");
-}
-
-// The bending model of the options; a mesh with creases (rest angles on
-// edges, docs/pleats.md) takes the discrete shell unless a model is given,
-// since only the hinges carry a rest angle per edge.
-element::BendingModel bending_model(const Options& options, bool mesh_has_creases) {
-  if (mesh_has_creases && !options.is_set("bending-model"))
-    return element::BendingModel::discrete_shell;
-  return fem::bending_model_named(options.text("bending-model"), "option --bending-model");
-}
-
-// Bending from the options, or the fabric's curves when it has them and no
-// rigidity option is given (the hinge models take their initial rigidity).
-void set_bending(const Options& options, const Fabric& fabric, ClothMaterial& material) {
-  const bool options_given = options.is_set("bending-stiffness") ||
-                             options.is_set("bending-weft") || options.is_set("bending-twist");
-  if (fabric.bending && !options_given) {
-    material.bending_curves = std::make_shared<const FabricBending>(*fabric.bending);
-    material.bending_stiffness =
-        0.5 * (fabric.bending->warp.initial_rigidity() + fabric.bending->weft.initial_rigidity());
-    return;
-  }
-  material.bending_stiffness = options.nonnegative_real("bending-stiffness");
-  if (options.is_set("bending-weft") || options.is_set("bending-twist")) {
-    if (material.bending_model != element::BendingModel::patch) {
-      throw InputError("options --bending-weft and --bending-twist need --bending-model patch");
-    }
-    auto rigidity = element::BendingRigidity::isotropic(material.bending_stiffness);
-    if (options.is_set("bending-weft")) rigidity.weft = options.nonnegative_real("bending-weft");
-    if (options.is_set("bending-twist")) rigidity.twist = options.nonnegative_real("bending-twist");
-    material.bending_rigidity = rigidity;
-  }
-}
-
-// The material of `fabric` (a preset, FILE.yaml or a measured FILE.json)
-// with the options' moduli, models, bending and density; options given
-// explicitly override what the fabric holds (docs/fabrics.md).
-ClothMaterial build_material(const Options& options, const std::string& fabric_spec,
-                             bool mesh_has_creases) {
-  const auto choices = resolve_fabrics(fabric_spec);
-  const Fabric& fabric = choices.front().fabric;
-  print_warnings(fabric.warnings);
-  const element::MembraneModel model = membrane_model(options, fabric);
-  const auto curve = [&](const char* option, Direction direction) {
-    if (options.is_set(option)) {
-      return TensionCurve::linear(options.positive_real(option), std::string("--") + option);
-    }
-    const DirectionalMaterial& m = fabric.in(direction);
-    // Table curves are stored in the Baraff-Witkin measure; stvk reads Green strain.
-    if (!m.elastic_given && model == element::MembraneModel::saint_venant_kirchhoff) {
-      return table_tension_curve(fabric.stretching->table(), direction == Direction::weft, true,
-                                 fabric.source);
-    }
-    return m.elastic;
-  };
-  ClothMaterial material({curve("warp-modulus", Direction::warp),
-                          curve("weft-modulus", Direction::weft), 0.0, options.real("poisson")});
-  material.membrane_model = model;
-  material.membrane.stretching = fabric.stretching;
-  if (fabric.stretching && !options.is_set("poisson")) {
-    // c12 = k1 at zero strain.
-    material.membrane.poisson = table_stiffness(fabric.stretching->table(), 0.0, 0.0, 0.0)[1] /
-                                std::sqrt(material.membrane.warp.initial_modulus() *
-                                          material.membrane.weft.initial_modulus());
-  }
-  const double automatic_shear = fabric.shear_modulus
-                                     ? *fabric.shear_modulus
-                                     : 0.1 * std::sqrt(material.membrane.warp.initial_modulus() *
-                                                       material.membrane.weft.initial_modulus());
-  material.membrane.shear_modulus =
-      options.is_set("shear-modulus") ? options.nonnegative_real("shear-modulus") : automatic_shear;
-  material.bending_model = bending_model(options, mesh_has_creases);
-  set_bending(options, fabric, material);
-  material.areal_density = !options.is_set("density") && fabric.areal_density
-                               ? *fabric.areal_density
-                               : options.nonnegative_real("density");
-  material.project_membrane = options.flag("membrane-psd");
-  material.project_bending = options.flag("bending-psd");
-  return material;
-}
-
-// Whether p lies in the box x0,x1,y0,y1,z0,z1 starting at `box`.
-bool in_box(const double* box, const Eigen::Vector3d& p) {
-  bool inside = true;
-  for (std::size_t d = 0; d < 3; ++d)
-    inside = inside && p[long(d)] >= box[2 * d] && p[long(d)] <= box[2 * d + 1];
-  return inside;
-}
-
-std::vector<int> pinned_vertices(const Options& options, const TriangleMesh& mesh) {
-  std::vector<bool> pin(mesh.vertex_count(), false);
-  if (options.is_set("pin-box")) {
-    const auto boxes = option_numbers(options, "pin-box", 0);
-    if (boxes.empty() || boxes.size() % 6 != 0) {
-      throw InputError("option --pin-box: expected 6 numbers per box (x0,x1,y0,y1,z0,z1), got " +
-                       std::to_string(boxes.size()));
-    }
-    for (std::size_t b = 0; b < boxes.size(); b += 6) {
-      for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
-        if (in_box(&boxes[b], mesh.positions[v])) pin[v] = true;
-    }
-  }
-  if (options.flag("pin-boundary")) {
-    for (int v : boundary_vertices(mesh))
-      pin[std::size_t(v)] = true;
-  }
-  if (options.is_set("pin-vertices")) {
-    for (double value : option_numbers(options, "pin-vertices", 0)) {
-      const auto v = long(value);
-      if (double(v) != value || v < 0 || std::size_t(v) >= mesh.vertex_count()) {
-        throw InputError("option --pin-vertices: " + format_number(value) +
-                         " is not a vertex of the mesh (0.." +
-                         std::to_string(mesh.vertex_count() - 1) + ")");
-      }
-      pin[std::size_t(v)] = true;
-    }
-  }
-  std::vector<int> pinned;
-  for (std::size_t v = 0; v < pin.size(); ++v) {
-    if (pin[v]) pinned.push_back(int(v));
-  }
-  return pinned;
-}
-
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  std::stringstream stream(text);
-  std::string part;
-  while (std::getline(stream, part, separator))
-    parts.push_back(part);
-  return parts;
-}
-
-// The --pin-motion groups: histories separated by '|', each moving every pin
-// or, with --pin-motion-boxes, the pins in the listed --pin-box boxes.
-std::vector<PinGroupMotion> pin_groups(const Options& options, const TriangleMesh& mesh,
-                                       const std::vector<int>& pinned) {
-  std::vector<PinGroupMotion> groups;
-  if (!options.is_set("pin-motion")) {
-    if (options.is_set("pin-motion-boxes")) {
-      throw InputError("option --pin-motion-boxes: there is no --pin-motion to apply");
-    }
-    return groups;
-  }
-  if (pinned.empty()) throw InputError("option --pin-motion: no vertex is pinned");
-  const auto histories = split(options.text("pin-motion"), '|');
-  Eigen::Vector3d axis = vector3(options, "pin-rotation-axis");
-  if (axis.norm() == 0.0) throw InputError("option --pin-rotation-axis: the axis is zero");
-  axis.normalize();
-  for (std::size_t g = 0; g < histories.size(); ++g) {
-    PinGroupMotion group;
-    group.history = PinHistory::parse(
-        histories[g],
-        "option --pin-motion" +
-            (histories.size() > 1 ? " (group " + std::to_string(g + 1) + ")" : std::string()));
-    group.axis = axis;
-    group.center = vector3(options, "pin-rotation-center");
-    groups.push_back(group);
-  }
-  if (!options.is_set("pin-motion-boxes")) {
-    if (groups.size() > 1) {
-      throw InputError("option --pin-motion: " + std::to_string(groups.size()) +
-                       " groups need --pin-motion-boxes to say which pins each moves");
-    }
-    for (std::size_t i = 0; i < pinned.size(); ++i)
-      groups[0].pins.push_back(i);
-    return groups;
-  }
-  const auto selections = split(options.text("pin-motion-boxes"), '|');
-  if (selections.size() != groups.size()) {
-    throw InputError("option --pin-motion-boxes: " + std::to_string(selections.size()) +
-                     " group(s) of boxes for " + std::to_string(groups.size()) +
-                     " --pin-motion group(s)");
-  }
-  const auto boxes =
-      options.is_set("pin-box") ? option_numbers(options, "pin-box", 0) : std::vector<double>{};
-  const std::size_t box_count = boxes.size() / 6;
-  std::vector<int> group_of(pinned.size(), 0);
-  for (std::size_t g = 0; g < groups.size(); ++g) {
-    std::stringstream list(selections[g]);
-    std::string item;
-    while (std::getline(list, item, ',')) {
-      std::size_t used = 0;
-      long box = 0;
-      try {
-        box = std::stol(item, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == 0 || item.find_first_not_of(" \t", used) != std::string::npos || box < 1 ||
-          std::size_t(box) > box_count) {
-        throw InputError("option --pin-motion-boxes: '" + item +
-                         "' is not a box of --pin-box (1.." + std::to_string(box_count) + ")");
-      }
-      const double* b = &boxes[6 * std::size_t(box - 1)];
-      for (std::size_t i = 0; i < pinned.size(); ++i) {
-        if (!in_box(b, mesh.positions[std::size_t(pinned[i])]) || group_of[i] == int(g + 1))
-          continue;
-        if (group_of[i] != 0) {
-          throw InputError("option --pin-motion-boxes: pinned vertex " + std::to_string(pinned[i]) +
-                           " is in groups " + std::to_string(group_of[i]) + " and " +
-                           std::to_string(g + 1));
-        }
-        group_of[i] = int(g + 1);
-        groups[g].pins.push_back(i);
-      }
-    }
-  }
-  return groups;
-}
-
-// --pin-release "BOX:TIME,...": per pinned vertex, the time its pin lets go
-// (infinity: never). A vertex is let go only when every --pin-box holding it
-// is, at the last of their times; pins of --pin-boundary and --pin-vertices
-// hold throughout.
-std::vector<double> pin_release_times(const Options& options, const TriangleMesh& mesh,
-                                      const std::vector<int>& pinned) {
-  std::vector<double> release(pinned.size(), INFINITY);
-  if (!options.is_set("pin-release")) return release;
-  const auto boxes =
-      options.is_set("pin-box") ? option_numbers(options, "pin-box", 0) : std::vector<double>{};
-  const std::size_t box_count = boxes.size() / 6;
-  std::vector<double> box_release(box_count, INFINITY);
-  for (const std::string& item : split(options.text("pin-release"), ',')) {
-    const auto colon = item.find(':');
-    std::size_t box_used = 0, time_used = 0;
-    long box = 0;
-    double time = NAN;
-    try {
-      if (colon != std::string::npos) {
-        box = std::stol(item.substr(0, colon), &box_used);
-        time = std::stod(item.substr(colon + 1), &time_used);
-      }
-    } catch (const std::exception&) {
-      box_used = 0;
-    }
-    const bool whole = colon != std::string::npos && box_used > 0 &&
-                       item.find_first_not_of(" \t", box_used) >= colon && time_used > 0 &&
-                       item.find_first_not_of(" \t", colon + 1 + time_used) == std::string::npos;
-    if (!whole || !std::isfinite(time) || time < 0.0) {
-      throw InputError("option --pin-release: '" + item +
-                       "' is not BOX:TIME (a --pin-box number and a time >= 0 in s)");
-    }
-    if (box < 1 || std::size_t(box) > box_count) {
-      throw InputError("option --pin-release: box " + std::to_string(box) +
-                       " is not a box of --pin-box (1.." + std::to_string(box_count) + ")");
-    }
-    box_release[std::size_t(box - 1)] = time;
-  }
-  std::vector<bool> listed(mesh.vertex_count(), false);
-  if (options.flag("pin-boundary")) {
-    for (int v : boundary_vertices(mesh))
-      listed[std::size_t(v)] = true;
-  }
-  if (options.is_set("pin-vertices")) {
-    for (double value : option_numbers(options, "pin-vertices", 0))
-      listed[std::size_t(value)] = true; // checked by pinned_vertices
-  }
-  for (std::size_t i = 0; i < pinned.size(); ++i) {
-    const Eigen::Vector3d& p = mesh.positions[std::size_t(pinned[i])];
-    if (listed[std::size_t(pinned[i])]) continue;
-    double latest = -INFINITY;
-    for (std::size_t b = 0; b < box_count; ++b)
-      if (in_box(&boxes[6 * b], p)) latest = std::max(latest, box_release[b]);
-    release[i] = latest;
-  }
-  return release;
-}
-
-// --edge-force: consistent nodal forces of a uniform line load on the
-// boundary edges whose both ends lie in --edge-force-box.
-void add_edge_force(const Options& options, const TriangleMesh& mesh, ClothLoads* loads) {
-  if (options.is_set("edge-force") != options.is_set("edge-force-box")) {
-    throw InputError("options --edge-force and --edge-force-box go together");
-  }
-  if (!options.is_set("edge-force")) return;
-  const Eigen::Vector3d force = vector3(options, "edge-force");
-  const auto box = option_numbers(options, "edge-force-box", 6);
-  const auto inside = [&](int v) {
-    const Eigen::Vector3d& p = mesh.positions[std::size_t(v)];
-    for (int d = 0; d < 3; ++d) {
-      if (p[d] < box[std::size_t(2 * d)] || p[d] > box[std::size_t(2 * d + 1)]) return false;
-    }
-    return true;
-  };
-  // Material lengths come from the corners' uv in a triangle holding the edge.
-  std::map<std::pair<int, int>, double> material_length;
-  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-    for (std::size_t c = 0; c < 3; ++c) {
-      const int a = mesh.triangles[t][c], b = mesh.triangles[t][(c + 1) % 3];
-      material_length[{std::min(a, b), std::max(a, b)}] =
-          (mesh.material_uv[t][(c + 1) % 3] - mesh.material_uv[t][c]).norm();
-    }
-  }
-  std::vector<std::pair<std::array<int, 2>, double>> loaded;
-  double total = 0.0;
-  for (const auto& edge : boundary_edges(mesh)) {
-    if (!inside(edge[0]) || !inside(edge[1])) continue;
-    const double length = material_length.at({edge[0], edge[1]});
-    loaded.push_back({edge, length});
-    total += length;
-  }
-  if (loaded.empty()) {
-    throw InputError("option --edge-force-box: no boundary edge has both ends in the box");
-  }
-  std::map<int, Eigen::Vector3d> nodal;
-  for (const auto& [edge, length] : loaded) {
-    for (int v : edge) {
-      auto [entry, added] = nodal.try_emplace(v, Eigen::Vector3d::Zero());
-      entry->second += 0.5 * length / total * force;
-    }
-  }
-  for (const auto& [vertex, f] : nodal)
-    loads->point_forces.push_back({vertex, f});
 }
 
 // The static solver's options.
@@ -912,52 +509,6 @@ void solve_static_case(ClothProblem& problem, Vec x, const StaticOptions& solve,
   warn_unconverged_stages(result->report);
 }
 
-// One material per fabric: the cloth's, or --fabric's.
-std::vector<ClothMaterial> case_materials(const Options& options, const TriangleMesh& mesh,
-                                          const CaseCloth* cloth) {
-  std::vector<ClothMaterial> materials;
-  for (const std::string& fabric :
-       cloth ? cloth->fabrics : std::vector<std::string>{options.text("fabric")})
-    materials.push_back(build_material(options, fabric, !mesh.creases.empty()));
-  if (!mesh.creases.empty() && !options.is_set("bending-model")) {
-    print_warnings({"the mesh has " + std::to_string(mesh.creases.size()) +
-                    " crease edges: bending by the discrete shell, the model with rest angles "
-                    "on edges (--bending-model discrete_shell; docs/pleats.md)"});
-  }
-  if (materials.size() > 1 && (options.flag("seam-merge") || options.text("analysis") == "creep")) {
-    throw InputError("the cloth has " + std::to_string(materials.size()) +
-                     " fabrics; --seam-merge and --analysis creep need one: give --fabric");
-  }
-  return materials;
-}
-
-// Seams take their automatic stiffness from the stiffest fabric.
-const ClothMaterial& stiffest_material(const std::vector<ClothMaterial>& materials) {
-  return *std::max_element(
-      materials.begin(), materials.end(), [](const ClothMaterial& a, const ClothMaterial& b) {
-        const auto stiffness = [](const ClothMaterial& m) {
-          return std::max(m.membrane.warp.initial_modulus(), m.membrane.weft.initial_modulus());
-        };
-        return stiffness(a) < stiffness(b);
-      });
-}
-
-// Gravity, pressure, --point-force and --edge-force.
-void set_case_loads(const Options& options, const TriangleMesh& mesh, ClothLoads* loads) {
-  loads->gravity = vector3(options, "gravity");
-  loads->pressure = options.real("pressure");
-  if (options.is_set("point-force")) {
-    const auto f = option_numbers(options, "point-force", 4);
-    const auto v = long(f[0]);
-    if (double(v) != f[0] || v < 0 || std::size_t(v) >= mesh.vertex_count()) {
-      throw InputError("option --point-force: vertex " + format_number(f[0]) +
-                       " is not in the mesh");
-    }
-    loads->point_forces.push_back({int(v), Eigen::Vector3d(f[1], f[2], f[3])});
-  }
-  add_edge_force(options, mesh, loads);
-}
-
 // --analysis, checked with the options that only some analyses take.
 std::string checked_analysis(const Options& options, const ClothProblem& problem,
                              const TriangleMesh& mesh, const std::vector<ClothMaterial>& materials,
@@ -985,9 +536,9 @@ std::string checked_analysis(const Options& options, const ClothProblem& problem
 }
 
 // The mesh vertex nearest the --probe point.
-CaseProbe case_probe(const Options& options, const TriangleMesh& mesh) {
+CaseProbe case_probe(const Eigen::Vector3d& point, const TriangleMesh& mesh) {
   CaseProbe probe;
-  probe.point = vector3(options, "probe");
+  probe.point = point;
   for (std::size_t v = 1; v < mesh.vertex_count(); ++v) {
     if ((mesh.positions[v] - probe.point).norm() <
         (mesh.positions[probe.vertex] - probe.point).norm())
@@ -1060,31 +611,40 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   result.mesh =
       build_mesh(options, extra_refinements, &result.mesh_refine, cloth ? &cloth->mesh : nullptr);
   const TriangleMesh& mesh = result.mesh;
-  const std::vector<ClothMaterial> materials = case_materials(options, mesh, cloth);
+  // One material per fabric: the cloth's, or --fabric's.
+  const MaterialCase material_case = read_material_case(options);
+  const std::vector<ClothMaterial> materials = case_materials(
+      material_case, cloth ? cloth->fabrics : std::vector<std::string>{material_case.fabric},
+      mesh.creases.size());
+  if (materials.size() > 1 && (options.flag("seam-merge") || options.text("analysis") == "creep")) {
+    throw InputError("the cloth has " + std::to_string(materials.size()) +
+                     " fabrics; --seam-merge and --analysis creep need one: give --fabric");
+  }
   const ClothMaterial& material = stiffest_material(materials);
-  std::vector<int> pinned = pinned_vertices(options, mesh);
+  const LoadCase load_case = read_load_case(options);
+  std::vector<int> pinned = pinned_vertices(load_case, mesh);
   // Seams (app/seam_case.hpp): sewn by springs, or sewn first and merged.
   const SeamCase seam_case = read_seam_case(options);
-  const CaseClock clock{options.text("analysis"), options.positive_real("time-end")};
+  const CaseClock clock = read_sewing_clock(options, seam_case);
   const std::vector<Seam> seams = case_seams(seam_case, options, mesh, result.mesh_refine);
   if (!seams.empty()) result.seams = SeamReport{};
   if (!seams.empty() && seam_case.merge) {
-    if (options.is_set("point-force")) {
+    if (load_case.point_force) {
       throw InputError("option --point-force names a vertex of the unmerged mesh; it cannot be "
                        "combined with --seam-merge");
     }
-    sew_and_merge(seam_case, clock, material, vector3(options, "gravity"),
+    sew_and_merge(seam_case, clock, material, load_case.gravity,
                   count_option(options, "load-steps", 1), seams, &result.mesh, &pinned,
                   &*result.seams);
   }
   result.pinned_vertices = pinned.size();
   result.h = longest_material_edge(mesh);
 
-  const std::vector<double> release_times = pin_release_times(options, mesh, pinned);
+  const std::vector<double> release_times = pin_release_times(load_case, mesh, pinned);
   ClothProblem problem(PETSC_COMM_WORLD, mesh, materials, pinned, release_times);
-  set_case_loads(options, mesh, &problem.loads);
-  problem.pin_motion = vector3(options, "pin-move");
-  problem.pin_groups = pin_groups(options, mesh, pinned);
+  set_case_loads(load_case, mesh, &problem.loads);
+  problem.pin_motion = load_case.pin_move;
+  problem.pin_groups = pin_groups(load_case, mesh, pinned);
   set_up_contact(read_contact_case(options), problem);
   problem.contact.project_hessian = options.flag("membrane-psd");
   if (result.seams && !result.seams->merged) {
@@ -1098,7 +658,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   const bool dynamic = analysis == "dynamic";
   const bool creep = analysis == "creep";
   const StaticOptions solve = static_options(options, problem);
-  if (options.is_set("probe")) result.probe = case_probe(options, mesh);
+  if (load_case.probe) result.probe = case_probe(*load_case.probe, mesh);
   result.dofs = problem.global_dof_count();
   const auto set_up = std::chrono::steady_clock::now();
 

@@ -44,6 +44,13 @@ void set_up_sewing(const SeamCase& seam_case, const CaseClock& clock, ClothProbl
 
 } // namespace
 
+CaseClock read_sewing_clock(const Options& options, const SeamCase& seam_case) {
+  CaseClock clock{options.text("analysis"), 0.0};
+  const bool sews = seam_case.sewing_tension && *seam_case.sewing_tension != 0.0;
+  if (sews && clock.analysis == "dynamic") clock.time_end = options.positive_real("time-end");
+  return clock;
+}
+
 SeamCase read_seam_case(const Options& options) {
   SeamCase seam_case;
   if (options.is_set("seams-file")) seam_case.seams_file = options.text("seams-file");

@@ -39,8 +39,13 @@ SeamCase read_seam_case(const Options& options);
 // stage of time stepping, ending before its end).
 struct CaseClock {
   std::string analysis;  // --analysis
-  double time_end = 0.0; // --time-end, s
+  double time_end = 0.0; // --time-end, s (read only for a dynamic run that sews)
 };
+
+// The clock of the case as far as sewing needs it: --time-end is read (and
+// checked) only when a dynamic run sews, so that other runs keep their own
+// order of messages about it.
+CaseClock read_sewing_clock(const Options& options, const SeamCase& seam_case);
 
 struct SeamReport {
   std::size_t seams = 0;
