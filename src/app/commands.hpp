@@ -84,6 +84,11 @@ void print_warnings(const std::vector<std::string>& warnings);
 std::vector<double> option_numbers(const Options& options, const std::string& name,
                                    std::size_t count);
 
+// Option --NAME (or, when it is not given and FALLBACK is, --FALLBACK) as
+// a count >= minimum. Throws InputError naming the option used.
+int count_option(const Options& options, const std::string& name, long minimum,
+                 const std::string& fallback = "");
+
 // Whether option --NAME (--static-solver, --dynamic-solver) chooses the
 // minimiser: "minimise" or "snes"; throws InputError naming the option
 // for anything else.

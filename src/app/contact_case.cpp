@@ -9,10 +9,26 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
-#include <sstream>
 #include <utility>
 
 namespace sartor {
+
+const std::vector<OptionSpec>& contact_option_specs() {
+  static const std::vector<OptionSpec> specs{
+      {"body", "SPEC", "",
+       "a rigid body, e.g. \"sphere center=0,0,0 radius=0.3 mu=0.3\" (docs/contact.md)", true},
+      {"contact-offset", "M", "0.001", "distance kept between cloth vertices and bodies, m"},
+      {"contact-stiffness", "N/M", "",
+       "penalty stiffness per vertex, N/m [factor * E_max * vertex area / h^2]"},
+      {"contact-stiffness-factor", "C", "1", "the factor of the automatic penalty stiffness"},
+      {"contact-edge-spacing", "M", "0",
+       "penalty samples along cloth edges at most this far apart, m (0: vertices only; "
+       "static drapes: 0.015)"},
+      {"drape-support-radius", "M", "",
+       "report the Cusick drape coefficient for a support disk of this radius, m"},
+  };
+  return specs;
+}
 
 namespace {
 
@@ -57,45 +73,6 @@ void set_up_contact(const ContactCase& contact, ClothProblem& problem) {
   problem.contact.stiffness = contact.settings.stiffness;
   problem.contact.stiffness_factor = contact.settings.stiffness_factor;
   problem.contact.edge_sample_spacing = contact.settings.edge_sample_spacing;
-}
-
-void apply_placement_waves(const Options& options, TriangleMesh& mesh) {
-  if (!options.is_set("mesh-waves")) return;
-  const std::string text = options.text("mesh-waves");
-  const auto bad = [&](const std::string& why) {
-    return InputError("option --mesh-waves: " + why + " (expected N,AMPLITUDE,RADIUS, e.g. " +
-                      "8,0.002,0.09), got '" + text + "'");
-  };
-  std::vector<double> values;
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, ',')) {
-    std::size_t used = 0;
-    try {
-      values.push_back(std::stod(item, &used));
-    } catch (const std::exception&) {
-      throw bad("'" + item + "' is not a number");
-    }
-    if (item.find_first_not_of(" \t", used) != std::string::npos || !std::isfinite(values.back()))
-      throw bad("'" + item + "' is not a number");
-  }
-  if (values.size() != 3) throw bad("three numbers needed");
-  const double waves = values[0], amplitude = values[1], start = values[2];
-  if (waves < 1.0 || waves != std::floor(waves)) throw bad("N must be a whole number >= 1");
-  if (start < 0.0) throw bad("the radius where the waves start must not be negative");
-  double outer = 0.0;
-  for (const auto& p : mesh.positions)
-    outer = std::max(outer, std::hypot(p.x(), p.y()));
-  if (!(outer > start)) {
-    throw bad("the waves start at radius " + std::to_string(start) +
-              " m, beyond the mesh's outer radius " + std::to_string(outer) + " m");
-  }
-  for (auto& p : mesh.positions) {
-    const double r = std::hypot(p.x(), p.y());
-    if (r <= start) continue;
-    const double s = (r - start) / (outer - start);
-    p.z() += amplitude * s * s * std::cos(waves * std::atan2(p.y(), p.x()));
-  }
 }
 
 double projected_area(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& positions,

@@ -16,10 +16,13 @@
 
 namespace sartor {
 
+// The contact options (and --drape-support-radius), declared by this module.
+const std::vector<OptionSpec>& contact_option_specs();
+
 // The contact part of a case: the bodies, an indexed list (--body,
 // --body2, ... --body99, in that order), and the penalty settings
 // (--contact-offset, --contact-stiffness, --contact-stiffness-factor,
-// --contact-edge-spacing), declared with the case's options in run_command.cpp.
+// --contact-edge-spacing).
 struct ContactCase {
   std::vector<contact::Body> bodies;
   ContactSettings settings;
@@ -30,16 +33,6 @@ struct ContactCase {
 ContactCase read_contact_case(const Options& options);
 
 void set_up_contact(const ContactCase& contact, ClothProblem& problem);
-
-// --mesh-waves N,A,R0: a small out-of-plane imperfection of the placement,
-// applied in the mesh's own frame (before --mesh-rotate-x and
-// --mesh-translate), about its z axis:
-//     z += A ((r - R0) / (R - R0))^2 cos(N theta)   for r > R0,
-// R the largest distance of a vertex from the axis. A flat, symmetric start
-// (a Cusick specimen) is a saddle that a static or damped solve need never
-// leave; N waves seed the N folds (nodes) a real drape forms.
-// Throws InputError for a malformed value. Does nothing without the option.
-void apply_placement_waves(const Options& options, TriangleMesh& mesh);
 
 // The Cusick drape coefficient: the cloth's shadow on the horizontal plane
 // (the area covered by its triangles projected along z) against the flat

@@ -57,10 +57,10 @@ std::vector<CreepMaterial> creep_materials(const Options& options) {
 
 namespace {
 
-CreepOptions creep_options(const Options& options) {
+CreepOptions creep_options(const Options& options, const TimeCase& time) {
   CreepOptions creep;
-  creep.time_end = options.positive_real("time-end");
-  creep.time_step = options.positive_real("time-step");
+  creep.time_end = time.time_end;
+  creep.time_step = time.time_step;
   creep.min_step = options.positive_real("min-time-step");
   creep.max_step = options.nonnegative_real("max-time-step");
   creep.creep_tolerance = options.positive_real("creep-tolerance");
@@ -75,10 +75,8 @@ CreepOptions creep_options(const Options& options) {
     creep.load = LoadHistory::parse(options.text("load-history"), "option --load-history");
   }
   creep.dynamic = options.flag("creep-dynamics");
-  creep.damping = options.nonnegative_real("damping");
-  creep.output_interval = options.nonnegative_real("output-interval");
-  check_simulated_time(creep.time_end, "time-end");
-  check_time_divisions(creep.time_end, "time-end", creep.output_interval, "output-interval");
+  creep.damping = time.damping;
+  creep.output_interval = time.output_interval;
   creep.equilibrium.load_steps = int(std::max(1L, options.integer("load-steps")));
   creep.print_progress = true;
   return creep;
@@ -116,10 +114,10 @@ RunCheckpoint checked_checkpoint(const std::string& path, const ClothProblem& pr
 
 } // namespace
 
-CreepRunResult run_creep_case(const Options& options, ClothProblem& problem, Vec x,
-                              const CaseCheckpointing& checkpointing, long probe_vertex,
+CreepRunResult run_creep_case(const Options& options, const TimeCase& time, ClothProblem& problem,
+                              Vec x, const CaseCheckpointing& checkpointing, long probe_vertex,
                               CreepCoupling& creep, const CreepStateObserver& observe) {
-  const CreepOptions settings = creep_options(options);
+  const CreepOptions settings = creep_options(options, time);
   CreepRunResult result;
   result.scheme = options.text("creep-scheme");
   std::optional<RunCheckpoint> resume;
@@ -168,8 +166,7 @@ CreepRunResult run_creep_case(const Options& options, ClothProblem& problem, Vec
   CreepRestart restart;
   restart.resume = resume ? &*resume : nullptr;
   restart.checkpoint_interval = checkpointing.interval;
-  check_time_divisions(options.positive_real("time-end"), "time-end", checkpointing.interval,
-                       "checkpoint-interval");
+  check_time_divisions(time.time_end, "time-end", checkpointing.interval, "checkpoint-interval");
   restart.write = [&](const CreepStepReport& step, Vec state, Vec velocity,
                       double next_step) -> PetscErrorCode {
     RunCheckpoint checkpoint;

@@ -4,6 +4,7 @@
 // (creep.csv) and checkpoints (fem/checkpoint.hpp). docs/creep-structure.md.
 
 #include "app/cli.hpp"
+#include "app/time_case.hpp"
 #include "solvers/creep_analysis.hpp"
 
 #include <functional>
@@ -46,10 +47,12 @@ struct CreepRunResult {
 using CreepStateObserver = std::function<void(Vec x, const CreepStepReport& step)>;
 
 // Collective. Runs the creep analysis of `problem` from x (its mesh's
-// placement, or the restart's state); `probe_vertex` (mesh numbering, or -1)
-// adds its displacement to the history.
-CreepRunResult run_creep_case(const Options& options, ClothProblem& problem, Vec x,
-                              const CaseCheckpointing& checkpointing, long probe_vertex,
+// placement, or the restart's state) over `time`'s grid; the creep options
+// (--creep-scheme, --creep-tolerance, step limits, --load-history) are read
+// from `options`. `probe_vertex` (mesh numbering, or -1) adds its
+// displacement to the history.
+CreepRunResult run_creep_case(const Options& options, const TimeCase& time, ClothProblem& problem,
+                              Vec x, const CaseCheckpointing& checkpointing, long probe_vertex,
                               CreepCoupling& creep, const CreepStateObserver& observe);
 
 // The creep materials of the case: the fabric's creep parameters per

@@ -9,7 +9,9 @@
 #include "app/dynamic_case.hpp"
 #include "app/load_case.hpp"
 #include "app/material_case.hpp"
+#include "app/mesh_case.hpp"
 #include "app/static_checkpoint.hpp"
+#include "app/time_case.hpp"
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
@@ -33,62 +35,6 @@
 namespace sartor {
 
 namespace {
-
-// The mesh: a generator or an OBJ file, its refinement and placement.
-const std::vector<OptionSpec>& mesh_option_specs() {
-  static const std::vector<OptionSpec> specs{
-      {"mesh", "KIND", "rectangle",
-       "rectangle, disk, annulus, cylinder_band, sphere_cap, tube_panels or obj"},
-      {"mesh-file", "FILE", "", "OBJ file (mesh obj): texture coordinates give the rest shape"},
-      {"mesh-width", "M", "1", "rectangle width (along warp), m"},
-      {"mesh-height", "M", "1", "rectangle or band height (along weft), m"},
-      {"mesh-nx", "N", "10", "rectangle divisions along the width"},
-      {"mesh-ny", "N", "10", "rectangle divisions along the height"},
-      {"mesh-pattern", "P", "alternating",
-       "rectangle (and annulus) diagonals: alternating, right, perturbed"},
-      {"mesh-radius", "M", "0.5", "disk, band or sphere radius, annulus outer radius, m"},
-      {"mesh-inner-radius", "M", "0.25", "annulus inner radius, m"},
-      {"mesh-angles", "A0,A1", "0,360",
-       "annulus: from angle A0 to A1, degrees (a full turn stays slit along A0)"},
-      {"mesh-lift", "M", "0",
-       "annulus: start placement on a helix rising from z = 0 at angle 0 to this at A1, m "
-       "(tells the slit's edges apart; the rest shape stays flat)"},
-      {"mesh-rings", "N", "8", "disk or cap rings; annulus cells across the radii"},
-      {"mesh-segments", "N", "32", "band segments around; annulus cells around"},
-      {"mesh-rows", "N", "8", "band rows along the axis"},
-      {"mesh-cap-angle", "RAD", "0.5", "sphere cap half angle, rad"},
-      {"mesh-nx-front", "N", "", "tube_panels: front panel divisions around [mesh-nx]"},
-      {"mesh-ny-front", "N", "", "tube_panels: front panel divisions along the height [mesh-ny]"},
-      {"mesh-gap", "M", "0.15", "tube_panels: distance the two panels start apart, m"},
-      {"mesh-refine", "N", "0", "uniform refinements (each splits triangles in four)"},
-      {"mesh-snap-boundary", "", "",
-       "disk: put refined boundary vertices back on the circle (position and uv)"},
-      {"mesh-waves", "N,A,R0", "",
-       "out-of-plane imperfection of the placement: N waves around the z axis, amplitude A (m) "
-       "at the rim, growing from radius R0 (m) (docs/contact.md)"},
-      {"mesh-rotate-x", "DEG", "0", "rotate the placement about the x axis, degrees"},
-      {"mesh-translate", "X,Y,Z", "0,0,0", "then translate it, m"},
-  };
-  return specs;
-}
-
-// Rigid bodies and contact.
-const std::vector<OptionSpec>& contact_option_specs() {
-  static const std::vector<OptionSpec> specs{
-      {"body", "SPEC", "",
-       "a rigid body, e.g. \"sphere center=0,0,0 radius=0.3 mu=0.3\" (docs/contact.md)", true},
-      {"contact-offset", "M", "0.001", "distance kept between cloth vertices and bodies, m"},
-      {"contact-stiffness", "N/M", "",
-       "penalty stiffness per vertex, N/m [factor * E_max * vertex area / h^2]"},
-      {"contact-stiffness-factor", "C", "1", "the factor of the automatic penalty stiffness"},
-      {"contact-edge-spacing", "M", "0",
-       "penalty samples along cloth edges at most this far apart, m (0: vertices only; "
-       "static drapes: 0.015)"},
-      {"drape-support-radius", "M", "",
-       "report the Cusick drape coefficient for a support disk of this radius, m"},
-  };
-  return specs;
-}
 
 // Load steps, seams and sewing, and the static solver.
 const std::vector<OptionSpec>& static_option_specs() {
@@ -122,34 +68,6 @@ const std::vector<OptionSpec>& static_option_specs() {
       {"contact-rounds", "N", "30",
        "static: at most N contact rounds after the last stage: re-solves until the friction "
        "anchors' update leaves the state in equilibrium (and no vertex is too deep)"},
-  };
-  return specs;
-}
-
-// The analysis and its time grid.
-const std::vector<OptionSpec>& time_option_specs() {
-  static const std::vector<OptionSpec> specs{
-      {"analysis", "KIND", "static",
-       "static (equilibrium), dynamic (implicit time stepping) or creep (quasi-static creep "
-       "over real time)"},
-      {"time-end", "S", "1", "dynamic, creep: end time, s"},
-      {"time-step", "S", "0.01",
-       "dynamic: time step, s (halved up to 8 times on failure); creep: the first step"},
-      {"damping", "1/S", "0",
-       "dynamic, creep: mass-proportional damping alpha (force -alpha M v), 1/s (creep: with "
-       "--creep-dynamics)"},
-      {"kinetic-damping", "", "", "dynamic: zero every velocity at each kinetic-energy peak"},
-      {"rest-tolerance", "R", "0",
-       "dynamic: stop once the static residual is below R times its initial value (0: never)"},
-      {"dynamic-solver", "KIND", "snes",
-       "dynamic: snes (PETSc's SNES from the predicted positions) or minimise (drape's static "
-       "minimiser on each step's incremental potential, from the last state, with the contact "
-       "step bound; docs/drape.md#time-steps-by-the-minimiser)"},
-      {"settle", "", "",
-       "dynamic: finish (at rest or at --time-end) with a static solve from the last state, with "
-       "the static solve's contact rounds (friction made consistent)"},
-      {"output-interval", "S", "0",
-       "dynamic, creep: time between the states written to series.h5, s (0: every step)"},
   };
   return specs;
 }
@@ -225,115 +143,6 @@ const CommandSpec& run_command() {
 
 namespace {
 
-int count_option(const Options& options, const std::string& name, long minimum) {
-  const long value = options.integer(name);
-  if (value < minimum) {
-    throw InputError("option --" + name + ": must be >= " + std::to_string(minimum) + ", got " +
-                     options.text(name));
-  }
-  return int(value);
-}
-
-// The triangles the generated --mesh KIND will have, before refinement (0 for
-// a mesh read from a file), computed without building it.
-double generated_triangles(const Options& options, const std::string& kind) {
-  const auto count = [&](const char* name) { return double(count_option(options, name, 0)); };
-  if (kind == "rectangle") return 2.0 * count("mesh-nx") * count("mesh-ny");
-  if (kind == "disk" || kind == "sphere_cap")
-    return 6.0 * count("mesh-rings") * count("mesh-rings");
-  if (kind == "cylinder_band") return 2.0 * count("mesh-segments") * count("mesh-rows");
-  if (kind == "annulus") return 2.0 * count("mesh-rings") * count("mesh-segments");
-  return 0.0;
-}
-
-// Moves the boundary vertices of a disk of `radius` centred at the origin
-// radially onto its circle, in position and in every corner's uv (disk: uv = x, y).
-void snap_to_circle(TriangleMesh& cloth, double radius) {
-  std::vector<bool> boundary(cloth.vertex_count(), false);
-  for (int v : boundary_vertices(cloth)) {
-    boundary[std::size_t(v)] = true;
-    Eigen::Vector3d& p = cloth.positions[std::size_t(v)];
-    const double r = std::hypot(p.x(), p.y());
-    if (r > 0.0) p.head<2>() *= radius / r;
-  }
-  for (std::size_t t = 0; t < cloth.triangle_count(); ++t) {
-    for (std::size_t c = 0; c < 3; ++c) {
-      if (!boundary[std::size_t(cloth.triangles[t][c])]) continue;
-      Eigen::Vector2d& uv = cloth.material_uv[t][c];
-      if (uv.norm() > 0.0) uv *= radius / uv.norm();
-    }
-  }
-}
-
-// The mesh the options describe (or `given`, in place of --mesh), with
-// `extra_refinements` more uniform refinements than --mesh-refine asks for;
-// `refinements` gets the total.
-TriangleMesh build_mesh(const Options& options, int extra_refinements, int* refinements,
-                        const TriangleMesh* given) {
-  const std::string kind = options.text("mesh");
-  const int refine = count_option(options, "mesh-refine", 0);
-  check_mesh_size(generated_triangles(options, kind), refine + extra_refinements,
-                  "options --mesh-* and --mesh-refine");
-  TriangleMesh cloth;
-  if (given) {
-    cloth = *given;
-  } else if (kind == "rectangle") {
-    cloth =
-        mesh::rectangle(options.positive_real("mesh-width"), options.positive_real("mesh-height"),
-                        count_option(options, "mesh-nx", 1), count_option(options, "mesh-ny", 1),
-                        mesh::rectangle_pattern(options.text("mesh-pattern")));
-  } else if (kind == "disk") {
-    cloth =
-        mesh::disk(options.positive_real("mesh-radius"), count_option(options, "mesh-rings", 1));
-  } else if (kind == "annulus") {
-    // Refined in its polar parameters, so refined vertices stay on the circles.
-    const auto angles = option_numbers(options, "mesh-angles", 2);
-    cloth = mesh::annulus(
-        options.positive_real("mesh-inner-radius"), options.positive_real("mesh-radius"),
-        count_option(options, "mesh-rings", 1), count_option(options, "mesh-segments", 1),
-        angles[0] * M_PI / 180.0, angles[1] * M_PI / 180.0,
-        mesh::rectangle_pattern(options.text("mesh-pattern")), refine + extra_refinements,
-        options.real("mesh-lift"));
-  } else if (kind == "cylinder_band") {
-    cloth = mesh::cylinder_band(
-        options.positive_real("mesh-radius"), options.positive_real("mesh-height"),
-        count_option(options, "mesh-segments", 3), count_option(options, "mesh-rows", 1));
-  } else if (kind == "sphere_cap") {
-    cloth = mesh::sphere_cap(options.positive_real("mesh-radius"),
-                             options.positive_real("mesh-cap-angle"),
-                             count_option(options, "mesh-rings", 1));
-  } else if (kind == "tube_panels") {
-    cloth = tube_panels_mesh(options).mesh;
-  } else if (kind == "obj") {
-    if (!options.is_set("mesh-file")) throw InputError("mesh obj needs --mesh-file FILE.obj");
-    cloth = read_obj(options.text("mesh-file"));
-  } else {
-    throw InputError("option --mesh: unknown kind '" + kind +
-                     "' (rectangle, disk, annulus, cylinder_band, sphere_cap, tube_panels, obj)");
-  }
-  const bool snap = options.flag("mesh-snap-boundary");
-  if (snap && kind != "disk") {
-    throw InputError("option --mesh-snap-boundary applies to --mesh disk only (the mesh is " +
-                     kind + ")");
-  }
-  check_mesh_size(double(cloth.triangle_count()), refine + extra_refinements,
-                  "option --mesh-refine");
-  *refinements = refine + extra_refinements;
-  const bool refined_by_generator = !given && kind == "annulus";
-  for (int level = refined_by_generator ? 0 : *refinements; level > 0; --level) {
-    cloth = mesh::refine(cloth);
-    if (snap) snap_to_circle(cloth, options.positive_real("mesh-radius"));
-  }
-  apply_placement_waves(options, cloth);
-  const double angle = options.real("mesh-rotate-x") * M_PI / 180.0;
-  const Eigen::Matrix3d rotation =
-      Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  const Eigen::Vector3d shift = option_vector3(options, "mesh-translate");
-  for (auto& p : cloth.positions)
-    p = rotation * p + shift;
-  return cloth;
-}
-
 // The static solver's options.
 StaticOptions static_options(const Options& options, const ClothProblem& problem) {
   StaticOptions solve;
@@ -352,28 +161,6 @@ StaticOptions static_options(const Options& options, const ClothProblem& problem
   // A static solve that runs long says where it is (docs/drape.md).
   solve.progress_interval = 10.0;
   return solve;
-}
-
-DynamicOptions dynamic_options(const Options& options) {
-  DynamicOptions dynamic;
-  dynamic.time_end = options.positive_real("time-end");
-  dynamic.time_step = options.positive_real("time-step");
-  dynamic.damping = options.nonnegative_real("damping");
-  dynamic.kinetic_damping = options.flag("kinetic-damping");
-  dynamic.rest_tolerance = options.nonnegative_real("rest-tolerance");
-  dynamic.output_interval = options.nonnegative_real("output-interval");
-  check_simulated_time(dynamic.time_end, "time-end");
-  check_time_divisions(dynamic.time_end, "time-end", dynamic.time_step, "time-step");
-  check_time_divisions(dynamic.time_end, "time-end", dynamic.output_interval, "output-interval");
-  dynamic.settle = options.flag("settle");
-  dynamic.minimise = minimiser_chosen(options, "dynamic-solver");
-  dynamic.print_progress = true;
-  if (dynamic.time_step > 1.0 || dynamic.time_end > 600.0) {
-    print_warnings({"--time-step " + options.text("time-step") + " s, --time-end " +
-                    options.text("time-end") +
-                    " s: a cloth swings in seconds with steps of milliseconds (times in ms?)"});
-  }
-  return dynamic;
 }
 
 nlohmann::json vector_json(const Eigen::Vector3d& v) {
@@ -422,7 +209,7 @@ void check_drape_level(const CaseCheckpointing& checkpointing, const std::string
 
 // --analysis dynamic: from rest, or from --restart's checkpoint, with
 // checkpoints as `checkpointing` says.
-void solve_dynamic_case(const Options& options, ClothProblem& problem, Vec x,
+void solve_dynamic_case(const TimeCase& time, ClothProblem& problem, Vec x,
                         const CaseStepObserver& observe, const CaseCheckpointing& checkpointing,
                         CaseResult* result) {
   // Starts at rest (or where a checkpoint left it); the probe is followed
@@ -435,8 +222,8 @@ void solve_dynamic_case(const Options& options, ClothProblem& problem, Vec x,
   if (!checkpointing.restart_file.empty()) {
     resume = read_dynamic_checkpoint(checkpointing.restart_file, problem);
     check_drape_level(checkpointing, resume->drape_level);
-    if (options.positive_real("time-end") < resume->control.time) {
-      throw InputError("option --time-end: " + options.text("time-end") + " s is before " +
+    if (time.time_end < resume->control.time) {
+      throw InputError("option --time-end: " + format_number(time.time_end) + " s is before " +
                        checkpointing.restart_file + "'s time, " +
                        format_number(resume->control.time) + " s");
     }
@@ -467,14 +254,13 @@ void solve_dynamic_case(const Options& options, ClothProblem& problem, Vec x,
   DynamicCheckpoints checkpoints;
   checkpoints.resume = resume ? &resume->control : nullptr;
   checkpoints.interval = checkpointing.interval;
-  check_time_divisions(options.positive_real("time-end"), "time-end", checkpointing.interval,
-                       "checkpoint-interval");
+  check_time_divisions(time.time_end, "time-end", checkpointing.interval, "checkpoint-interval");
   if (checkpointing.interval > 0.0) {
     checkpoints.write = dynamic_checkpoint_writer(
         problem, checkpointing, report, result->probe_history, &result->checkpoints_written);
   }
   SartorPetscCall(
-      solve_dynamic(problem, x, v, dynamic_options(options), &report, follow, checkpoints));
+      solve_dynamic(problem, x, v, dynamic_options(time), &report, follow, checkpoints));
   SartorPetscCall(VecDestroy(&v));
   result->converged = report.completed;
   result->solve_seconds = report.solve_seconds;
@@ -510,29 +296,23 @@ void solve_static_case(ClothProblem& problem, Vec x, const StaticOptions& solve,
 }
 
 // --analysis, checked with the options that only some analyses take.
-std::string checked_analysis(const Options& options, const ClothProblem& problem,
-                             const TriangleMesh& mesh, const std::vector<ClothMaterial>& materials,
-                             const std::vector<int>& pinned, const ClothMaterial& material) {
-  const std::string analysis = options.text("analysis");
-  if (analysis != "static" && analysis != "dynamic" && analysis != "creep") {
-    throw InputError("option --analysis: unknown kind '" + analysis + "' (static, dynamic, creep)");
-  }
-  const bool dynamic = analysis == "dynamic";
-  const bool creep = analysis == "creep";
-  if (!dynamic && !creep && options.is_set("pin-release")) {
+void check_analysis(const TimeCase& time, const Options& options, const ClothProblem& problem,
+                    const TriangleMesh& mesh, const std::vector<ClothMaterial>& materials,
+                    const std::vector<int>& pinned, const ClothMaterial& material) {
+  if (!time.dynamic() && !time.creep() && options.is_set("pin-release")) {
     throw InputError("option --pin-release: pins let go in time; give --analysis dynamic or creep");
   }
   options.reject_inapplicable("analysis", {"static", "dynamic", "creep"});
   reject_flat_membrane_without_bending(options, mesh, materials, pinned);
-  if ((dynamic || creep) && problem.pin_motion != Eigen::Vector3d::Zero()) {
+  if ((time.dynamic() || time.creep()) && problem.pin_motion != Eigen::Vector3d::Zero()) {
     throw InputError("option --pin-move ramps the pins with the load in statics; with --analysis " +
-                     analysis + " give a history in time: --pin-motion \"0:0,0,0; T:DX,DY,DZ\"");
+                     time.analysis +
+                     " give a history in time: --pin-motion \"0:0,0,0; T:DX,DY,DZ\"");
   }
-  if (dynamic && material.areal_density <= 0.0) {
+  if (time.dynamic() && material.areal_density <= 0.0) {
     throw InputError("option --density: --analysis dynamic needs a positive areal density, got " +
                      options.text("density"));
   }
-  return analysis;
 }
 
 // The mesh vertex nearest the --probe point.
@@ -550,7 +330,7 @@ CaseProbe case_probe(const Eigen::Vector3d& point, const TriangleMesh& mesh) {
 }
 
 // Creep: run_creep_case, the observer seeing the coupling's state.
-void solve_creep_case(const Options& options, ClothProblem& problem, Vec x,
+void solve_creep_case(const Options& options, const TimeCase& time, ClothProblem& problem, Vec x,
                       const CaseStepObserver& observe, const CaseCheckpointing& checkpointing,
                       CaseResult* result) {
   CreepCoupling coupling(problem, creep_materials(options));
@@ -558,7 +338,7 @@ void solve_creep_case(const Options& options, ClothProblem& problem, Vec x,
     if (observe) observe(problem, state, {step.time, step.output, &coupling});
   };
   CreepRunResult run =
-      run_creep_case(options, problem, x, checkpointing,
+      run_creep_case(options, time, problem, x, checkpointing,
                      result->probe ? long(result->probe->vertex) : -1L, coupling, follow);
   result->converged = run.report.completed;
   result->solve_seconds = run.report.solve_seconds;
@@ -608,15 +388,17 @@ CaseResult solve_case(const Options& options, int extra_refinements,
                       const CaseCloth* cloth) {
   const auto started = std::chrono::steady_clock::now();
   CaseResult result;
+  const MeshCase mesh_case = read_mesh_case(options, cloth == nullptr);
+  const TimeCase time = read_time_case(options);
   result.mesh =
-      build_mesh(options, extra_refinements, &result.mesh_refine, cloth ? &cloth->mesh : nullptr);
+      build_mesh(mesh_case, extra_refinements, &result.mesh_refine, cloth ? &cloth->mesh : nullptr);
   const TriangleMesh& mesh = result.mesh;
   // One material per fabric: the cloth's, or --fabric's.
   const MaterialCase material_case = read_material_case(options);
   const std::vector<ClothMaterial> materials = case_materials(
       material_case, cloth ? cloth->fabrics : std::vector<std::string>{material_case.fabric},
       mesh.creases.size());
-  if (materials.size() > 1 && (options.flag("seam-merge") || options.text("analysis") == "creep")) {
+  if (materials.size() > 1 && (options.flag("seam-merge") || time.creep())) {
     throw InputError("the cloth has " + std::to_string(materials.size()) +
                      " fabrics; --seam-merge and --analysis creep need one: give --fabric");
   }
@@ -625,15 +407,14 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   std::vector<int> pinned = pinned_vertices(load_case, mesh);
   // Seams (app/seam_case.hpp): sewn by springs, or sewn first and merged.
   const SeamCase seam_case = read_seam_case(options);
-  const CaseClock clock = read_sewing_clock(options, seam_case);
-  const std::vector<Seam> seams = case_seams(seam_case, options, mesh, result.mesh_refine);
+  const std::vector<Seam> seams = case_seams(seam_case, mesh_case, mesh, result.mesh_refine);
   if (!seams.empty()) result.seams = SeamReport{};
   if (!seams.empty() && seam_case.merge) {
     if (load_case.point_force) {
       throw InputError("option --point-force names a vertex of the unmerged mesh; it cannot be "
                        "combined with --seam-merge");
     }
-    sew_and_merge(seam_case, clock, material, load_case.gravity,
+    sew_and_merge(seam_case, time, material, load_case.gravity,
                   count_option(options, "load-steps", 1), seams, &result.mesh, &pinned,
                   &*result.seams);
   }
@@ -649,14 +430,13 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   problem.contact.project_hessian = options.flag("membrane-psd");
   if (result.seams && !result.seams->merged) {
     // Static sewing stages start from this pull (before the springs are made).
-    if (options.text("analysis") == "static" && count_option(options, "sewing-stages", 1) > 1)
+    if (time.analysis == "static" && count_option(options, "sewing-stages", 1) > 1)
       problem.sewing_tension = options.positive_real("sewing-start-tension");
-    attach_seams(seam_case, clock, seams, material, problem, &*result.seams);
+    attach_seams(seam_case, time, seams, material, problem, &*result.seams);
   }
-  const std::string analysis =
-      checked_analysis(options, problem, mesh, materials, pinned, material);
-  const bool dynamic = analysis == "dynamic";
-  const bool creep = analysis == "creep";
+  check_analysis(time, options, problem, mesh, materials, pinned, material);
+  const bool dynamic = time.dynamic();
+  const bool creep = time.creep();
   const StaticOptions solve = static_options(options, problem);
   if (load_case.probe) result.probe = case_probe(*load_case.probe, mesh);
   result.dofs = problem.global_dof_count();
@@ -665,9 +445,9 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   Vec x = nullptr;
   SartorPetscCall(problem.create_solution(&x));
   if (dynamic) {
-    solve_dynamic_case(options, problem, x, observe, checkpointing, &result);
+    solve_dynamic_case(time, problem, x, observe, checkpointing, &result);
   } else if (creep) {
-    solve_creep_case(options, problem, x, observe, checkpointing, &result);
+    solve_creep_case(options, time, problem, x, observe, checkpointing, &result);
   } else {
     solve_static_case(problem, x, solve, checkpointing, &result);
   }

@@ -33,6 +33,17 @@ bool minimiser_chosen(const Options& options, const std::string& name) {
   return solver == "minimise";
 }
 
+int count_option(const Options& options, const std::string& name, long minimum,
+                 const std::string& fallback) {
+  const std::string used = options.is_set(name) || fallback.empty() ? name : fallback;
+  const long value = options.integer(used);
+  if (value < minimum) {
+    throw InputError("option --" + used + ": must be >= " + std::to_string(minimum) + ", got " +
+                     options.text(used));
+  }
+  return int(value);
+}
+
 std::vector<double> option_numbers(const Options& options, const std::string& name,
                                    std::size_t count) {
   const std::string text = options.text(name);

@@ -14,27 +14,18 @@ namespace sartor {
 
 namespace {
 
-int divisions(const Options& options, const std::string& name, const std::string& fallback) {
-  const std::string used = options.is_set(name) ? name : fallback;
-  const long value = options.integer(used);
-  if (value < 1) {
-    throw InputError("option --" + used + ": must be >= 1, got " + options.text(used));
-  }
-  return int(value);
-}
-
 // --sewing-tension and --sewing-time: the sewing stage of a dynamic run.
-void set_up_sewing(const SeamCase& seam_case, const CaseClock& clock, ClothProblem& problem,
+void set_up_sewing(const SeamCase& seam_case, const TimeCase& time, ClothProblem& problem,
                    SeamReport* report) {
   if (!seam_case.sewing_tension || *seam_case.sewing_tension == 0.0) return;
-  if (clock.analysis != "dynamic") {
+  if (time.analysis != "dynamic") {
     throw InputError("option --sewing-tension: sewing is a stage of time stepping; give --analysis "
                      "dynamic (or leave --sewing-tension out)");
   }
-  const double end = seam_case.sewing_time.value_or(0.5 * clock.time_end);
-  if (end >= clock.time_end) {
+  const double end = seam_case.sewing_time.value_or(0.5 * time.time_end);
+  if (end >= time.time_end) {
     throw InputError("option --sewing-time: the sewing stage must end before --time-end (" +
-                     format_number(clock.time_end) + " s), got " + format_number(end) + " s");
+                     format_number(time.time_end) + " s), got " + format_number(end) + " s");
   }
   problem.sewing_tension = *seam_case.sewing_tension;
   problem.sewing_end_time = end;
@@ -43,13 +34,6 @@ void set_up_sewing(const SeamCase& seam_case, const CaseClock& clock, ClothProbl
 }
 
 } // namespace
-
-CaseClock read_sewing_clock(const Options& options, const SeamCase& seam_case) {
-  CaseClock clock{options.text("analysis"), 0.0};
-  const bool sews = seam_case.sewing_tension && *seam_case.sewing_tension != 0.0;
-  if (sews && clock.analysis == "dynamic") clock.time_end = options.positive_real("time-end");
-  return clock;
-}
 
 SeamCase read_seam_case(const Options& options) {
   SeamCase seam_case;
@@ -65,21 +49,13 @@ SeamCase read_seam_case(const Options& options) {
   return seam_case;
 }
 
-mesh::PanelMesh tube_panels_mesh(const Options& options) {
-  return mesh::tube_panels(
-      options.positive_real("mesh-width"), options.positive_real("mesh-height"),
-      divisions(options, "mesh-nx", "mesh-nx"), divisions(options, "mesh-ny", "mesh-ny"),
-      divisions(options, "mesh-nx-front", "mesh-nx"),
-      divisions(options, "mesh-ny-front", "mesh-ny"), options.nonnegative_real("mesh-gap"));
-}
-
-std::vector<Seam> case_seams(const SeamCase& seam_case, const Options& mesh_options,
+std::vector<Seam> case_seams(const SeamCase& seam_case, const MeshCase& mesh_case,
                              const TriangleMesh& mesh, int refinements) {
   std::vector<Seam> seams;
   if (!seam_case.seams_file.empty()) {
     seams = read_seams(seam_case.seams_file, mesh);
-  } else if (mesh_options.text("mesh") == "tube_panels") {
-    seams = tube_panels_mesh(mesh_options).seams;
+  } else if (mesh_case.kind == "tube_panels") {
+    seams = tube_panels_mesh(mesh_case).seams;
   }
   if (!seams.empty() && refinements > 0) {
     throw InputError("seams and uniform refinement (--mesh-refine " + std::to_string(refinements) +
@@ -107,7 +83,7 @@ std::vector<SeamSpring> case_seam_springs(const SeamCase& seam_case, const Trian
   return seam_springs(mesh, seams, case_seam_stiffness(seam_case, material));
 }
 
-void attach_seams(const SeamCase& seam_case, const CaseClock& clock, const std::vector<Seam>& seams,
+void attach_seams(const SeamCase& seam_case, const TimeCase& time, const std::vector<Seam>& seams,
                   const ClothMaterial& material, ClothProblem& problem, SeamReport* report) {
   // Sewing starts with the seam springs stretched across the gap: residuals
   // of ~1e6 N, of which SNES's relative tolerance (1e-10) would accept a
@@ -115,7 +91,7 @@ void attach_seams(const SeamCase& seam_case, const CaseClock& clock, const std::
   // cases converge on the absolute tolerance instead (round-off of the
   // membrane forces, IncrementalSystem); -snes_rtol still overrides.
   SartorPetscCall(set_default_option("-snes_rtol", "0"));
-  set_up_sewing(seam_case, clock, problem, report);
+  set_up_sewing(seam_case, time, problem, report);
   const std::vector<SeamSpring> springs =
       problem.set_seams(seams, case_seam_stiffness(seam_case, material));
   report->seams = seams.size();
@@ -125,7 +101,7 @@ void attach_seams(const SeamCase& seam_case, const CaseClock& clock, const std::
   report->cross_rank_springs = problem.seam_coupling()->cross_rank_springs();
 }
 
-void sew_and_merge(const SeamCase& seam_case, const CaseClock& clock, const ClothMaterial& material,
+void sew_and_merge(const SeamCase& seam_case, const TimeCase& time, const ClothMaterial& material,
                    const Eigen::Vector3d& gravity, int load_steps, const std::vector<Seam>& seams,
                    TriangleMesh* mesh, std::vector<int>* pinned, SeamReport* report) {
   // Fails early, before the solve, for seams that cannot be merged.
@@ -134,7 +110,7 @@ void sew_and_merge(const SeamCase& seam_case, const CaseClock& clock, const Clot
   {
     ClothProblem sewing(PETSC_COMM_WORLD, *mesh, material, *pinned);
     sewing.loads.gravity = gravity;
-    attach_seams(seam_case, clock, seams, material, sewing, report);
+    attach_seams(seam_case, time, seams, material, sewing, report);
     StaticOptions solve;
     solve.load_steps = load_steps;
     Vec x = nullptr;

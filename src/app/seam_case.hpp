@@ -5,6 +5,8 @@
 // and the "seams" part of summary.json. docs/seams.md describes them.
 
 #include "app/cli.hpp"
+#include "app/mesh_case.hpp"
+#include "app/time_case.hpp"
 #include "fem/cloth_problem.hpp"
 #include "mesh/panels.hpp"
 #include "mesh/seams.hpp"
@@ -35,18 +37,6 @@ struct SeamCase {
 // Throws InputError naming the option for a malformed value.
 SeamCase read_seam_case(const Options& options);
 
-// When the case runs, which the sewing stage is checked against (it is a
-// stage of time stepping, ending before its end).
-struct CaseClock {
-  std::string analysis;  // --analysis
-  double time_end = 0.0; // --time-end, s (read only for a dynamic run that sews)
-};
-
-// The clock of the case as far as sewing needs it: --time-end is read (and
-// checked) only when a dynamic run sews, so that other runs keep their own
-// order of messages about it.
-CaseClock read_sewing_clock(const Options& options, const SeamCase& seam_case);
-
 struct SeamReport {
   std::size_t seams = 0;
   std::size_t springs = 0;
@@ -63,14 +53,10 @@ struct SeamReport {
   StaticReport sewing;
 };
 
-// --mesh tube_panels from --mesh-width, --mesh-height, --mesh-nx, --mesh-ny,
-// --mesh-nx-front, --mesh-ny-front and --mesh-gap.
-mesh::PanelMesh tube_panels_mesh(const Options& options);
-
 // The case's seams: --seams-file's, else the tube_panels generator's, else
 // none. Throws InputError when seams meet uniform refinement (the seam lines
 // would miss the new vertices).
-std::vector<Seam> case_seams(const SeamCase& seam_case, const Options& mesh_options,
+std::vector<Seam> case_seams(const SeamCase& seam_case, const MeshCase& mesh_case,
                              const TriangleMesh& mesh, int refinements);
 
 // The seams' stiffness settings: --seam-stiffness, or --seam-penalty with the
@@ -84,7 +70,7 @@ std::vector<SeamSpring> case_seam_springs(const SeamCase& seam_case, const Trian
 // Adds the springs to `problem` (from the seam lines, so that they have a
 // rest derivative) and records their counts in `report`.
 // Throws InputError for a sewing stage outside time stepping or past its end.
-void attach_seams(const SeamCase& seam_case, const CaseClock& clock, const std::vector<Seam>& seams,
+void attach_seams(const SeamCase& seam_case, const TimeCase& time, const std::vector<Seam>& seams,
                   const ClothMaterial& material, ClothProblem& problem, SeamReport* report);
 
 // --seam-merge: sews `mesh` with its seams under gravity alone (collective
@@ -93,7 +79,7 @@ void attach_seams(const SeamCase& seam_case, const CaseClock& clock, const std::
 // vertex pair merged and `pinned` by the merged pins. Throws InputError when
 // the sewing fails, a seam stays open, or a seam is not matched vertex to
 // vertex.
-void sew_and_merge(const SeamCase& seam_case, const CaseClock& clock, const ClothMaterial& material,
+void sew_and_merge(const SeamCase& seam_case, const TimeCase& time, const ClothMaterial& material,
                    const Eigen::Vector3d& gravity, int load_steps, const std::vector<Seam>& seams,
                    TriangleMesh* mesh, std::vector<int>* pinned, SeamReport* report);
 
