@@ -72,10 +72,10 @@ PlacementWaves read_placement_waves(const std::string& text) {
       throw bad("'" + item + "' is not a number");
   }
   if (values.size() != 3) throw bad("three numbers needed");
-  if (values[0] < 1.0 || values[0] != std::floor(values[0]) || values[0] > 1e6)
+  if (values[0] < 1.0 || values[0] != std::floor(values[0]))
     throw bad("N must be a whole number >= 1");
   if (values[2] < 0.0) throw bad("the radius where the waves start must not be negative");
-  return {int(values[0]), values[1], values[2], text};
+  return {values[0], values[1], values[2], text};
 }
 
 // The parameters of the generator --mesh names, and only those.

@@ -22,7 +22,7 @@ const std::vector<OptionSpec>& mesh_option_specs();
 
 // --mesh-waves N,A,R0 (see apply_placement_waves).
 struct PlacementWaves {
-  int count = 0;             // N
+  double count = 0.0;        // N, a whole number
   double amplitude = 0.0;    // A, m
   double start_radius = 0.0; // R0, m
   std::string text;          // as given, for messages

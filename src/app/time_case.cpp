@@ -33,26 +33,6 @@ const std::vector<OptionSpec>& time_option_specs() {
   return specs;
 }
 
-namespace {
-
-void read_dynamic_grid(const Options& options, TimeCase& time) {
-  time.kinetic_damping = options.flag("kinetic-damping");
-  time.rest_tolerance = options.nonnegative_real("rest-tolerance");
-  time.output_interval = options.nonnegative_real("output-interval");
-  check_simulated_time(time.time_end, "time-end");
-  check_time_divisions(time.time_end, "time-end", time.time_step, "time-step");
-  check_time_divisions(time.time_end, "time-end", time.output_interval, "output-interval");
-  time.settle = options.flag("settle");
-  time.minimise = minimiser_chosen(options, "dynamic-solver");
-  if (time.time_step > 1.0 || time.time_end > 600.0) {
-    print_warnings({"--time-step " + options.text("time-step") + " s, --time-end " +
-                    options.text("time-end") +
-                    " s: a cloth swings in seconds with steps of milliseconds (times in ms?)"});
-  }
-}
-
-} // namespace
-
 TimeCase read_time_case(const Options& options) {
   TimeCase time;
   time.analysis = options.text("analysis");
@@ -64,12 +44,19 @@ TimeCase read_time_case(const Options& options) {
   time.time_end = options.positive_real("time-end");
   time.time_step = options.positive_real("time-step");
   time.damping = options.nonnegative_real("damping");
-  if (time.dynamic()) {
-    read_dynamic_grid(options, time);
-  } else {
-    time.output_interval = options.nonnegative_real("output-interval");
-    check_simulated_time(time.time_end, "time-end");
-    check_time_divisions(time.time_end, "time-end", time.output_interval, "output-interval");
+  time.output_interval = options.nonnegative_real("output-interval");
+  check_simulated_time(time.time_end, "time-end");
+  if (time.dynamic()) check_time_divisions(time.time_end, "time-end", time.time_step, "time-step");
+  check_time_divisions(time.time_end, "time-end", time.output_interval, "output-interval");
+  if (!time.dynamic()) return time;
+  time.kinetic_damping = options.flag("kinetic-damping");
+  time.rest_tolerance = options.nonnegative_real("rest-tolerance");
+  time.settle = options.flag("settle");
+  time.minimise = minimiser_chosen(options, "dynamic-solver");
+  if (time.time_step > 1.0 || time.time_end > 600.0) {
+    print_warnings({"--time-step " + options.text("time-step") + " s, --time-end " +
+                    options.text("time-end") +
+                    " s: a cloth swings in seconds with steps of milliseconds (times in ms?)"});
   }
   return time;
 }
