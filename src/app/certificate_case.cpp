@@ -21,6 +21,14 @@ const std::vector<OptionSpec>& certificate_option_specs() {
   return specs;
 }
 
+CertificateCase read_certificate_case(const Options& options) {
+  CertificateCase certificate;
+  certificate.certify = !options.flag("no-certificate");
+  certificate.escapes = options.integer_in("escape-saddles", 0, 100);
+  certificate.saddle_push = options.nonnegative_real("saddle-push");
+  return certificate;
+}
+
 namespace {
 
 double cloth_size(const TriangleMesh& mesh) {
@@ -74,13 +82,12 @@ void add_solve(const StaticReport& solve, StaticReport* report) {
 
 } // namespace
 
-CertifiedState certify_case(const Options& options, ClothProblem& problem, Vec x,
+CertifiedState certify_case(const CertificateCase& certificate, ClothProblem& problem, Vec x,
                             const StaticOptions* solve, StaticReport* report) {
   CertifiedState state;
   const CertificateOptions settings;
-  const long escapes = solve ? options.integer_in("escape-saddles", 0, 100) : 0;
-  state.push_size =
-      solve ? options.nonnegative_real("saddle-push") * cloth_size(problem.mesh()) : 0.0;
+  const long escapes = solve ? certificate.escapes : 0;
+  state.push_size = solve ? certificate.saddle_push * cloth_size(problem.mesh()) : 0.0;
   SartorPetscCall(certify(problem, x, settings, &state.certificate));
   if (!solve || !report->converged || state.push_size <= 0.0) return state;
   Vec saddle = nullptr;

@@ -17,6 +17,16 @@ namespace sartor {
 // The options --no-certificate, --escape-saddles, --saddle-push.
 const std::vector<OptionSpec>& certificate_option_specs();
 
+// Those options, read once.
+struct CertificateCase {
+  bool certify = true;       // not --no-certificate
+  long escapes = 3;          // --escape-saddles (statics)
+  double saddle_push = 0.01; // --saddle-push, of the starting bounding box's diagonal
+};
+
+// Throws InputError naming the option for a malformed value.
+CertificateCase read_certificate_case(const Options& options);
+
 struct CertifiedState {
   Certificate certificate;
   int escapes = 0;        // pushes off a saddle
@@ -26,7 +36,7 @@ struct CertifiedState {
 // Collective. Certifies x; in statics (`solve` given), while it is a saddle
 // and escapes are left, pushes and re-solves, adding the solves' statistics
 // to `report` (converged and reason of the last solve).
-CertifiedState certify_case(const Options& options, ClothProblem& problem, Vec x,
+CertifiedState certify_case(const CertificateCase& settings, ClothProblem& problem, Vec x,
                             const StaticOptions* solve, StaticReport* report);
 
 } // namespace sartor

@@ -63,7 +63,8 @@ ContactCase read_contact_case(const Options& options) {
   }
   contact.settings.stiffness_factor = options.positive_real("contact-stiffness-factor");
   contact.settings.edge_sample_spacing = options.nonnegative_real("contact-edge-spacing");
-  if (options.is_set("drape-support-radius")) options.positive_real("drape-support-radius");
+  if (options.is_set("drape-support-radius"))
+    contact.support_radius = options.positive_real("drape-support-radius");
   return contact;
 }
 
@@ -159,15 +160,15 @@ int drape_nodes(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& po
   return nodes;
 }
 
-CaseContact measure_contact(const Options& options, ClothProblem& problem, Vec x,
+CaseContact measure_contact(const ContactCase& contact, ClothProblem& problem, Vec x,
                             const std::vector<Eigen::Vector3d>& positions) {
   CaseContact result;
   result.settings = problem.contact;
   for (const contact::Body& body : problem.bodies)
     result.bodies.push_back(body.describe());
   SartorPetscCall(problem.contact_report(x, &result.reports));
-  if (options.is_set("drape-support-radius")) {
-    const double radius = options.positive_real("drape-support-radius");
+  if (contact.support_radius) {
+    const double radius = *contact.support_radius;
     DrapeMeasure drape;
     drape.support_area = M_PI * radius * radius;
     drape.specimen_area = material_area(problem.mesh());

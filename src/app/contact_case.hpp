@@ -22,10 +22,12 @@ const std::vector<OptionSpec>& contact_option_specs();
 // The contact part of a case: the bodies, an indexed list (--body,
 // --body2, ... --body99, in that order), and the penalty settings
 // (--contact-offset, --contact-stiffness, --contact-stiffness-factor,
-// --contact-edge-spacing).
+// --contact-edge-spacing), and the support disk of a Cusick drape
+// (--drape-support-radius; none: not a drape test).
 struct ContactCase {
   std::vector<contact::Body> bodies;
   ContactSettings settings;
+  std::optional<double> support_radius; // m
 };
 
 // Throws InputError naming the option for a bad specification or two bodies
@@ -70,8 +72,9 @@ struct CaseContact {
   std::optional<DrapeMeasure> drape;
 };
 
-// Collective: the contact state at x; `positions` (rank 0) give the drape.
-CaseContact measure_contact(const Options& options, ClothProblem& problem, Vec x,
+// Collective: the contact state at x; `positions` (rank 0) give the drape
+// coefficient where `contact` has a support disk.
+CaseContact measure_contact(const ContactCase& contact, ClothProblem& problem, Vec x,
                             const std::vector<Eigen::Vector3d>& positions);
 
 // The "contact" object of summary.json.

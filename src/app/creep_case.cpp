@@ -33,8 +33,22 @@ const std::vector<OptionSpec>& creep_option_specs() {
   return specs;
 }
 
-std::vector<CreepMaterial> creep_materials(const Options& options) {
-  CreepMaterial material;
+CreepCase read_creep_case(const Options& options) {
+  CreepCase creep;
+  creep.min_step = options.positive_real("min-time-step");
+  creep.max_step = options.nonnegative_real("max-time-step");
+  creep.tolerance = options.positive_real("creep-tolerance");
+  creep.scheme_name = options.text("creep-scheme");
+  if (creep.scheme_name == "monolithic") {
+    creep.scheme = CreepScheme::monolithic;
+  } else if (creep.scheme_name != "staggered") {
+    throw InputError("option --creep-scheme: unknown scheme '" + creep.scheme_name +
+                     "' (staggered, monolithic)");
+  }
+  if (options.is_set("load-history")) {
+    creep.load = LoadHistory::parse(options.text("load-history"), "option --load-history");
+  }
+  creep.dynamic = options.flag("creep-dynamics");
   if (options.is_set("creep-parameters")) {
     const std::vector<double> values = option_numbers(options, "creep-parameters", 0);
     if (values.size() != 4) {
@@ -42,42 +56,38 @@ std::vector<CreepMaterial> creep_materials(const Options& options) {
                        "got " +
                        std::to_string(values.size()) + " number(s)");
     }
-    material.warp = {values[0], values[1], values[2], values[3]};
-    material.weft = material.warp;
-    validate(material.warp, "option --creep-parameters");
-    return {material};
+    CreepMaterial given;
+    given.warp = {values[0], values[1], values[2], values[3]};
+    given.weft = given.warp;
+    validate(given.warp, "option --creep-parameters");
+    creep.given = given;
   }
-  const Fabric fabric = resolve_fabrics(options.text("fabric")).front().fabric;
+  return creep;
+}
+
+CreepMaterial creep_material(const CreepCase& creep, const std::string& fabric_name) {
+  if (creep.given) return *creep.given;
+  const Fabric fabric = resolve_fabrics(fabric_name).front().fabric;
   print_warnings(fabric.warnings);
   fabric.check_creep();
-  material.warp = fabric.in(Direction::warp).creep;
-  material.weft = fabric.in(Direction::weft).creep;
-  return {material};
+  return {fabric.in(Direction::warp).creep, fabric.in(Direction::weft).creep};
 }
 
 namespace {
 
-CreepOptions creep_options(const Options& options, const TimeCase& time) {
+CreepOptions creep_options(const CreepCase& settings, const TimeCase& time, int load_steps) {
   CreepOptions creep;
   creep.time_end = time.time_end;
   creep.time_step = time.time_step;
-  creep.min_step = options.positive_real("min-time-step");
-  creep.max_step = options.nonnegative_real("max-time-step");
-  creep.creep_tolerance = options.positive_real("creep-tolerance");
-  const std::string scheme = options.text("creep-scheme");
-  if (scheme == "monolithic") {
-    creep.scheme = CreepScheme::monolithic;
-  } else if (scheme != "staggered") {
-    throw InputError("option --creep-scheme: unknown scheme '" + scheme +
-                     "' (staggered, monolithic)");
-  }
-  if (options.is_set("load-history")) {
-    creep.load = LoadHistory::parse(options.text("load-history"), "option --load-history");
-  }
-  creep.dynamic = options.flag("creep-dynamics");
+  creep.min_step = settings.min_step;
+  creep.max_step = settings.max_step;
+  creep.creep_tolerance = settings.tolerance;
+  creep.scheme = settings.scheme;
+  creep.load = settings.load;
+  creep.dynamic = settings.dynamic;
   creep.damping = time.damping;
   creep.output_interval = time.output_interval;
-  creep.equilibrium.load_steps = int(std::max(1L, options.integer("load-steps")));
+  creep.equilibrium.load_steps = load_steps;
   creep.print_progress = true;
   return creep;
 }
@@ -114,12 +124,13 @@ RunCheckpoint checked_checkpoint(const std::string& path, const ClothProblem& pr
 
 } // namespace
 
-CreepRunResult run_creep_case(const Options& options, const TimeCase& time, ClothProblem& problem,
-                              Vec x, const CaseCheckpointing& checkpointing, long probe_vertex,
-                              CreepCoupling& creep, const CreepStateObserver& observe) {
-  const CreepOptions settings = creep_options(options, time);
+CreepRunResult run_creep_case(const CreepCase& creep_case, const TimeCase& time, int load_steps,
+                              ClothProblem& problem, Vec x, const CaseCheckpointing& checkpointing,
+                              long probe_vertex, CreepCoupling& creep,
+                              const CreepStateObserver& observe) {
+  const CreepOptions settings = creep_options(creep_case, time, load_steps);
   CreepRunResult result;
-  result.scheme = options.text("creep-scheme");
+  result.scheme = creep_case.scheme_name;
   std::optional<RunCheckpoint> resume;
   if (!checkpointing.restart_file.empty()) {
     resume = checked_checkpoint(checkpointing.restart_file, problem, settings.dynamic);

@@ -18,6 +18,23 @@ namespace sartor {
 // --creep-parameters (the case options of creep runs).
 const std::vector<OptionSpec>& creep_option_specs();
 
+// The creep module's options, read once (creep analyses and wear; other
+// analyses leave them unread).
+struct CreepCase {
+  CreepScheme scheme = CreepScheme::staggered; // --creep-scheme
+  std::string scheme_name = "staggered";
+  double min_step = 1e-6;  // s, --min-time-step
+  double max_step = 0.0;   // s, --max-time-step (0: no limit)
+  double tolerance = 1e-3; // --creep-tolerance
+  LoadHistory load;        // --load-history (no knots: 1 always)
+  bool dynamic = false;    // --creep-dynamics
+  // --creep-parameters, for both directions of every fabric; none: the fabric's.
+  std::optional<CreepMaterial> given;
+};
+
+// Throws InputError naming the option for a malformed value.
+CreepCase read_creep_case(const Options& options);
+
 // Where a run writes checkpoints and what it resumes from (`sartor run`'s
 // --checkpoint, --checkpoint-interval, --restart).
 struct CaseCheckpointing {
@@ -46,17 +63,17 @@ struct CreepRunResult {
 // Called collectively with each accepted state.
 using CreepStateObserver = std::function<void(Vec x, const CreepStepReport& step)>;
 
-// Collective. Runs the creep analysis of `problem` from x (its mesh's
-// placement, or the restart's state) over `time`'s grid; the creep options
-// (--creep-scheme, --creep-tolerance, step limits, --load-history) are read
-// from `options`. `probe_vertex` (mesh numbering, or -1) adds its
-// displacement to the history.
-CreepRunResult run_creep_case(const Options& options, const TimeCase& time, ClothProblem& problem,
-                              Vec x, const CaseCheckpointing& checkpointing, long probe_vertex,
-                              CreepCoupling& creep, const CreepStateObserver& observe);
+// Collective. Runs the creep analysis `settings` of `problem` from x (its
+// mesh's placement, or the restart's state) over `time`'s grid, its initial
+// equilibrium in `load_steps`. `probe_vertex` (mesh numbering, or -1) adds
+// its displacement to the history.
+CreepRunResult run_creep_case(const CreepCase& settings, const TimeCase& time, int load_steps,
+                              ClothProblem& problem, Vec x, const CaseCheckpointing& checkpointing,
+                              long probe_vertex, CreepCoupling& creep,
+                              const CreepStateObserver& observe);
 
-// The creep materials of the case: the fabric's creep parameters per
-// direction, or --creep-parameters for both.
-std::vector<CreepMaterial> creep_materials(const Options& options);
+// The creep material of the case: `creep`'s given parameters, or those of
+// the fabric (a name or file, material/fabric.hpp) per direction.
+CreepMaterial creep_material(const CreepCase& creep, const std::string& fabric);
 
 } // namespace sartor

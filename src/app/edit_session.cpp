@@ -8,6 +8,7 @@
 #include "app/edit_design.hpp"
 #include "app/material_case.hpp"
 #include "app/seam_case.hpp"
+#include "app/static_case.hpp"
 #include "common/error.hpp"
 #include "common/gmls.hpp"
 #include "common/output.hpp"
@@ -317,9 +318,10 @@ void EditSession::predict_geometric(Design& last, const Design& next, Vec into) 
 
 // The drape's last stage again: sewn, loaded, with its contact rounds.
 StaticOptions EditSession::static_options() const {
+  const StaticCase statics = read_static_case(options_);
   StaticOptions solve;
-  solve.minimise = minimiser_chosen(options_, "static-solver");
-  solve.max_offset_depth = options_.nonnegative_real("contact-max-depth");
+  solve.minimise = statics.minimise;
+  solve.max_offset_depth = statics.max_offset_depth;
   if (solve.max_offset_depth == 0.0) solve.max_contact_rounds = 0;
   solve.start_load_factor = 1.0;
   solve.progress_interval = 10.0;
@@ -356,7 +358,8 @@ std::unique_ptr<Attempt> EditSession::resolve_from(Design& last, ClothProblem& p
     SartorPetscCall(capped.apply(system.snes()));
   }
   SartorPetscCall(solve_static(system, attempt->x, solve, &attempt->report));
-  attempt->certified = certify_case(options_, problem, attempt->x, &solve, &attempt->report);
+  attempt->certified =
+      certify_case(read_certificate_case(options_), problem, attempt->x, &solve, &attempt->report);
   attempt->cpu = process_cpu_seconds() - started;
   SartorPetscCall(problem.anchors_everywhere(&attempt->anchors));
   attempt->contact = problem.contact;

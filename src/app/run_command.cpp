@@ -10,6 +10,8 @@
 #include "app/load_case.hpp"
 #include "app/material_case.hpp"
 #include "app/mesh_case.hpp"
+#include "app/seam_case.hpp"
+#include "app/static_case.hpp"
 #include "app/static_checkpoint.hpp"
 #include "app/time_case.hpp"
 #include "common/csv.hpp"
@@ -34,55 +36,13 @@
 
 namespace sartor {
 
-namespace {
-
-// Load steps, seams and sewing, and the static solver.
-const std::vector<OptionSpec>& static_option_specs() {
-  static const std::vector<OptionSpec> specs{
-      {"load-steps", "N", "1", "load increments (each halved up to 8 times on failure)"},
-      {"seams-file", "FILE", "", "seams to sew (JSON, docs/formats.md) [tube_panels: its own]"},
-      {"seam-stiffness", "N/M2", "", "seam stiffness per unit seam length, N/m^2 [automatic]"},
-      {"seam-penalty", "P", "100", "automatic seam stiffness: P x modulus / seam spacing"},
-      {"seam-merge", "", "", "sew, then merge matched seam vertices and solve again"},
-      {"seam-merge-gap", "M", "1e-4", "--seam-merge: largest seam gap accepted as closed, m"},
-      {"sewing-tension", "N/M", "",
-       "dynamic: sew gradually: each seam spring starts pulling with this force per metre of "
-       "seam and stiffens to its own stiffness by --sewing-time (0 or none: no sewing stage)"},
-      {"sewing-time", "S", "", "the end of the sewing stage, s [half of --time-end]"},
-      {"static-solver", "KIND", "minimise",
-       "static: minimise (Newton on the total potential with a contact step bound, "
-       "docs/drape.md) or snes (PETSc's SNES with pseudo-transient continuation); pressure on a "
-       "cloth with a free (unpinned) edge has no potential and takes snes"},
-      {"sewing-stages", "N", "1",
-       "static: sew in N continuation stages of the seam stiffness, starting from "
-       "--sewing-start-tension (1: at once)"},
-      {"sewing-start-tension", "N/M", "10",
-       "static: with --sewing-stages, each seam's pull per metre of seam at the first stage"},
-      {"converge-stages", "", "",
-       "static: with --sewing-stages, solve every stage after the first to the full tolerance "
-       "(the same equilibrium under any CPU's round-off, for two to three times the Newton "
-       "iterations; docs/drape.md)"},
-      {"contact-max-depth", "F", "0.5",
-       "static: stiffen the contact penalty until no vertex is deeper in the offset layer than "
-       "F times --contact-offset (0: never)"},
-      {"contact-rounds", "N", "30",
-       "static: at most N contact rounds after the last stage: re-solves until the friction "
-       "anchors' update leaves the state in equilibrium (and no vertex is too deep)"},
-  };
-  return specs;
-}
-
-} // namespace
-
 const std::vector<OptionSpec>& case_option_specs() {
   static const std::vector<OptionSpec> all = [] {
     std::vector<OptionSpec> options;
     for (const auto& group : {mesh_option_specs, material_option_specs, load_option_specs,
-                              contact_option_specs, static_option_specs, time_option_specs})
+                              contact_option_specs, seam_option_specs, static_option_specs,
+                              time_option_specs, creep_option_specs, certificate_option_specs})
       options.insert(options.end(), group().begin(), group().end());
-    options.insert(options.end(), creep_option_specs().begin(), creep_option_specs().end());
-    options.insert(options.end(), certificate_option_specs().begin(),
-                   certificate_option_specs().end());
     return options;
   }();
   return all;
@@ -142,26 +102,6 @@ const CommandSpec& run_command() {
 }
 
 namespace {
-
-// The static solver's options.
-StaticOptions static_options(const Options& options, const ClothProblem& problem) {
-  StaticOptions solve;
-  solve.load_steps = count_option(options, "load-steps", 1);
-  solve.minimise = minimiser_chosen(options, "static-solver");
-  solve.sewing_stages = count_option(options, "sewing-stages", 1);
-  if (solve.sewing_stages > 1 && !problem.seam_coupling()) {
-    throw InputError("option --sewing-stages: the case has no seams to sew (or they are merged)");
-  }
-  solve.converge_stages = options.flag("converge-stages");
-  if (solve.converge_stages && solve.sewing_stages < 2) {
-    throw InputError("option --converge-stages: needs --sewing-stages of 2 or more");
-  }
-  solve.max_offset_depth = options.nonnegative_real("contact-max-depth");
-  solve.max_contact_rounds = int(options.integer_in("contact-rounds", 0, 1000));
-  // A static solve that runs long says where it is (docs/drape.md).
-  solve.progress_interval = 10.0;
-  return solve;
-}
 
 nlohmann::json vector_json(const Eigen::Vector3d& v) {
   return {v[0], v[1], v[2]};
@@ -330,15 +270,16 @@ CaseProbe case_probe(const Eigen::Vector3d& point, const TriangleMesh& mesh) {
 }
 
 // Creep: run_creep_case, the observer seeing the coupling's state.
-void solve_creep_case(const Options& options, const TimeCase& time, ClothProblem& problem, Vec x,
+void solve_creep_case(const CreepCase& creep, const TimeCase& time, int load_steps,
+                      const std::string& fabric, ClothProblem& problem, Vec x,
                       const CaseStepObserver& observe, const CaseCheckpointing& checkpointing,
                       CaseResult* result) {
-  CreepCoupling coupling(problem, creep_materials(options));
+  CreepCoupling coupling(problem, {creep_material(creep, fabric)});
   const CreepStateObserver follow = [&](Vec state, const CreepStepReport& step) {
     if (observe) observe(problem, state, {step.time, step.output, &coupling});
   };
   CreepRunResult run =
-      run_creep_case(options, time, problem, x, checkpointing,
+      run_creep_case(creep, time, load_steps, problem, x, checkpointing,
                      result->probe ? long(result->probe->vertex) : -1L, coupling, follow);
   result->converged = run.report.completed;
   result->solve_seconds = run.report.solve_seconds;
@@ -404,6 +345,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   }
   const ClothMaterial& material = stiffest_material(materials);
   const LoadCase load_case = read_load_case(options);
+  const StaticCase statics = read_static_case(options);
   std::vector<int> pinned = pinned_vertices(load_case, mesh);
   // Seams (app/seam_case.hpp): sewn by springs, or sewn first and merged.
   const SeamCase seam_case = read_seam_case(options);
@@ -414,9 +356,8 @@ CaseResult solve_case(const Options& options, int extra_refinements,
       throw InputError("option --point-force names a vertex of the unmerged mesh; it cannot be "
                        "combined with --seam-merge");
     }
-    sew_and_merge(seam_case, time, material, load_case.gravity,
-                  count_option(options, "load-steps", 1), seams, &result.mesh, &pinned,
-                  &*result.seams);
+    sew_and_merge(seam_case, time, material, load_case.gravity, statics.load_steps, seams,
+                  &result.mesh, &pinned, &*result.seams);
   }
   result.pinned_vertices = pinned.size();
   result.h = longest_material_edge(mesh);
@@ -426,18 +367,19 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   set_case_loads(load_case, mesh, &problem.loads);
   problem.pin_motion = load_case.pin_move;
   problem.pin_groups = pin_groups(load_case, mesh, pinned);
-  set_up_contact(read_contact_case(options), problem);
+  const ContactCase contact_case = read_contact_case(options);
+  set_up_contact(contact_case, problem);
   problem.contact.project_hessian = options.flag("membrane-psd");
   if (result.seams && !result.seams->merged) {
     // Static sewing stages start from this pull (before the springs are made).
-    if (time.analysis == "static" && count_option(options, "sewing-stages", 1) > 1)
-      problem.sewing_tension = options.positive_real("sewing-start-tension");
+    if (time.analysis == "static" && statics.sewing_stages > 1)
+      problem.sewing_tension = statics.sewing_start_tension;
     attach_seams(seam_case, time, seams, material, problem, &*result.seams);
   }
   check_analysis(time, options, problem, mesh, materials, pinned, material);
   const bool dynamic = time.dynamic();
   const bool creep = time.creep();
-  const StaticOptions solve = static_options(options, problem);
+  const StaticOptions solve = static_options(statics, problem.seam_coupling());
   if (load_case.probe) result.probe = case_probe(*load_case.probe, mesh);
   result.dofs = problem.global_dof_count();
   const auto set_up = std::chrono::steady_clock::now();
@@ -447,15 +389,17 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   if (dynamic) {
     solve_dynamic_case(time, problem, x, observe, checkpointing, &result);
   } else if (creep) {
-    solve_creep_case(options, time, problem, x, observe, checkpointing, &result);
+    solve_creep_case(read_creep_case(options), time, statics.load_steps, material_case.fabric,
+                     problem, x, observe, checkpointing, &result);
   } else {
     solve_static_case(problem, x, solve, checkpointing, &result);
   }
   // The final state of statics, or of a settle, is certified (a saddle is not converged).
   const bool settled = result.dynamics && result.dynamics->settled;
-  if (!creep && (!dynamic || settled) && !options.flag("no-certificate")) {
+  const CertificateCase certificate = read_certificate_case(options);
+  if (!creep && (!dynamic || settled) && certificate.certify) {
     result.certified =
-        certify_case(options, problem, x, dynamic ? nullptr : &solve, &result.report);
+        certify_case(certificate, problem, x, dynamic ? nullptr : &solve, &result.report);
   }
   if (!dynamic && !creep) {
     reject_unmet_residual(problem.force_scale(), &result.report);
@@ -474,7 +418,7 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   SartorPetscCall(problem.gather_positions(x, &result.positions));
   SartorPetscCall(problem.gather_strains(x, &result.strains));
   SartorPetscCall(problem.gather_vertex_loads(x, &result.vertex_loads));
-  result.contact = measure_contact(options, problem, x, result.positions);
+  result.contact = measure_contact(contact_case, problem, x, result.positions);
   if (cloth && cloth->after_statics && !dynamic && !creep && result.converged) {
     const bool springs = !seams.empty() && !(result.seams && result.seams->merged);
     cloth->after_statics(problem, materials,

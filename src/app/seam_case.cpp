@@ -35,6 +35,21 @@ void set_up_sewing(const SeamCase& seam_case, const TimeCase& time, ClothProblem
 
 } // namespace
 
+const std::vector<OptionSpec>& seam_option_specs() {
+  static const std::vector<OptionSpec> specs{
+      {"seams-file", "FILE", "", "seams to sew (JSON, docs/formats.md) [tube_panels: its own]"},
+      {"seam-stiffness", "N/M2", "", "seam stiffness per unit seam length, N/m^2 [automatic]"},
+      {"seam-penalty", "P", "100", "automatic seam stiffness: P x modulus / seam spacing"},
+      {"seam-merge", "", "", "sew, then merge matched seam vertices and solve again"},
+      {"seam-merge-gap", "M", "1e-4", "--seam-merge: largest seam gap accepted as closed, m"},
+      {"sewing-tension", "N/M", "",
+       "dynamic: sew gradually: each seam spring starts pulling with this force per metre of "
+       "seam and stiffens to its own stiffness by --sewing-time (0 or none: no sewing stage)"},
+      {"sewing-time", "S", "", "the end of the sewing stage, s [half of --time-end]"},
+  };
+  return specs;
+}
+
 SeamCase read_seam_case(const Options& options) {
   SeamCase seam_case;
   if (options.is_set("seams-file")) seam_case.seams_file = options.text("seams-file");

@@ -22,8 +22,11 @@
 
 namespace sartor {
 
-// The seams module's options (declared with the case's in run_command.cpp),
-// read once and checked for their own values.
+// The seams module's options: --seams-file, --seam-stiffness, --seam-penalty,
+// --seam-merge, --seam-merge-gap, --sewing-tension, --sewing-time.
+const std::vector<OptionSpec>& seam_option_specs();
+
+// Those options, read once and checked for their own values.
 struct SeamCase {
   std::string seams_file;               // --seams-file; empty: the mesh generator's, if any
   double penalty = 100.0;               // --seam-penalty

@@ -65,8 +65,8 @@ namespace {
 // --creep-parameters for every fabric and direction.
 std::vector<CreepMaterial> wear_creep_materials(const Options& options,
                                                 const std::vector<std::string>& fabrics) {
-  if (options.is_set("creep-parameters")) {
-    return std::vector<CreepMaterial>(fabrics.size(), creep_materials(options).front());
+  if (const CreepCase creep = read_creep_case(options); creep.given) {
+    return std::vector<CreepMaterial>(fabrics.size(), *creep.given);
   }
   std::vector<CreepMaterial> materials;
   for (const std::string& name : fabrics) {
@@ -112,16 +112,11 @@ WearOptions wear_options(const Options& options) {
   WearOptions wear;
   wear.wear.time_end = options.positive_real("wear-time");
   wear.wear.time_step = options.positive_real("wear-first-step");
-  wear.wear.min_step = options.positive_real("min-time-step");
-  wear.wear.max_step = options.nonnegative_real("max-time-step");
-  wear.wear.creep_tolerance = options.positive_real("creep-tolerance");
-  const std::string scheme = options.text("creep-scheme");
-  if (scheme == "monolithic") {
-    wear.wear.scheme = CreepScheme::monolithic;
-  } else if (scheme != "staggered") {
-    throw InputError("option --creep-scheme: unknown scheme '" + scheme +
-                     "' (staggered, monolithic)");
-  }
+  const CreepCase creep = read_creep_case(options);
+  wear.wear.min_step = creep.min_step;
+  wear.wear.max_step = creep.max_step;
+  wear.wear.creep_tolerance = creep.tolerance;
+  wear.wear.scheme = creep.scheme;
   wear.wear.print_progress = true;
   wear.wear.equilibrium.progress_interval = 10.0; // a step's solve that runs long says so
   wear.wear.equilibrium.minimise = minimiser_chosen(options, "static-solver");
@@ -287,7 +282,7 @@ void attach_wear(const Options& options, const std::string& directory,
     settings.landings = poses->knots();
     settings.wear.follow_bodies = true;
   }
-  run->scheme = options.text("creep-scheme");
+  run->scheme = read_creep_case(options).scheme_name;
   run->fabrics = cloth->fabrics;
   const std::vector<CreepMaterial> creep = wear_creep_materials(options, cloth->fabrics);
   const std::vector<double> gravity = option_numbers(options, "gravity", 3);
