@@ -36,7 +36,7 @@ struct CertifiedState {
 // Collective. Certifies x; in statics (`solve` given), while it is a saddle
 // and escapes are left, pushes and re-solves, adding the solves' statistics
 // to `report` (converged and reason of the last solve).
-CertifiedState certify_case(const CertificateCase& settings, ClothProblem& problem, Vec x,
+CertifiedState certify_case(const CertificateCase& certificate, ClothProblem& problem, Vec x,
                             const StaticOptions* solve, StaticReport* report);
 
 } // namespace sartor

@@ -38,11 +38,11 @@ CreepCase read_creep_case(const Options& options) {
   creep.min_step = options.positive_real("min-time-step");
   creep.max_step = options.nonnegative_real("max-time-step");
   creep.tolerance = options.positive_real("creep-tolerance");
-  creep.scheme_name = options.text("creep-scheme");
-  if (creep.scheme_name == "monolithic") {
+  const std::string scheme = options.text("creep-scheme");
+  if (scheme == "monolithic") {
     creep.scheme = CreepScheme::monolithic;
-  } else if (creep.scheme_name != "staggered") {
-    throw InputError("option --creep-scheme: unknown scheme '" + creep.scheme_name +
+  } else if (scheme != "staggered") {
+    throw InputError("option --creep-scheme: unknown scheme '" + scheme +
                      "' (staggered, monolithic)");
   }
   if (options.is_set("load-history")) {
@@ -63,6 +63,10 @@ CreepCase read_creep_case(const Options& options) {
     creep.given = given;
   }
   return creep;
+}
+
+std::string creep_scheme_name(CreepScheme scheme) {
+  return scheme == CreepScheme::monolithic ? "monolithic" : "staggered";
 }
 
 CreepMaterial creep_material(const CreepCase& creep, const std::string& fabric_name) {
@@ -130,7 +134,7 @@ CreepRunResult run_creep_case(const CreepCase& creep_case, const TimeCase& time,
                               const CreepStateObserver& observe) {
   const CreepOptions settings = creep_options(creep_case, time, load_steps);
   CreepRunResult result;
-  result.scheme = creep_case.scheme_name;
+  result.scheme = creep_scheme_name(creep_case.scheme);
   std::optional<RunCheckpoint> resume;
   if (!checkpointing.restart_file.empty()) {
     resume = checked_checkpoint(checkpointing.restart_file, problem, settings.dynamic);

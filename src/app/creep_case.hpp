@@ -22,18 +22,20 @@ const std::vector<OptionSpec>& creep_option_specs();
 // analyses leave them unread).
 struct CreepCase {
   CreepScheme scheme = CreepScheme::staggered; // --creep-scheme
-  std::string scheme_name = "staggered";
-  double min_step = 1e-6;  // s, --min-time-step
-  double max_step = 0.0;   // s, --max-time-step (0: no limit)
-  double tolerance = 1e-3; // --creep-tolerance
-  LoadHistory load;        // --load-history (no knots: 1 always)
-  bool dynamic = false;    // --creep-dynamics
+  double min_step = 1e-6;                      // s, --min-time-step
+  double max_step = 0.0;                       // s, --max-time-step (0: no limit)
+  double tolerance = 1e-3;                     // --creep-tolerance
+  LoadHistory load;                            // --load-history (no knots: 1 always)
+  bool dynamic = false;                        // --creep-dynamics
   // --creep-parameters, for both directions of every fabric; none: the fabric's.
   std::optional<CreepMaterial> given;
 };
 
 // Throws InputError naming the option for a malformed value.
 CreepCase read_creep_case(const Options& options);
+
+// --creep-scheme's name of `scheme` (staggered, monolithic).
+std::string creep_scheme_name(CreepScheme scheme);
 
 // Where a run writes checkpoints and what it resumes from (`sartor run`'s
 // --checkpoint, --checkpoint-interval, --restart).
@@ -63,11 +65,11 @@ struct CreepRunResult {
 // Called collectively with each accepted state.
 using CreepStateObserver = std::function<void(Vec x, const CreepStepReport& step)>;
 
-// Collective. Runs the creep analysis `settings` of `problem` from x (its
+// Collective. Runs the creep analysis `creep_case` of `problem` from x (its
 // mesh's placement, or the restart's state) over `time`'s grid, its initial
 // equilibrium in `load_steps`. `probe_vertex` (mesh numbering, or -1) adds
 // its displacement to the history.
-CreepRunResult run_creep_case(const CreepCase& settings, const TimeCase& time, int load_steps,
+CreepRunResult run_creep_case(const CreepCase& creep_case, const TimeCase& time, int load_steps,
                               ClothProblem& problem, Vec x, const CaseCheckpointing& checkpointing,
                               long probe_vertex, CreepCoupling& creep,
                               const CreepStateObserver& observe);

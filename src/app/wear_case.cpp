@@ -63,11 +63,9 @@ namespace {
 
 // Per fabric of the cloth: its creep parameters per direction, or
 // --creep-parameters for every fabric and direction.
-std::vector<CreepMaterial> wear_creep_materials(const Options& options,
+std::vector<CreepMaterial> wear_creep_materials(const CreepCase& creep,
                                                 const std::vector<std::string>& fabrics) {
-  if (const CreepCase creep = read_creep_case(options); creep.given) {
-    return std::vector<CreepMaterial>(fabrics.size(), *creep.given);
-  }
+  if (creep.given) return std::vector<CreepMaterial>(fabrics.size(), *creep.given);
   std::vector<CreepMaterial> materials;
   for (const std::string& name : fabrics) {
     const Fabric fabric = resolve_fabrics(name).front().fabric;
@@ -108,11 +106,10 @@ void select_vertices(const Options& options, const TriangleMesh& mesh,
   }
 }
 
-WearOptions wear_options(const Options& options) {
+WearOptions wear_options(const Options& options, const CreepCase& creep) {
   WearOptions wear;
   wear.wear.time_end = options.positive_real("wear-time");
   wear.wear.time_step = options.positive_real("wear-first-step");
-  const CreepCase creep = read_creep_case(options);
   wear.wear.min_step = creep.min_step;
   wear.wear.max_step = creep.max_step;
   wear.wear.creep_tolerance = creep.tolerance;
@@ -277,14 +274,15 @@ void attach_wear(const Options& options, const std::string& directory,
                  const ClothOutputLabels& labels, CaseCloth* cloth,
                  const std::shared_ptr<WearRun>& run) {
   const std::shared_ptr<const PosedMannequin> poses = wear_poses(options);
-  WearOptions settings = wear_options(options);
+  const CreepCase creep_case = read_creep_case(options);
+  WearOptions settings = wear_options(options, creep_case);
   if (poses) {
     settings.landings = poses->knots();
     settings.wear.follow_bodies = true;
   }
-  run->scheme = read_creep_case(options).scheme_name;
+  run->scheme = creep_scheme_name(creep_case.scheme);
   run->fabrics = cloth->fabrics;
-  const std::vector<CreepMaterial> creep = wear_creep_materials(options, cloth->fabrics);
+  const std::vector<CreepMaterial> creep = wear_creep_materials(creep_case, cloth->fabrics);
   const std::vector<double> gravity = option_numbers(options, "gravity", 3);
   const CaseCheckpointing checkpointing = case_checkpointing(options, directory);
   auto resume = std::make_shared<std::optional<WearResume>>();
