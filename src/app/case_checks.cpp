@@ -98,16 +98,14 @@ bool is_flat(const TriangleMesh& mesh) {
 
 } // namespace
 
-void reject_flat_membrane_without_bending(const Options& options, const TriangleMesh& mesh,
+void reject_flat_membrane_without_bending(bool quasi_static, bool pressurised,
+                                          const TriangleMesh& mesh,
                                           const std::vector<ClothMaterial>& materials,
                                           const std::vector<int>& pinned) {
-  const std::string analysis = options.text("analysis");
-  const bool quasi_static =
-      analysis == "static" || (analysis == "creep" && !options.flag("creep-dynamics"));
   const bool no_bending =
       std::all_of(materials.begin(), materials.end(),
                   [](const ClothMaterial& m) { return m.bending_stiffness == 0.0; });
-  if (!quasi_static || !no_bending || options.real("pressure") != 0.0) return;
+  if (!quasi_static || !no_bending || pressurised) return;
   if (pinned.size() >= mesh.vertex_count() || !is_flat(mesh)) return;
   throw InputError("option --bending-stiffness: a flat membrane without bending (0) has no "
                    "stiffness out of its plane, so the static equations are singular at the "

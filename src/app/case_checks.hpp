@@ -52,9 +52,11 @@ void check_panel_mesh_size(const garment::Pattern& pattern, double edge_length);
 void reject_unmet_residual(double force_scale, StaticReport* report);
 
 // A flat membrane without bending has no stiffness out of its plane at the
-// flat start: Newton's tangent is singular (static and quasi-static creep
-// analyses, no pressure). Throws InputError saying so.
-void reject_flat_membrane_without_bending(const Options& options, const TriangleMesh& mesh,
+// flat start: Newton's tangent is singular in a `quasi_static` analysis
+// (statics, creep without --creep-dynamics) that is not `pressurised`.
+// Throws InputError saying so.
+void reject_flat_membrane_without_bending(bool quasi_static, bool pressurised,
+                                          const TriangleMesh& mesh,
                                           const std::vector<ClothMaterial>& materials,
                                           const std::vector<int>& pinned);
 

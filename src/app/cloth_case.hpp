@@ -9,7 +9,12 @@
 #include "app/cli.hpp"
 #include "app/contact_case.hpp"
 #include "app/creep_case.hpp"
+#include "app/load_case.hpp"
+#include "app/material_case.hpp"
+#include "app/mesh_case.hpp"
 #include "app/seam_case.hpp"
+#include "app/static_case.hpp"
+#include "app/time_case.hpp"
 #include "element/membrane.hpp"
 #include "fem/checkpoint.hpp"
 #include "fem/cloth_output.hpp"
@@ -33,6 +38,30 @@ namespace sartor {
 // The options of a case (mesh, material, loads, pins, probe, load steps),
 // without --output: every command that solves a case declares these.
 const std::vector<OptionSpec>& case_option_specs();
+
+// A cloth case as its modules read it from the options, once: what a solve
+// takes. A drape copies it per level and changes the copy (its seams, its
+// edge samples, a finer level's relaxation), never the options.
+struct ClothCase {
+  MeshCase mesh;
+  TimeCase time;
+  MaterialCase material;
+  LoadCase loads;
+  StaticCase statics;
+  SeamCase seams;
+  ContactCase contact;
+  CertificateCase certificate;
+  std::optional<CreepCase> creep; // --analysis creep only
+  // An option given that the analysis does not take, as the error to report
+  // (empty: none). It is reported after the checks against the mesh (a seam
+  // option without seams says that first).
+  std::string inapplicable_option;
+};
+
+// Reads every module's options (`generated`: the mesh comes from --mesh, not
+// in memory) and finds any option the analysis does not take. Throws
+// InputError naming the option for a malformed value.
+ClothCase read_cloth_case(const Options& options, bool generated = true);
 
 struct CaseProbe {
   std::size_t vertex = 0;           // nearest mesh vertex to the --probe point
@@ -88,14 +117,13 @@ struct CaseResult {
   double cpu_at_end = 0.0;
 };
 
-// Collective. Solves the case the options describe, with `extra_refinements`
-// uniform refinements on top of --mesh-refine. Throws InputError for a bad
-// option; a solve that does not converge is reported in the result, not
-// thrown. Every field but positions and strains is the same on every rank.
-// With --analysis dynamic or creep, `observe` (when given) is called
-// collectively with the initial state and after every accepted time step;
-// `checkpointing` says where dynamic and creep runs write checkpoints and
-// resume from.
+// Collective. Solves the case, with `extra_refinements` uniform refinements
+// on top of --mesh-refine. Throws InputError for a bad input (a fabric, a
+// mesh, a setup the analysis cannot solve); a solve that does not converge is reported in the
+// result, not thrown. Every field but positions and strains is the same on every rank. With
+// --analysis dynamic or creep, `observe` (when given) is called collectively with the initial state
+// and after every accepted time step; `checkpointing` says where dynamic and creep runs write
+// checkpoints and resume from.
 struct CaseState {
   double time = 0.0;                    // s
   bool output = false;                  // an output time
@@ -129,7 +157,7 @@ void assign_panel_fabrics(const std::vector<garment::Panel>& panels, CaseCloth* 
 // (the creep parameters of a wear).
 void name_single_fabric(const CaseCloth& cloth, Options* options);
 
-CaseResult solve_case(const Options& options, int extra_refinements = 0,
+CaseResult solve_case(const ClothCase& cloth_case, int extra_refinements = 0,
                       const CaseStepObserver& observe = {},
                       const CaseCheckpointing& checkpointing = {},
                       const CaseCloth* cloth = nullptr);

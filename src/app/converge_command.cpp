@@ -302,6 +302,7 @@ int run_converge(const Invocation& invocation) {
         "dofs", quantity.name.c_str(), reference ? "error" : "change", reference ? "rel.err" : "",
         "order", "Newton", "solve (s)");
 
+  const ClothCase cloth_case = read_cloth_case(options);
   std::vector<Level> levels;
   std::vector<double> h, values;
   bool warned = false;
@@ -311,7 +312,7 @@ int run_converge(const Invocation& invocation) {
     level.directory = directory + "/level_" + std::to_string(k);
     print("%5d %6ld", k, base + k); // the rest of the row once the level is solved
     try {
-      level.result = solve_case(options, k);
+      level.result = solve_case(cloth_case, k);
     } catch (...) {
       print("\n");
       throw;

@@ -732,8 +732,10 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
   // The drape's final state, at full precision: `sartor edit DIRECTORY` resumes from it.
   CaseCheckpointing checkpointing = case_checkpointing(options, directory);
   checkpointing.final_state = directory + "/" + drape_state_file;
+  const ClothCase cloth_case = read_cloth_case(options, false);
+  const double refine_time = cloth_case.time.dynamic() ? options.positive_real("refine-time") : 0.0;
   const CaseResult result = drape_progressively(
-      options, constructed.construction, constructed.mesh_options, finest,
+      cloth_case, refine_time, constructed.construction, constructed.mesh_options, finest,
       drape_level_edge_lengths(options, constructed.construction, constructed.mesh_options),
       directory, labels, &levels, checkpointing);
 

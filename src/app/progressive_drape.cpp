@@ -1,5 +1,6 @@
 #include "app/progressive_drape.hpp"
 
+#include "app/case_checks.hpp"
 #include "app/commands.hpp"
 #include "app/contact_case.hpp"
 #include "common/csv.hpp"
@@ -28,22 +29,24 @@ namespace {
 // the T-shirt: 100 damped Newton steps from a residual of 3.6e3 N, then
 // pseudo-transient continuation for minutes (16 to 8 cm; the coarse drape
 // held 9 J of potential, the 8 cm one 2 J at rest).
-void set_finer_level_options(Options* options) {
+ClothCase finer_level_case(ClothCase level_case, double refine_time) {
   // A static drape (--analysis static) stays static on every level.
-  if (options->text("analysis") == "dynamic")
-    options->set("time-end", options->text("refine-time"));
-  for (const char* left_out :
-       {"sewing-tension", "sewing-time", "output-interval", "mesh-translate", "mesh-rotate-x"})
-    options->clear(left_out);
+  TimeCase& time = level_case.time;
+  if (time.dynamic()) {
+    check_time_divisions(refine_time, "refine-time", time.time_step, "time-step");
+    time.time_end = refine_time;
+    time.output_interval = 0.0;
+  }
+  level_case.seams.sewing_tension.reset();
+  level_case.seams.sewing_time.reset();
+  level_case.mesh.rotate_x = 0.0;
+  level_case.mesh.translate.setZero();
+  return level_case;
 }
 
-// The edge-sample spacing of a level before the last, as an option value.
-std::string coarse_edge_spacing(const Options& options, double edge_length) {
-  const double spacing = options.nonnegative_real("contact-edge-spacing");
-  char value[32];
-  std::snprintf(value, sizeof value, "%.17g",
-                spacing > 0.0 ? std::max(spacing, edge_length / 4.0) : 0.0);
-  return value;
+// The edge-sample spacing of a level before the last.
+double coarse_edge_spacing(double spacing, double edge_length) {
+  return spacing > 0.0 ? std::max(spacing, edge_length / 4.0) : 0.0;
 }
 
 // -log_view reports each level as its own stage, for as long as this lives.
@@ -339,7 +342,8 @@ std::vector<double> drape_level_edge_lengths(const Options& options,
   return lengths;
 }
 
-CaseResult drape_progressively(const Options& options, const garment::Construction& construction,
+CaseResult drape_progressively(const ClothCase& cloth_case, double refine_time,
+                               const garment::Construction& construction,
                                const PanelMeshOptions& mesh_options, const DrapeLevel& finest,
                                const std::vector<double>& edge_lengths,
                                const std::string& directory, const ClothOutputLabels& labels,
@@ -366,6 +370,7 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
                                 resume.level + 1, count));
   }
   std::vector<Eigen::Vector3d> solved = resume.solved;
+  const ClothCase finer = finer_level_case(cloth_case, refine_time);
   // The checkpointing of level l's solve, whose start `run` records.
   const auto level_checkpointing = [&](std::size_t l, const LevelRun& run, bool resumed) {
     if (count == 1) return checkpointing;
@@ -390,17 +395,18 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
     // edge there. With 1.5 cm samples on 16 cm edges the skirt's seams stayed
     // 6 cm open through the sewing stages; with none, the finer level
     // started with chords deep in the body (|F| 1e6 N).
-    Options level_options = options;
-    level_options.set("seams-file", level.seams_file);
-    if (l + 1 < count)
-      level_options.set("contact-edge-spacing", coarse_edge_spacing(options, level.edge_length));
+    ClothCase level_case = l == 0 ? cloth_case : finer;
+    level_case.seams.seams_file = level.seams_file;
+    if (l + 1 < count) {
+      level_case.contact.settings.edge_sample_spacing =
+          coarse_edge_spacing(cloth_case.contact.settings.edge_sample_spacing, level.edge_length);
+    }
     if (l == 0) {
       ClothOutputLabels coarsest = labels;
       coarsest.panel_of_triangle = level.panel_of_triangle;
       const CaseCheckpointing in_level = level_checkpointing(l, run, resumed);
-      result =
-          solve_case(level_options, 0, series_writer(directory, coarsest, in_level.restart_file),
-                     in_level, &level.cloth);
+      result = solve_case(level_case, 0, series_writer(directory, coarsest, in_level.restart_file),
+                          in_level, &level.cloth);
     } else {
       if (resumed) {
         level.cloth.mesh.positions = resume.start;
@@ -412,12 +418,10 @@ CaseResult drape_progressively(const Options& options, const garment::Constructi
         run.seam_gap_prolonged = closure.gap_before;
         run.seam_gap_start = closure.gap_after;
         run.outside_distance = prolongation.largest_outside_distance();
-        run.deepest_start =
-            lift_out_of_bodies(read_contact_case(level_options), level.cloth.mesh, &start);
+        run.deepest_start = lift_out_of_bodies(level_case.contact, level.cloth.mesh, &start);
         level.cloth.mesh.positions = start;
       }
-      set_finer_level_options(&level_options);
-      result = solve_case(level_options, 0, {}, level_checkpointing(l, run, resumed), &level.cloth);
+      result = solve_case(level_case, 0, {}, level_checkpointing(l, run, resumed), &level.cloth);
     }
     run.cpu_seconds = process_cpu_seconds() - cpu_start;
     record(result, &run);

@@ -60,19 +60,20 @@ struct LevelRun {
 // Collective. Drapes `finest` through `edge_lengths` (coarse to fine, the
 // last finest.edge_length): the coarser levels mesh `construction` at their
 // edge lengths, keep finest's panels and fabrics, and write their seams
-// files beside finest.seams_file. The coarsest level solves as the options
-// say (drape's dynamics with its sewing stage); every finer one relaxes for
-// --refine-time (no sewing stage) and settles, from the prolonged drape.
-// The coarsest level's time steps go to DIRECTORY/series.h5 (with `labels`
-// for its panels). Returns
-// the finest level's result, its solve_seconds summed over the levels;
-// `runs` gets one entry per level. A single
+// files beside finest.seams_file. The coarsest level solves `cloth_case`
+// (drape's dynamics with its sewing stage); every finer one relaxes for
+// `refine_time` s (--refine-time; no sewing stage) and settles, from the
+// prolonged drape. The coarsest level's time steps go to
+// DIRECTORY/series.h5 (with `labels` for its panels). Returns the finest
+// level's result, its solve_seconds summed over the levels; `runs` gets one
+// entry per level. A single
 // level is solve_case on `finest`, as before, with `checkpointing`. Several
 // levels with checkpoints: one at the end of every level before the last
 // (its positions and the LevelRuns so far), and in a static drape the level
 // solve's own within each level (with the level's record and start); a
 // restart goes on with the level after the checkpoint's, or within its level.
-CaseResult drape_progressively(const Options& options, const garment::Construction& construction,
+CaseResult drape_progressively(const ClothCase& cloth_case, double refine_time,
+                               const garment::Construction& construction,
                                const PanelMeshOptions& mesh_options, const DrapeLevel& finest,
                                const std::vector<double>& edge_lengths,
                                const std::string& directory, const ClothOutputLabels& labels,

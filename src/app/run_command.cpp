@@ -36,18 +36,6 @@
 
 namespace sartor {
 
-const std::vector<OptionSpec>& case_option_specs() {
-  static const std::vector<OptionSpec> all = [] {
-    std::vector<OptionSpec> options;
-    for (const auto& group : {mesh_option_specs, material_option_specs, load_option_specs,
-                              contact_option_specs, seam_option_specs, static_option_specs,
-                              time_option_specs, creep_option_specs, certificate_option_specs})
-      options.insert(options.end(), group().begin(), group().end());
-    return options;
-  }();
-  return all;
-}
-
 const CommandSpec& run_command() {
   static const CommandSpec spec{
       "run",
@@ -235,23 +223,25 @@ void solve_static_case(ClothProblem& problem, Vec x, const StaticOptions& solve,
   warn_unconverged_stages(result->report);
 }
 
-// --analysis, checked with the options that only some analyses take.
-void check_analysis(const TimeCase& time, const Options& options, const ClothProblem& problem,
-                    const TriangleMesh& mesh, const std::vector<ClothMaterial>& materials,
-                    const std::vector<int>& pinned, const ClothMaterial& material) {
-  if (!time.dynamic() && !time.creep() && options.is_set("pin-release")) {
-    throw InputError("option --pin-release: pins let go in time; give --analysis dynamic or creep");
-  }
-  options.reject_inapplicable("analysis", {"static", "dynamic", "creep"});
-  reject_flat_membrane_without_bending(options, mesh, materials, pinned);
-  if ((time.dynamic() || time.creep()) && problem.pin_motion != Eigen::Vector3d::Zero()) {
+// --analysis, checked with the options that only some analyses take, and
+// what the analysis needs of the built cloth: stiffness out of a flat
+// membrane's plane in statics, a positive areal density in dynamics.
+void check_analysis(const ClothCase& cloth_case, const TriangleMesh& mesh,
+                    const std::vector<ClothMaterial>& materials, const std::vector<int>& pinned,
+                    const ClothMaterial& material) {
+  const TimeCase& time = cloth_case.time;
+  if (!cloth_case.inapplicable_option.empty()) throw InputError(cloth_case.inapplicable_option);
+  const bool quasi_static = !time.dynamic() && !(cloth_case.creep && cloth_case.creep->dynamic);
+  reject_flat_membrane_without_bending(quasi_static, cloth_case.loads.pressure != 0.0, mesh,
+                                       materials, pinned);
+  if ((time.dynamic() || time.creep()) && cloth_case.loads.pin_move != Eigen::Vector3d::Zero()) {
     throw InputError("option --pin-move ramps the pins with the load in statics; with --analysis " +
                      time.analysis +
                      " give a history in time: --pin-motion \"0:0,0,0; T:DX,DY,DZ\"");
   }
   if (time.dynamic() && material.areal_density <= 0.0) {
     throw InputError("option --density: --analysis dynamic needs a positive areal density, got " +
-                     options.text("density"));
+                     format_number(material.areal_density));
   }
 }
 
@@ -324,31 +314,31 @@ void name_single_fabric(const CaseCloth& cloth, Options* options) {
   if (cloth.fabrics.size() == 1) options->set("fabric", cloth.fabrics.front());
 }
 
-CaseResult solve_case(const Options& options, int extra_refinements,
+CaseResult solve_case(const ClothCase& cloth_case, int extra_refinements,
                       const CaseStepObserver& observe, const CaseCheckpointing& checkpointing,
                       const CaseCloth* cloth) {
   const auto started = std::chrono::steady_clock::now();
   CaseResult result;
-  const MeshCase mesh_case = read_mesh_case(options, cloth == nullptr);
-  const TimeCase time = read_time_case(options);
+  const MeshCase& mesh_case = cloth_case.mesh;
+  const TimeCase& time = cloth_case.time;
   result.mesh =
       build_mesh(mesh_case, extra_refinements, &result.mesh_refine, cloth ? &cloth->mesh : nullptr);
   const TriangleMesh& mesh = result.mesh;
   // One material per fabric: the cloth's, or --fabric's.
-  const MaterialCase material_case = read_material_case(options);
+  const MaterialCase& material_case = cloth_case.material;
   const std::vector<ClothMaterial> materials = case_materials(
       material_case, cloth ? cloth->fabrics : std::vector<std::string>{material_case.fabric},
       mesh.creases.size());
-  if (materials.size() > 1 && (options.flag("seam-merge") || time.creep())) {
+  const SeamCase& seam_case = cloth_case.seams;
+  if (materials.size() > 1 && (seam_case.merge || time.creep())) {
     throw InputError("the cloth has " + std::to_string(materials.size()) +
                      " fabrics; --seam-merge and --analysis creep need one: give --fabric");
   }
   const ClothMaterial& material = stiffest_material(materials);
-  const LoadCase load_case = read_load_case(options);
-  const StaticCase statics = read_static_case(options);
+  const LoadCase& load_case = cloth_case.loads;
+  const StaticCase& statics = cloth_case.statics;
   std::vector<int> pinned = pinned_vertices(load_case, mesh);
   // Seams (app/seam_case.hpp): sewn by springs, or sewn first and merged.
-  const SeamCase seam_case = read_seam_case(options);
   const std::vector<Seam> seams = case_seams(seam_case, mesh_case, mesh, result.mesh_refine);
   if (!seams.empty()) result.seams = SeamReport{};
   if (!seams.empty() && seam_case.merge) {
@@ -367,16 +357,16 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   set_case_loads(load_case, mesh, &problem.loads);
   problem.pin_motion = load_case.pin_move;
   problem.pin_groups = pin_groups(load_case, mesh, pinned);
-  const ContactCase contact_case = read_contact_case(options);
+  const ContactCase& contact_case = cloth_case.contact;
   set_up_contact(contact_case, problem);
-  problem.contact.project_hessian = options.flag("membrane-psd");
+  problem.contact.project_hessian = material_case.project_membrane;
   if (result.seams && !result.seams->merged) {
     // Static sewing stages start from this pull (before the springs are made).
     if (time.analysis == "static" && statics.sewing_stages > 1)
       problem.sewing_tension = statics.sewing_start_tension;
     attach_seams(seam_case, time, seams, material, problem, &*result.seams);
   }
-  check_analysis(time, options, problem, mesh, materials, pinned, material);
+  check_analysis(cloth_case, mesh, materials, pinned, material);
   const bool dynamic = time.dynamic();
   const bool creep = time.creep();
   const StaticOptions solve = static_options(statics, problem.seam_coupling());
@@ -389,14 +379,14 @@ CaseResult solve_case(const Options& options, int extra_refinements,
   if (dynamic) {
     solve_dynamic_case(time, problem, x, observe, checkpointing, &result);
   } else if (creep) {
-    solve_creep_case(read_creep_case(options), time, statics.load_steps, material_case.fabric,
-                     problem, x, observe, checkpointing, &result);
+    solve_creep_case(*cloth_case.creep, time, statics.load_steps, material_case.fabric, problem, x,
+                     observe, checkpointing, &result);
   } else {
     solve_static_case(problem, x, solve, checkpointing, &result);
   }
   // The final state of statics, or of a settle, is certified (a saddle is not converged).
   const bool settled = result.dynamics && result.dynamics->settled;
-  const CertificateCase certificate = read_certificate_case(options);
+  const CertificateCase& certificate = cloth_case.certificate;
   if (!creep && (!dynamic || settled) && certificate.certify) {
     result.certified =
         certify_case(certificate, problem, x, dynamic ? nullptr : &solve, &result.report);
@@ -719,7 +709,7 @@ int run_run(const Invocation& invocation) {
   const ClothOutputLabels labels{{options.text("fabric")}, {}, {}};
   const CaseCheckpointing checkpointing = case_checkpointing(options, directory);
   const CaseStepObserver write_state = series_writer(directory, labels, checkpointing.restart_file);
-  const CaseResult result = solve_case(options, 0, write_state, checkpointing);
+  const CaseResult result = solve_case(read_cloth_case(options), 0, write_state, checkpointing);
 
   nlohmann::json summary = run_metadata(invocation, "run");
   summary["case"] = invocation.command_line.positionals.at(0);

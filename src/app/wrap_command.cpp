@@ -95,7 +95,7 @@ void drape_wrapped(const Invocation& invocation, const garment::WrapResult& wrap
   assign_panel_fabrics(pattern.panels, &cloth);
   name_single_fabric(cloth, &options);
   labels.fabrics = cloth.fabrics;
-  const CaseResult result = solve_case(options, 0, {}, {}, &cloth);
+  const CaseResult result = solve_case(read_cloth_case(options, false), 0, {}, {}, &cloth);
   const std::string drape_directory = directory + "/drape";
   if (is_root()) make_output_directory(drape_directory);
   nlohmann::json summary = run_metadata(drape, "wrap");
