@@ -29,6 +29,13 @@ CertificateCase read_certificate_case(const Options& options) {
   return certificate;
 }
 
+std::string certificate_verdict(const CertificateCase& certificate,
+                                const std::optional<CertifiedState>& certified) {
+  return certified              ? certified->certificate.verdict()
+         : !certificate.certify ? "skipped"
+                                : "not certified";
+}
+
 namespace {
 
 double cloth_size(const TriangleMesh& mesh) {

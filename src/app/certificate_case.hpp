@@ -10,6 +10,8 @@
 
 #include <petscvec.h>
 
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace sartor {
@@ -32,6 +34,12 @@ struct CertifiedState {
   int escapes = 0;        // pushes off a saddle
   double push_size = 0.0; // m: the largest vertex displacement of a push
 };
+
+// The verdict a run reports on its final state: the certificate's, "skipped"
+// (--no-certificate) or "not certified" (nothing to certify: dynamics
+// without a settle, creep, a failed solve).
+std::string certificate_verdict(const CertificateCase& certificate,
+                                const std::optional<CertifiedState>& certified);
 
 // Collective. Certifies x; in statics (`solve` given), while it is a saddle
 // and escapes are left, pushes and re-solves, adding the solves' statistics

@@ -521,15 +521,16 @@ struct DrapeMeasures {
   bool converged = false;
 };
 
-DrapeMeasures measure_drape(const Options& options, const CaseResult& result,
-                            const contact::GarmentBody& body, const Eigen::Vector3d& weight) {
+DrapeMeasures measure_drape(const Options& options, const ClothCase& cloth_case,
+                            const CaseResult& result, const contact::GarmentBody& body,
+                            const Eigen::Vector3d& weight) {
   DrapeMeasures m;
   for (const BodyContact& report : result.contact.reports) {
     m.reaction += report.normal_force + report.friction_force;
     m.penetration = std::max(m.penetration, report.max_penetration);
     m.closest = std::min(m.closest, report.min_distance);
   }
-  m.offset = options.real("contact-offset");
+  m.offset = cloth_case.contact.settings.offset;
   // At rest the body's reaction on the garment cancels its weight (pins, when
   // a user adds some, take their share: pin_reaction_N).
   m.imbalance = m.reaction + result.pin_reaction + weight;
@@ -550,13 +551,6 @@ DrapeMeasures measure_drape(const Options& options, const CaseResult& result,
   m.converged =
       result.converged && (m.residual < 0.0 || m.equilibrium) && m.outcome.end == DrapeEnd::on_body;
   return m;
-}
-
-// The settled state's certificate verdict (its details: summary.json's certificate).
-std::string certificate_verdict(const Options& options, const CaseResult& result) {
-  return result.certified                 ? result.certified->certificate.verdict()
-         : options.flag("no-certificate") ? "skipped"
-                                          : "not certified";
 }
 
 // summary.json's construction section (its details: construct.json).
@@ -740,12 +734,13 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
       directory, labels, &levels, checkpointing);
 
   // 4. What the drape achieved.
-  const DrapeMeasures measures = measure_drape(options, result, *constructed.body, weight);
+  const DrapeMeasures measures =
+      measure_drape(options, cloth_case, result, *constructed.body, weight);
   const double construction_seconds =
       constructed.construction.placement_seconds + constructed.construction.seam_seconds;
   const double total_seconds = std::chrono::duration<double>(Clock::now() - started).count();
 
-  const std::string verdict = certificate_verdict(options, result);
+  const std::string verdict = certificate_verdict(cloth_case.certificate, result.certified);
   nlohmann::json summary = run_metadata(drape, command);
   summary["pattern"] = path;
   summary["pattern_file"] = std::filesystem::absolute(path).lexically_normal().string();

@@ -709,7 +709,8 @@ int run_run(const Invocation& invocation) {
   const ClothOutputLabels labels{{options.text("fabric")}, {}, {}};
   const CaseCheckpointing checkpointing = case_checkpointing(options, directory);
   const CaseStepObserver write_state = series_writer(directory, labels, checkpointing.restart_file);
-  const CaseResult result = solve_case(read_cloth_case(options), 0, write_state, checkpointing);
+  const ClothCase cloth_case = read_cloth_case(options);
+  const CaseResult result = solve_case(cloth_case, 0, write_state, checkpointing);
 
   nlohmann::json summary = run_metadata(invocation, "run");
   summary["case"] = invocation.command_line.positionals.at(0);
@@ -753,9 +754,7 @@ int run_run(const Invocation& invocation) {
     }
     return 0;
   }
-  const std::string verdict = result.certified ? result.certified->certificate.verdict()
-                              : options.flag("no-certificate") ? "skipped"
-                                                               : "not certified";
+  const std::string verdict = certificate_verdict(cloth_case.certificate, result.certified);
   SartorPetscCall(
       PetscPrintf(PETSC_COMM_WORLD,
                   "sartor run: %zu triangles, %s after %d Newton iterations in %zu load "
