@@ -279,7 +279,8 @@ Outcome run_in_process(const sartor::Command& command, const std::vector<std::st
   try {
     sartor::ParsedCommandLine parsed = sartor::parse_command_line(command.spec(), "sartor", words);
     load_options(parsed);
-    sartor::Invocation invocation{parsed, sartor::Options(command.spec()), words, {}};
+    sartor::Invocation invocation{
+        parsed, sartor::Options(command.spec(), parsed.given_names), words, {}};
     invocation.arguments.insert(invocation.arguments.begin(), name);
     invocation.keep_result = [&outcome](const CaseResult& result, const nlohmann::json& summary,
                                         const ClothOutputLabels& labels) {

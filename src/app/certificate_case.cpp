@@ -7,17 +7,19 @@
 namespace sartor {
 
 const std::vector<OptionSpec>& certificate_option_specs() {
-  static const std::vector<OptionSpec> specs{
-      {"no-certificate", "", "",
-       "skip the certificate of the final state (docs/certificate.md; its stability check "
-       "factorises the Hessian twice)"},
-      {"escape-saddles", "N", "3",
-       "static: when the certificate finds directions of descent (a saddle), push the state "
-       "along the lowest mode and solve again, up to N times (0: report the saddle)"},
-      {"saddle-push", "R", "0.01",
-       "static: the push's largest vertex displacement, relative to the diagonal of the "
-       "cloth's starting bounding box"},
-  };
+  static const std::vector<OptionSpec> specs = with_module_prefix(
+      {
+          {"no-certificate", "", "",
+           "skip the certificate of the final state (docs/certificate.md; its stability check "
+           "factorises the Hessian twice)"},
+          {"escape-saddles", "N", "3",
+           "static: when the certificate finds directions of descent (a saddle), push the state "
+           "along the lowest mode and solve again, up to N times (0: report the saddle)"},
+          {"saddle-push", "R", "0.01",
+           "static: the push's largest vertex displacement, relative to the diagonal of the "
+           "cloth's starting bounding box"},
+      },
+      {"certificate"}, {{"no-certificate", "certificate-skip"}});
   return specs;
 }
 

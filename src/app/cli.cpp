@@ -34,6 +34,24 @@ std::vector<std::string> option_entries(const OptionSpec& option) {
   return names;
 }
 
+std::vector<OptionSpec> with_module_prefix(std::vector<OptionSpec> options,
+                                           const std::vector<std::string>& prefixes,
+                                           const std::map<std::string, std::string>& renamed) {
+  for (OptionSpec& option : options) {
+    const bool prefixed = std::any_of(prefixes.begin(), prefixes.end(), [&](const std::string& p) {
+      return option.name.rfind(p + "-", 0) == 0;
+    });
+    if (prefixed) continue;
+    const auto rename = renamed.find(option.name);
+    const std::string name =
+        rename != renamed.end() ? rename->second : prefixes.front() + "-" + option.name;
+    if (name == option.name) continue;
+    option.alias = option.name;
+    option.name = name;
+  }
+  return options;
+}
+
 namespace {
 
 std::size_t edit_distance(const std::string& a, const std::string& b) {
@@ -64,12 +82,25 @@ int list_index(const std::string& list, const std::string& name) {
   return index >= 2 ? index : 0;
 }
 
+// The index of `name` among the entries of `option` (1 for its own name or
+// alias, 2 to 99 for their numbered entries), 0 where it is none of them.
+int entry_index(const OptionSpec& option, const std::string& name) {
+  if (option.answers_to(name)) return 1;
+  if (!option.indexed) return 0;
+  const int own = list_index(option.name, name);
+  return own > 0 ? own : option.alias.empty() ? 0 : list_index(option.alias, name);
+}
+
+std::string entry_name(const std::string& list, int index) {
+  return index == 1 ? list : list + std::to_string(index);
+}
+
 const OptionSpec* lookup(const CommandSpec& spec, const std::string& name) {
   for (const auto& option : spec.options) {
-    if (option.name == name) return &option;
+    if (option.answers_to(name)) return &option;
   }
   for (const auto& option : spec.options) {
-    if (option.indexed && list_index(option.name, name) > 0) return &option;
+    if (entry_index(option, name) > 0) return &option;
   }
   return nullptr;
 }
@@ -78,14 +109,18 @@ const OptionSpec* lookup(const CommandSpec& spec, const std::string& name) {
   std::string message = "sartor " + spec.name + ": unknown option --" + name;
   const OptionSpec* closest = nullptr;
   std::size_t best = 3;
+  std::string closest_name;
   for (const auto& option : spec.options) {
-    const std::size_t distance = edit_distance(name, option.name);
-    if (distance < best) {
-      best = distance;
-      closest = &option;
+    for (const std::string& candidate : {option.name, option.alias}) {
+      const std::size_t distance = candidate.empty() ? best : edit_distance(name, candidate);
+      if (distance < best) {
+        best = distance;
+        closest = &option;
+        closest_name = candidate;
+      }
     }
   }
-  if (closest) message += " (did you mean --" + closest->name + "?)";
+  if (closest) message += " (did you mean --" + closest_name + "?)";
   throw InputError(message + "; see `sartor " + spec.name + " --help`");
 }
 
@@ -136,6 +171,11 @@ void check_case_file(const CommandSpec& spec, const std::string& path) {
 
 } // namespace
 
+std::string alias_entry(const OptionSpec& option, const std::string& entry) {
+  const int index = entry_index(option, entry);
+  return option.alias.empty() || index == 0 ? "" : entry_name(option.alias, index);
+}
+
 ParsedCommandLine parse_command_line(const CommandSpec& spec, const std::string& program,
                                      const std::vector<std::string>& arguments) {
   ParsedCommandLine parsed;
@@ -169,6 +209,7 @@ ParsedCommandLine parse_command_line(const CommandSpec& spec, const std::string&
       }
       parsed.petsc_arguments.push_back(database_key(name));
       parsed.petsc_arguments.push_back(value);
+      parsed.given_names.insert(name);
     } else if ((argument == "-options_file_yaml" || argument == "-options_file") &&
                i + 1 < arguments.size() && !std::ifstream(arguments[i + 1])) {
       throw InputError("sartor " + spec.name + ": " + arguments[i + 1] +
@@ -179,6 +220,9 @@ ParsedCommandLine parse_command_line(const CommandSpec& spec, const std::string&
     } else if (argument.size() > 1 && argument[0] == '-') {
       // A PETSc option; a following word that is not an option is its value.
       parsed.petsc_arguments.push_back(argument);
+      std::string name = argument.substr(1);
+      std::replace(name.begin(), name.end(), '_', '-');
+      if (lookup(spec, name)) parsed.given_names.insert(name);
       if (i + 1 < arguments.size() && arguments[i + 1].rfind('-', 0) != 0) {
         parsed.petsc_arguments.push_back(arguments[++i]);
       }
@@ -226,12 +270,22 @@ std::string help_text(const CommandSpec& spec) {
           << std::string(30, ' ') << "a list: --" << option.name << ", --" << option.name
           << "2, ... --" << option.name << largest_list_index;
     }
+    if (!option.alias.empty())
+      out << "\n"
+          << std::string(30, ' ') << "or --" << option.alias << (option.indexed ? "[N]" : "");
     out << "\n";
   }
   out << "  -h, --help                  this text\n\n"
          "Options can also come from a YAML file (-options_file_yaml FILE, keys without\n"
          "dashes, e.g. load_duration: 3600). PETSc options (-log_view, -options_view,\n"
          "-tao_monitor, ...) are accepted as well.\n";
+  const bool prefixed = std::any_of(spec.options.begin(), spec.options.end(),
+                                    [](const OptionSpec& option) { return !option.alias.empty(); });
+  if (prefixed) {
+    out << "An option named with its module's prefix may be grouped under it in YAML\n"
+           "(material: then warp_modulus: 5000 indented below it); its other name (\"or\")\n"
+           "is the same option.\n";
+  }
   return out.str();
 }
 
@@ -241,55 +295,99 @@ const OptionSpec& Options::find(const std::string& name) const {
   return *option;
 }
 
-bool Options::given(const std::string& name, const char** value) const {
-  find(name);
+std::string Options::own_name(const std::string& name) const {
+  const OptionSpec& option = find(name);
+  return entry_name(option.name, entry_index(option, name));
+}
+
+namespace {
+
+// An entry's value in the database under `name` (nullptr for a flag without one).
+bool database_value(const std::string& name, const char** value) {
   *value = nullptr;
+  if (name.empty()) return false;
   PetscBool set = PETSC_FALSE;
   // The value in full: PETSc's string getter would cut it at 4,095 characters.
   SartorPetscCall(PetscOptionsFindPair(nullptr, nullptr, database_key(name).c_str(), value, &set));
   return set == PETSC_TRUE;
 }
 
+} // namespace
+
+bool Options::given(const std::string& name, const char** value) const {
+  const std::string own = own_name(name);
+  const std::string alias = alias_entry(find(name), own);
+  const char* by_alias = nullptr;
+  const bool own_set = database_value(own, value);
+  const bool alias_set = database_value(alias, &by_alias);
+  if (!alias_set) return own_set;
+  const auto text_of = [](const char* v) { return std::string(v ? v : ""); };
+  const bool own_on_command_line = command_line_.count(own) > 0;
+  const bool alias_on_command_line = command_line_.count(alias) > 0;
+  if (!own_set || (alias_on_command_line && !own_on_command_line)) {
+    *value = by_alias;
+  } else if (text_of(*value) != text_of(by_alias) && own_on_command_line == alias_on_command_line) {
+    throw InputError("option --" + own + " is given twice, as '" + text_of(*value) + "' and as '" +
+                     text_of(by_alias) + "' by its other name --" + alias);
+  }
+  return true;
+}
+
+std::string Options::other_name(const std::string& name) const {
+  const OptionSpec* option = lookup(spec_, name);
+  if (!option) return "";
+  const std::string own = own_name(name);
+  return own == name ? alias_entry(*option, own) : own;
+}
+
+std::string Options::name_given(const std::string& name) const {
+  const std::string own = own_name(name);
+  const std::string alias = alias_entry(find(name), own);
+  const char* value = nullptr;
+  if (!database_value(alias, &value)) return own;
+  return database_value(own, &value) && !command_line_.count(alias) ? own : alias;
+}
+
 bool Options::is_set(const std::string& name) const {
   const char* value = nullptr;
   const bool in_database = given(name, &value);
-  if (const auto replaced = replaced_.find(name); replaced != replaced_.end())
+  const std::string own = own_name(name);
+  if (const auto replaced = replaced_.find(own); replaced != replaced_.end())
     return replaced->second.has_value();
-  return in_database || defaults_.count(name) > 0;
+  return in_database || defaults_.count(own) > 0;
 }
 
 std::string Options::text(const std::string& name) const {
   const OptionSpec& option = find(name);
   const char* value = nullptr;
   const bool in_database = given(name, &value);
-  if (const auto replaced = replaced_.find(name); replaced != replaced_.end())
+  const std::string own = own_name(name);
+  if (const auto replaced = replaced_.find(own); replaced != replaced_.end())
     return replaced->second.value_or(option.fallback);
   if (!in_database) {
-    const auto command_default = defaults_.find(name);
+    const auto command_default = defaults_.find(own);
     return command_default != defaults_.end() ? command_default->second : option.fallback;
   }
   if ((!value || value[0] == '\0') && !option.value_name.empty()) {
-    throw InputError("option --" + name + " needs a value (" + option.value_name + ")");
+    throw InputError("option --" + name_given(name) + " needs a value (" + option.value_name + ")");
   }
   return value ? value : "";
 }
 
 void Options::set_default(const std::string& name, const std::string& value) {
   if (is_set(name)) return;
-  replaced_.erase(name);
-  defaults_[name] = value;
+  replaced_.erase(own_name(name));
+  defaults_[own_name(name)] = value;
 }
 
 void Options::set(const std::string& name, const std::string& value) {
-  find(name);
-  defaults_.erase(name);
-  replaced_[name] = value;
+  defaults_.erase(own_name(name));
+  replaced_[own_name(name)] = value;
 }
 
 void Options::clear(const std::string& name) {
-  find(name);
-  defaults_.erase(name);
-  replaced_[name] = std::nullopt;
+  defaults_.erase(own_name(name));
+  replaced_[own_name(name)] = std::nullopt;
 }
 
 std::vector<std::pair<std::string, std::string>> Options::command_defaults() const {
@@ -307,18 +405,20 @@ double Options::real(const std::string& name) const {
     if (used == value.size() && std::isfinite(number)) return number;
   } catch (const std::exception&) {
   }
-  throw InputError("option --" + name + ": '" + value + "' is not a finite number");
+  throw InputError("option --" + name_given(name) + ": '" + value + "' is not a finite number");
 }
 
 double Options::positive_real(const std::string& name) const {
   const double value = real(name);
-  if (value <= 0.0) throw InputError("option --" + name + ": must be > 0, got " + text(name));
+  if (value <= 0.0)
+    throw InputError("option --" + name_given(name) + ": must be > 0, got " + text(name));
   return value;
 }
 
 double Options::nonnegative_real(const std::string& name) const {
   const double value = real(name);
-  if (value < 0.0) throw InputError("option --" + name + ": must be >= 0, got " + text(name));
+  if (value < 0.0)
+    throw InputError("option --" + name_given(name) + ": must be >= 0, got " + text(name));
   return value;
 }
 
@@ -336,11 +436,12 @@ long Options::integer_in(const std::string& name, long minimum, long maximum) co
   } catch (const std::out_of_range&) {
     number = value.find('-') == std::string::npos ? LONG_MAX : LONG_MIN;
   } catch (const std::exception&) {
-    throw InputError("option --" + name + ": '" + value + "' is not an integer");
+    throw InputError("option --" + name_given(name) + ": '" + value + "' is not an integer");
   }
   if (number < minimum || number > maximum) {
-    throw InputError("option --" + name + ": must be between " + std::to_string(minimum) + " and " +
-                     std::to_string(maximum) + ", got " + value);
+    throw InputError("option --" + name_given(name) + ": must be between " +
+                     std::to_string(minimum) + " and " + std::to_string(maximum) + ", got " +
+                     value);
   }
   return number;
 }
@@ -378,8 +479,9 @@ void Options::reject_inapplicable(const std::string& selector,
     std::string list;
     for (const auto& scope : scopes)
       list += (list.empty() ? "" : " or ") + scope;
-    throw InputError("option --" + option.name + " applies to --" + selector + " " + list +
-                     " only, not to --" + selector + " " + kind);
+    throw InputError("option --" + name_given(option.name) + " applies to --" +
+                     name_given(selector) + " " + list + " only, not to --" + name_given(selector) +
+                     " " + kind);
   }
 }
 
@@ -388,7 +490,7 @@ bool Options::flag(const std::string& name) const {
   const std::string value = text(name);
   if (value.empty() || value == "true" || value == "1" || value == "yes") return true;
   if (value == "false" || value == "0" || value == "no") return false;
-  throw InputError("option --" + name + ": '" + value + "' is not true or false");
+  throw InputError("option --" + name_given(name) + ": '" + value + "' is not true or false");
 }
 
 std::vector<std::pair<std::string, std::string>> Options::indexed(const std::string& name) const {
@@ -396,7 +498,7 @@ std::vector<std::pair<std::string, std::string>> Options::indexed(const std::str
   if (!list.indexed) throw std::logic_error("option --" + name + " is not a list");
   std::vector<std::pair<std::string, std::string>> entries;
   for (const std::string& entry : option_entries(list))
-    if (is_set(entry)) entries.emplace_back(entry, text(entry));
+    if (is_set(entry)) entries.emplace_back(name_given(entry), text(entry));
   return entries;
 }
 
@@ -404,8 +506,8 @@ std::vector<std::pair<std::string, std::string>> Options::effective() const {
   std::vector<std::pair<std::string, std::string>> values;
   for (const auto& option : spec_.options) {
     if (option.indexed) {
-      const auto entries = indexed(option.name);
-      values.insert(values.end(), entries.begin(), entries.end());
+      for (const auto& [entry, value] : indexed(option.name))
+        values.emplace_back(own_name(entry), value);
     } else if (option.value_name.empty()) {
       values.emplace_back(option.name, flag(option.name) ? "true" : "false");
     } else if (is_set(option.name) || !option.fallback.empty()) {

@@ -14,19 +14,21 @@
 namespace sartor {
 
 const std::vector<OptionSpec>& contact_option_specs() {
-  static const std::vector<OptionSpec> specs{
-      {"body", "SPEC", "",
-       "a rigid body, e.g. \"sphere center=0,0,0 radius=0.3 mu=0.3\" (docs/contact.md)", true},
-      {"contact-offset", "M", "0.001", "distance kept between cloth vertices and bodies, m"},
-      {"contact-stiffness", "N/M", "",
-       "penalty stiffness per vertex, N/m [factor * E_max * vertex area / h^2]"},
-      {"contact-stiffness-factor", "C", "1", "the factor of the automatic penalty stiffness"},
-      {"contact-edge-spacing", "M", "0",
-       "penalty samples along cloth edges at most this far apart, m (0: vertices only; "
-       "static drapes: 0.015)"},
-      {"drape-support-radius", "M", "",
-       "report the Cusick drape coefficient for a support disk of this radius, m"},
-  };
+  static const std::vector<OptionSpec> specs = with_module_prefix(
+      {
+          {"body", "SPEC", "",
+           "a rigid body, e.g. \"sphere center=0,0,0 radius=0.3 mu=0.3\" (docs/contact.md)", true},
+          {"contact-offset", "M", "0.001", "distance kept between cloth vertices and bodies, m"},
+          {"contact-stiffness", "N/M", "",
+           "penalty stiffness per vertex, N/m [factor * E_max * vertex area / h^2]"},
+          {"contact-stiffness-factor", "C", "1", "the factor of the automatic penalty stiffness"},
+          {"contact-edge-spacing", "M", "0",
+           "penalty samples along cloth edges at most this far apart, m (0: vertices only; "
+           "static drapes: 0.015)"},
+          {"drape-support-radius", "M", "",
+           "report the Cusick drape coefficient for a support disk of this radius, m"},
+      },
+      {"contact"}, {{"drape-support-radius", "contact-support-radius"}});
   return specs;
 }
 

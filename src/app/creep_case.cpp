@@ -13,23 +13,25 @@
 namespace sartor {
 
 const std::vector<OptionSpec>& creep_option_specs() {
-  static const std::vector<OptionSpec> specs{
-      {"load-history", "HISTORY", "",
-       "creep: load factor in time 'T:F; ...' (s; two knots at one time: a jump) [1 always]"},
-      {"creep-tolerance", "EPS", "1e-3",
-       "creep: target largest non-elastic strain increment of a time step"},
-      {"min-time-step", "S", "1e-6", "creep: a step cut below this ends the run, s"},
-      {"max-time-step", "S", "0", "creep: largest time step, s (0: no limit)"},
-      {"creep-scheme", "NAME", "staggered",
-       "creep: staggered (thesis Algorithm 2: solve, update, solve) or monolithic (the creep "
-       "update inside Newton's residual, consistent tangent)"},
-      {"creep-dynamics", "", "",
-       "creep: each step a backward Euler step with inertia (--density) and --damping "
-       "instead of static equilibrium (the dynamic variant)"},
-      {"creep-parameters", "E,ALPHA,LL,LU", "",
-       "creep: E (N/m), alpha, lambda_load, lambda_unload (1/s) for both directions [the "
-       "fabric's]"},
-  };
+  static const std::vector<OptionSpec> specs = with_module_prefix(
+      {
+          {"load-history", "HISTORY", "",
+           "creep: load factor in time 'T:F; ...' (s; two knots at one time: a jump) [1 always]"},
+          {"creep-tolerance", "EPS", "1e-3",
+           "creep: target largest non-elastic strain increment of a time step"},
+          {"min-time-step", "S", "1e-6", "creep: a step cut below this ends the run, s"},
+          {"max-time-step", "S", "0", "creep: largest time step, s (0: no limit)"},
+          {"creep-scheme", "NAME", "staggered",
+           "creep: staggered (thesis Algorithm 2: solve, update, solve) or monolithic (the creep "
+           "update inside Newton's residual, consistent tangent)"},
+          {"creep-dynamics", "", "",
+           "creep: each step a backward Euler step with inertia (--density) and --damping "
+           "instead of static equilibrium (the dynamic variant)"},
+          {"creep-parameters", "E,ALPHA,LL,LU", "",
+           "creep: E (N/m), alpha, lambda_load, lambda_unload (1/s) for both directions [the "
+           "fabric's]"},
+      },
+      {"creep"});
   return specs;
 }
 

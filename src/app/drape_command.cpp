@@ -302,27 +302,29 @@ const CommandSpec& drape_command() {
           for (const auto* defaults :
                {&drape_defaults(), &drape_dynamic_defaults(), &drape_sewing_defaults(false),
                 &drape_sewing_defaults(true)}) {
-            const auto changed = defaults->find(option.name);
-            if (changed != defaults->end()) option.fallback = changed->second;
+            for (const auto& [name, value] : *defaults)
+              if (option.answers_to(name)) option.fallback = value;
           }
-          if (option.name == "sewing-time") option.help = "dynamic: the end of the sewing stage, s";
-          if (option.name == "bending-model") {
+          if (option.answers_to("sewing-time"))
+            option.help = "dynamic: the end of the sewing stage, s";
+          if (option.answers_to("bending-model")) {
             option.fallback = "patch";
             option.help += "; drape's dynamics: discrete_shell";
           }
-          const auto& flags = drape_flags(true);
-          if (std::count(flags.begin(), flags.end(), option.name)) {
-            const bool always =
-                std::count(drape_flags(false).begin(), drape_flags(false).end(), option.name) > 0;
-            option.help += always ? " [on in drape]" : " [on in drape's dynamics]";
-          }
-          if (option.name == "fabric") {
+          const auto among = [&](const std::vector<std::string>& names) {
+            return std::any_of(names.begin(), names.end(),
+                               [&](const std::string& name) { return option.answers_to(name); });
+          };
+          if (among(drape_flags(true)))
+            option.help +=
+                among(drape_flags(false)) ? " [on in drape]" : " [on in drape's dynamics]";
+          if (option.answers_to("fabric")) {
             option.fallback.clear();
             option.help = "the fabric of every panel, a preset, FILE.yaml or measured FILE.json "
                           "[the pattern's]";
           }
-          if (option.name == "seams-file") option = seams_file_option_spec();
-          if (option.name == "body")
+          if (option.answers_to("seams-file")) option = seams_file_option_spec();
+          if (option.answers_to("body"))
             option.help = "the body, with a skeleton: \"mannequin [measurements=FILE.json] "
                           "[pose=JOINT:DEG,...] mu=...\" or \"mesh file=BODY.obj "
                           "skeleton=SKELETON.json mu=...\" (docs/bodies.md)";
@@ -374,7 +376,7 @@ namespace {
 void check_drape_options(const Options& options) {
   for (const OptionSpec& option : drape_command().options) {
     if (is_mesh_option(option.name) && options.is_set(option.name)) {
-      throw InputError("option --" + option.name +
+      throw InputError("option --" + options.name_given(option.name) +
                        " does not apply to sartor drape: the garment's mesh and seams come from "
                        "the pattern (--edge-length, --min-angle)");
     }

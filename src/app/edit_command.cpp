@@ -165,7 +165,10 @@ std::string edit_fallback(const std::string& name) {
 // an edit's value that differs from the drape's.
 void keep_drape_value(const DrapeDirectory& drape, const OptionSpec& option,
                       const std::string& name, Options* options) {
-  const auto found = drape.options.find(database_key(name));
+  // Drapes echo an option by the name it was given.
+  auto found = drape.options.find(database_key(name));
+  if (found == drape.options.end() && !option.alias.empty())
+    found = drape.options.find(database_key(alias_entry(option, name)));
   const std::string* echoed = found == drape.options.end() ? nullptr : &found->second;
   if (!echoed && edit_fallback(option.name) != option.fallback)
     options->set_default(name, option.fallback);
@@ -176,11 +179,11 @@ void keep_drape_value(const DrapeDirectory& drape, const OptionSpec& option,
     throw InputError("option --restart: an edit of " + drape.directory + " resumes from its " +
                      drape_state_file);
   }
-  throw InputError("option --" + name + ": " + drape.directory + " was draped with " +
-                   (values.drape.empty() ? "none" : "'" + values.drape + "'") + ", not '" +
-                   values.edit +
-                   "'; an edit of a drape keeps the drape's options (give PATTERN.json to "
-                   "drape afresh with others)");
+  throw InputError(
+      "option --" + options->name_given(name) + ": " + drape.directory + " was draped with " +
+      (values.drape.empty() ? "none" : "'" + values.drape + "'") + ", not '" + values.edit +
+      "'; an edit of a drape keeps the drape's options (give PATTERN.json to "
+      "drape afresh with others)");
 }
 
 // Takes the drape's options into `options` and refuses a drape option this
@@ -261,7 +264,7 @@ const CommandSpec& edit_command() {
         std::vector<OptionSpec> options = drape_command().options;
         for (OptionSpec& option : options) {
           if (option.name == "output") option.fallback = "out/edit";
-          if (option.name == "bending-model") {
+          if (option.answers_to("bending-model")) {
             option.fallback = "discrete_shell";
             option.help = "patch, discrete_shell or quadratic (hinges); edit keeps the hinges "
                           "(docs/sensitivity.md#bending-models)";

@@ -59,9 +59,13 @@ PanelMeshOptions panel_mesh_options(const Options& options) {
 }
 
 OptionSpec seams_file_option_spec() {
-  return {"seams-file", "FILE", "",
+  return {"seam-file",
+          "FILE",
+          "",
           "seams and tags that override or complete TAGCON's: JSON naming pattern lines "
-          "(docs/pattern-format.md#user-seams-and-tags)"};
+          "(docs/pattern-format.md#user-seams-and-tags)",
+          false,
+          "seams-file"};
 }
 
 ConstructedGarment construct_garment(const std::string& path, const PanelMeshOptions& mesh_options,

@@ -185,29 +185,32 @@ void add_edge_force(const EdgeForceCase& edge, const TriangleMesh& mesh, ClothLo
 } // namespace
 // Loads, pins and the probe.
 const std::vector<OptionSpec>& load_option_specs() {
-  static const std::vector<OptionSpec> specs{
-      {"gravity", "X,Y,Z", "0,0,-9.80665", "gravitational acceleration, m/s^2"},
-      {"pressure", "PA", "0", "follower pressure on the triangles' normal side, Pa"},
-      {"point-force", "V,FX,FY,FZ", "", "a force (N) on vertex V"},
-      {"edge-force", "FX,FY,FZ", "",
-       "a total force (N) spread over the boundary edges inside --edge-force-box as a uniform "
-       "line load (per unit material length)"},
-      {"edge-force-box", "X0,X1,Y0,Y1,Z0,Z1", "", "the box of the --edge-force edges, m"},
-      {"pin-box", "X0,X1,Y0,Y1,Z0,Z1", "", "pin the vertices inside these boxes (6 numbers each)"},
-      {"pin-boundary", "", "", "pin every boundary vertex"},
-      {"pin-vertices", "I,J,...", "", "pin these vertices"},
-      {"pin-move", "X,Y,Z", "0,0,0", "move the pins by this much as the load ramps, m"},
-      {"pin-motion", "HISTORY", "",
-       "pins follow 'T:DX,DY,DZ[,DEG]; ...' (m, degrees; T: load factor, or time in s with "
-       "--analysis dynamic); groups separated by '|'"},
-      {"pin-motion-boxes", "I,..|J,..", "",
-       "the --pin-box boxes (numbered from 1) each --pin-motion group moves [all pins]"},
-      {"pin-release", "BOX:T,...", "",
-       "dynamic, creep: the pins of --pin-box BOX (numbered from 1) let go at time T, s"},
-      {"pin-rotation-axis", "X,Y,Z", "0,0,1", "axis of the --pin-motion angles"},
-      {"pin-rotation-center", "X,Y,Z", "0,0,0", "a point of that axis, m"},
-      {"probe", "X,Y,Z", "", "report the displacement of the vertex nearest this point"},
-  };
+  static const std::vector<OptionSpec> specs = with_module_prefix(
+      {
+          {"gravity", "X,Y,Z", "0,0,-9.80665", "gravitational acceleration, m/s^2"},
+          {"pressure", "PA", "0", "follower pressure on the triangles' normal side, Pa"},
+          {"point-force", "V,FX,FY,FZ", "", "a force (N) on vertex V"},
+          {"edge-force", "FX,FY,FZ", "",
+           "a total force (N) spread over the boundary edges inside --edge-force-box as a uniform "
+           "line load (per unit material length)"},
+          {"edge-force-box", "X0,X1,Y0,Y1,Z0,Z1", "", "the box of the --edge-force edges, m"},
+          {"pin-box", "X0,X1,Y0,Y1,Z0,Z1", "",
+           "pin the vertices inside these boxes (6 numbers each)"},
+          {"pin-boundary", "", "", "pin every boundary vertex"},
+          {"pin-vertices", "I,J,...", "", "pin these vertices"},
+          {"pin-move", "X,Y,Z", "0,0,0", "move the pins by this much as the load ramps, m"},
+          {"pin-motion", "HISTORY", "",
+           "pins follow 'T:DX,DY,DZ[,DEG]; ...' (m, degrees; T: load factor, or time in s with "
+           "--analysis dynamic); groups separated by '|'"},
+          {"pin-motion-boxes", "I,..|J,..", "",
+           "the --pin-box boxes (numbered from 1) each --pin-motion group moves [all pins]"},
+          {"pin-release", "BOX:T,...", "",
+           "dynamic, creep: the pins of --pin-box BOX (numbered from 1) let go at time T, s"},
+          {"pin-rotation-axis", "X,Y,Z", "0,0,1", "axis of the --pin-motion angles"},
+          {"pin-rotation-center", "X,Y,Z", "0,0,0", "a point of that axis, m"},
+          {"probe", "X,Y,Z", "", "report the displacement of the vertex nearest this point"},
+      },
+      {"load", "pin"});
   return specs;
 }
 

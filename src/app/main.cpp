@@ -139,7 +139,8 @@ int run_with_petsc(const Command& command, sartor::ParsedCommandLine parsed,
 
   int status = 1;
   try {
-    const sartor::Invocation invocation{std::move(parsed), sartor::Options(command.spec()),
+    sartor::Options options(command.spec(), parsed.given_names);
+    const sartor::Invocation invocation{std::move(parsed), std::move(options),
                                         std::move(arguments)};
     status = command.run(invocation);
   } catch (const sartor::InputError& error) {

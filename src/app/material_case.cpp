@@ -98,28 +98,30 @@ void set_coupling(const MaterialCase& given, const Fabric& fabric,
 // The cloth's material: fabric, membrane and bending models (as registered:
 // element/membrane_models.hpp, fem/bending_models.hpp).
 const std::vector<OptionSpec>& material_option_specs() {
-  static const std::vector<OptionSpec> specs{
-      {"fabric", "SPEC", "cotton_twill",
-       "preset, FILE.yaml or measured FILE.json: membrane, bending, density (docs/fabrics.md)"},
-      {"warp-modulus", "N/M", "", "linear warp modulus, N/m (replaces the fabric's curve)"},
-      {"weft-modulus", "N/M", "", "linear weft modulus, N/m (replaces the fabric's curve)"},
-      {"shear-modulus", "N/M", "",
-       "in-plane shear modulus, N/m [the fabric's, else 0.1 sqrt(k_warp k_weft)]"},
-      {"poisson", "NU", "0", "warp-weft Poisson coupling (stvk model)"},
-      {"membrane-model", "M", "baraff_witkin",
-       alternatives(element::membrane_model_names()) +
-           " [measured (a Wang et al. table) for a fabric with one]"},
-      {"membrane-psd", "", "",
-       "project membrane (and contact) Hessians to PSD (compression stabilisation)"},
-      {"bending-model", "M", "patch",
-       bending_model_help() + " [discrete_shell for a mesh with creases]"},
-      {"bending-stiffness", "N*M", "1e-6",
-       "bending stiffness (warp, patch), N m (0: no bending) [the fabric's curves if any]"},
-      {"bending-weft", "N*M", "", "patch model: weft rigidity, N m [--bending-stiffness]"},
-      {"bending-twist", "N*M", "", "patch model: twist rigidity, N m [half the warp's]"},
-      {"bending-psd", "", "", "project bending Hessians to PSD"},
-      {"density", "KG/M2", "0.2", "areal density, kg/m^2 [the fabric's if it has one]"},
-  };
+  static const std::vector<OptionSpec> specs = with_module_prefix(
+      {
+          {"fabric", "SPEC", "cotton_twill",
+           "preset, FILE.yaml or measured FILE.json: membrane, bending, density (docs/fabrics.md)"},
+          {"warp-modulus", "N/M", "", "linear warp modulus, N/m (replaces the fabric's curve)"},
+          {"weft-modulus", "N/M", "", "linear weft modulus, N/m (replaces the fabric's curve)"},
+          {"shear-modulus", "N/M", "",
+           "in-plane shear modulus, N/m [the fabric's, else 0.1 sqrt(k_warp k_weft)]"},
+          {"poisson", "NU", "0", "warp-weft Poisson coupling (stvk model)"},
+          {"membrane-model", "M", "baraff_witkin",
+           alternatives(element::membrane_model_names()) +
+               " [measured (a Wang et al. table) for a fabric with one]"},
+          {"membrane-psd", "", "",
+           "project membrane (and contact) Hessians to PSD (compression stabilisation)"},
+          {"bending-model", "M", "patch",
+           bending_model_help() + " [discrete_shell for a mesh with creases]"},
+          {"bending-stiffness", "N*M", "1e-6",
+           "bending stiffness (warp, patch), N m (0: no bending) [the fabric's curves if any]"},
+          {"bending-weft", "N*M", "", "patch model: weft rigidity, N m [--bending-stiffness]"},
+          {"bending-twist", "N*M", "", "patch model: twist rigidity, N m [half the warp's]"},
+          {"bending-psd", "", "", "project bending Hessians to PSD"},
+          {"density", "KG/M2", "0.2", "areal density, kg/m^2 [the fabric's if it has one]"},
+      },
+      {"material"});
   return specs;
 }
 

@@ -15,39 +15,42 @@
 namespace sartor {
 
 const std::vector<OptionSpec>& mesh_option_specs() {
-  static const std::vector<OptionSpec> specs{
-      {"mesh", "KIND", "rectangle",
-       "rectangle, disk, annulus, cylinder_band, sphere_cap, tube_panels or obj"},
-      {"mesh-file", "FILE", "", "OBJ file (mesh obj): texture coordinates give the rest shape"},
-      {"mesh-width", "M", "1", "rectangle width (along warp), m"},
-      {"mesh-height", "M", "1", "rectangle or band height (along weft), m"},
-      {"mesh-nx", "N", "10", "rectangle divisions along the width"},
-      {"mesh-ny", "N", "10", "rectangle divisions along the height"},
-      {"mesh-pattern", "P", "alternating",
-       "rectangle (and annulus) diagonals: alternating, right, perturbed"},
-      {"mesh-radius", "M", "0.5", "disk, band or sphere radius, annulus outer radius, m"},
-      {"mesh-inner-radius", "M", "0.25", "annulus inner radius, m"},
-      {"mesh-angles", "A0,A1", "0,360",
-       "annulus: from angle A0 to A1, degrees (a full turn stays slit along A0)"},
-      {"mesh-lift", "M", "0",
-       "annulus: start placement on a helix rising from z = 0 at angle 0 to this at A1, m "
-       "(tells the slit's edges apart; the rest shape stays flat)"},
-      {"mesh-rings", "N", "8", "disk or cap rings; annulus cells across the radii"},
-      {"mesh-segments", "N", "32", "band segments around; annulus cells around"},
-      {"mesh-rows", "N", "8", "band rows along the axis"},
-      {"mesh-cap-angle", "RAD", "0.5", "sphere cap half angle, rad"},
-      {"mesh-nx-front", "N", "", "tube_panels: front panel divisions around [mesh-nx]"},
-      {"mesh-ny-front", "N", "", "tube_panels: front panel divisions along the height [mesh-ny]"},
-      {"mesh-gap", "M", "0.15", "tube_panels: distance the two panels start apart, m"},
-      {"mesh-refine", "N", "0", "uniform refinements (each splits triangles in four)"},
-      {"mesh-snap-boundary", "", "",
-       "disk: put refined boundary vertices back on the circle (position and uv)"},
-      {"mesh-waves", "N,A,R0", "",
-       "out-of-plane imperfection of the placement: N waves around the z axis, amplitude A (m) "
-       "at the rim, growing from radius R0 (m) (docs/contact.md)"},
-      {"mesh-rotate-x", "DEG", "0", "rotate the placement about the x axis, degrees"},
-      {"mesh-translate", "X,Y,Z", "0,0,0", "then translate it, m"},
-  };
+  static const std::vector<OptionSpec> specs = with_module_prefix(
+      {
+          {"mesh", "KIND", "rectangle",
+           "rectangle, disk, annulus, cylinder_band, sphere_cap, tube_panels or obj"},
+          {"mesh-file", "FILE", "", "OBJ file (mesh obj): texture coordinates give the rest shape"},
+          {"mesh-width", "M", "1", "rectangle width (along warp), m"},
+          {"mesh-height", "M", "1", "rectangle or band height (along weft), m"},
+          {"mesh-nx", "N", "10", "rectangle divisions along the width"},
+          {"mesh-ny", "N", "10", "rectangle divisions along the height"},
+          {"mesh-pattern", "P", "alternating",
+           "rectangle (and annulus) diagonals: alternating, right, perturbed"},
+          {"mesh-radius", "M", "0.5", "disk, band or sphere radius, annulus outer radius, m"},
+          {"mesh-inner-radius", "M", "0.25", "annulus inner radius, m"},
+          {"mesh-angles", "A0,A1", "0,360",
+           "annulus: from angle A0 to A1, degrees (a full turn stays slit along A0)"},
+          {"mesh-lift", "M", "0",
+           "annulus: start placement on a helix rising from z = 0 at angle 0 to this at A1, m "
+           "(tells the slit's edges apart; the rest shape stays flat)"},
+          {"mesh-rings", "N", "8", "disk or cap rings; annulus cells across the radii"},
+          {"mesh-segments", "N", "32", "band segments around; annulus cells around"},
+          {"mesh-rows", "N", "8", "band rows along the axis"},
+          {"mesh-cap-angle", "RAD", "0.5", "sphere cap half angle, rad"},
+          {"mesh-nx-front", "N", "", "tube_panels: front panel divisions around [mesh-nx]"},
+          {"mesh-ny-front", "N", "",
+           "tube_panels: front panel divisions along the height [mesh-ny]"},
+          {"mesh-gap", "M", "0.15", "tube_panels: distance the two panels start apart, m"},
+          {"mesh-refine", "N", "0", "uniform refinements (each splits triangles in four)"},
+          {"mesh-snap-boundary", "", "",
+           "disk: put refined boundary vertices back on the circle (position and uv)"},
+          {"mesh-waves", "N,A,R0", "",
+           "out-of-plane imperfection of the placement: N waves around the z axis, amplitude A (m) "
+           "at the rim, growing from radius R0 (m) (docs/contact.md)"},
+          {"mesh-rotate-x", "DEG", "0", "rotate the placement about the x axis, degrees"},
+          {"mesh-translate", "X,Y,Z", "0,0,0", "then translate it, m"},
+      },
+      {"mesh"}, {{"mesh", "mesh-kind"}});
   return specs;
 }
 

@@ -608,6 +608,22 @@ void write_case_results(const std::string& directory, const CaseResult& result,
   write_json(directory + "/summary.json", summary);
 }
 
+// Whether the option of database key `key` was given by its other name as
+// well, and that one counts (the command line's): re-read, both would clash.
+bool superseded(const std::string& key, const std::vector<std::string>& table,
+                const Options& options) {
+  if (key.size() < 2 || key[0] != '-') return false;
+  std::string name = key.substr(1);
+  std::replace(name.begin(), name.end(), '_', '-');
+  const std::string other = options.other_name(name);
+  if (other.empty()) return false;
+  const std::string other_key = database_key(other);
+  const bool both = std::any_of(table.begin(), table.end(), [&](const std::string& line) {
+    return line == other_key || line.rfind(other_key + " ", 0) == 0;
+  });
+  return both && options.name_given(name) != name;
+}
+
 // PETSc lists one option a line, `-name value`, but reads a file back word by
 // word: a value with spaces (--body "mannequin mu=0.3") is quoted so that
 // `-options_file petsc_options.txt` re-runs the job. The command's own
@@ -628,6 +644,7 @@ std::string echoed_options(const std::string& path, const std::string& directory
   for (std::string line : table) {
     if (line.rfind("-output ", 0) == 0) line = "-output " + directory;
     const std::size_t space = line.find(' ');
+    if (superseded(line.substr(0, space), table, options)) continue;
     if (line.rfind('-', 0) == 0 && space != std::string::npos &&
         line.find_first_of(" \t", space + 1) != std::string::npos) {
       line = line.substr(0, space) + " \"" + line.substr(space + 1) + "\"";

@@ -36,17 +36,19 @@ void set_up_sewing(const SeamCase& seam_case, const TimeCase& time, ClothProblem
 } // namespace
 
 const std::vector<OptionSpec>& seam_option_specs() {
-  static const std::vector<OptionSpec> specs{
-      {"seams-file", "FILE", "", "seams to sew (JSON, docs/formats.md) [tube_panels: its own]"},
-      {"seam-stiffness", "N/M2", "", "seam stiffness per unit seam length, N/m^2 [automatic]"},
-      {"seam-penalty", "P", "100", "automatic seam stiffness: P x modulus / seam spacing"},
-      {"seam-merge", "", "", "sew, then merge matched seam vertices and solve again"},
-      {"seam-merge-gap", "M", "1e-4", "--seam-merge: largest seam gap accepted as closed, m"},
-      {"sewing-tension", "N/M", "",
-       "dynamic: sew gradually: each seam spring starts pulling with this force per metre of "
-       "seam and stiffens to its own stiffness by --sewing-time (0 or none: no sewing stage)"},
-      {"sewing-time", "S", "", "the end of the sewing stage, s [half of --time-end]"},
-  };
+  static const std::vector<OptionSpec> specs = with_module_prefix(
+      {
+          {"seams-file", "FILE", "", "seams to sew (JSON, docs/formats.md) [tube_panels: its own]"},
+          {"seam-stiffness", "N/M2", "", "seam stiffness per unit seam length, N/m^2 [automatic]"},
+          {"seam-penalty", "P", "100", "automatic seam stiffness: P x modulus / seam spacing"},
+          {"seam-merge", "", "", "sew, then merge matched seam vertices and solve again"},
+          {"seam-merge-gap", "M", "1e-4", "--seam-merge: largest seam gap accepted as closed, m"},
+          {"sewing-tension", "N/M", "",
+           "dynamic: sew gradually: each seam spring starts pulling with this force per metre of "
+           "seam and stiffens to its own stiffness by --sewing-time (0 or none: no sewing stage)"},
+          {"sewing-time", "S", "", "the end of the sewing stage, s [half of --time-end]"},
+      },
+      {"seam", "sewing"}, {{"seams-file", "seam-file"}});
   return specs;
 }
 

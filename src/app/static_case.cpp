@@ -6,28 +6,31 @@
 namespace sartor {
 
 const std::vector<OptionSpec>& static_option_specs() {
-  static const std::vector<OptionSpec> specs{
-      {"load-steps", "N", "1", "load increments (each halved up to 8 times on failure)"},
-      {"static-solver", "KIND", "minimise",
-       "static: minimise (Newton on the total potential with a contact step bound, "
-       "docs/drape.md) or snes (PETSc's SNES with pseudo-transient continuation); pressure on a "
-       "cloth with a free (unpinned) edge has no potential and takes snes"},
-      {"sewing-stages", "N", "1",
-       "static: sew in N continuation stages of the seam stiffness, starting from "
-       "--sewing-start-tension (1: at once)"},
-      {"sewing-start-tension", "N/M", "10",
-       "static: with --sewing-stages, each seam's pull per metre of seam at the first stage"},
-      {"converge-stages", "", "",
-       "static: with --sewing-stages, solve every stage after the first to the full tolerance "
-       "(the same equilibrium under any CPU's round-off, for two to three times the Newton "
-       "iterations; docs/drape.md)"},
-      {"contact-max-depth", "F", "0.5",
-       "static: stiffen the contact penalty until no vertex is deeper in the offset layer than "
-       "F times --contact-offset (0: never)"},
-      {"contact-rounds", "N", "30",
-       "static: at most N contact rounds after the last stage: re-solves until the friction "
-       "anchors' update leaves the state in equilibrium (and no vertex is too deep)"},
-  };
+  static const std::vector<OptionSpec> specs = with_module_prefix(
+      {
+          {"load-steps", "N", "1", "load increments (each halved up to 8 times on failure)"},
+          {"static-solver", "KIND", "minimise",
+           "static: minimise (Newton on the total potential with a contact step bound, "
+           "docs/drape.md) or snes (PETSc's SNES with pseudo-transient continuation); pressure on "
+           "a "
+           "cloth with a free (unpinned) edge has no potential and takes snes"},
+          {"sewing-stages", "N", "1",
+           "static: sew in N continuation stages of the seam stiffness, starting from "
+           "--sewing-start-tension (1: at once)"},
+          {"sewing-start-tension", "N/M", "10",
+           "static: with --sewing-stages, each seam's pull per metre of seam at the first stage"},
+          {"converge-stages", "", "",
+           "static: with --sewing-stages, solve every stage after the first to the full tolerance "
+           "(the same equilibrium under any CPU's round-off, for two to three times the Newton "
+           "iterations; docs/drape.md)"},
+          {"contact-max-depth", "F", "0.5",
+           "static: stiffen the contact penalty until no vertex is deeper in the offset layer than "
+           "F times --contact-offset (0: never)"},
+          {"contact-rounds", "N", "30",
+           "static: at most N contact rounds after the last stage: re-solves until the friction "
+           "anchors' update leaves the state in equilibrium (and no vertex is too deep)"},
+      },
+      {"static"});
   return specs;
 }
 

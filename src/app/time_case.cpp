@@ -7,29 +7,32 @@
 namespace sartor {
 
 const std::vector<OptionSpec>& time_option_specs() {
-  static const std::vector<OptionSpec> specs{
-      {"analysis", "KIND", "static",
-       "static (equilibrium), dynamic (implicit time stepping) or creep (quasi-static creep "
-       "over real time)"},
-      {"time-end", "S", "1", "dynamic, creep: end time, s"},
-      {"time-step", "S", "0.01",
-       "dynamic: time step, s (halved up to 8 times on failure); creep: the first step"},
-      {"damping", "1/S", "0",
-       "dynamic, creep: mass-proportional damping alpha (force -alpha M v), 1/s (creep: with "
-       "--creep-dynamics)"},
-      {"kinetic-damping", "", "", "dynamic: zero every velocity at each kinetic-energy peak"},
-      {"rest-tolerance", "R", "0",
-       "dynamic: stop once the static residual is below R times its initial value (0: never)"},
-      {"dynamic-solver", "KIND", "snes",
-       "dynamic: snes (PETSc's SNES from the predicted positions) or minimise (drape's static "
-       "minimiser on each step's incremental potential, from the last state, with the contact "
-       "step bound; docs/drape.md#time-steps-by-the-minimiser)"},
-      {"settle", "", "",
-       "dynamic: finish (at rest or at --time-end) with a static solve from the last state, with "
-       "the static solve's contact rounds (friction made consistent)"},
-      {"output-interval", "S", "0",
-       "dynamic, creep: time between the states written to series.h5, s (0: every step)"},
-  };
+  static const std::vector<OptionSpec> specs = with_module_prefix(
+      {
+          {"analysis", "KIND", "static",
+           "static (equilibrium), dynamic (implicit time stepping) or creep (quasi-static creep "
+           "over real time)"},
+          {"time-end", "S", "1", "dynamic, creep: end time, s"},
+          {"time-step", "S", "0.01",
+           "dynamic: time step, s (halved up to 8 times on failure); creep: the first step"},
+          {"damping", "1/S", "0",
+           "dynamic, creep: mass-proportional damping alpha (force -alpha M v), 1/s (creep: with "
+           "--creep-dynamics)"},
+          {"kinetic-damping", "", "", "dynamic: zero every velocity at each kinetic-energy peak"},
+          {"rest-tolerance", "R", "0",
+           "dynamic: stop once the static residual is below R times its initial value (0: never)"},
+          {"dynamic-solver", "KIND", "snes",
+           "dynamic: snes (PETSc's SNES from the predicted positions) or minimise (drape's static "
+           "minimiser on each step's incremental potential, from the last state, with the contact "
+           "step bound; docs/drape.md#time-steps-by-the-minimiser)"},
+          {"settle", "", "",
+           "dynamic: finish (at rest or at --time-end) with a static solve from the last state, "
+           "with "
+           "the static solve's contact rounds (friction made consistent)"},
+          {"output-interval", "S", "0",
+           "dynamic, creep: time between the states written to series.h5, s (0: every step)"},
+      },
+      {"dynamic", "time"}, {{"analysis", "analysis"}, {"output-interval", "time-output-interval"}});
   return specs;
 }
 

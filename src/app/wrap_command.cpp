@@ -71,7 +71,7 @@ const std::map<std::string, std::string>& wrap_drape_defaults() {
 // marks file's).
 bool describes_wrapped_garment(const std::string& name) {
   const bool mesh = name.rfind("mesh", 0) == 0 && name != "mesh-refine";
-  return mesh || name == "body" || name == "seams-file";
+  return mesh || name == "contact-body" || name == "seam-file";
 }
 
 nlohmann::json point_json(const Eigen::Vector3d& p) {
@@ -223,11 +223,13 @@ int run_wrap(const Invocation& invocation) {
     const auto given = std::find_if(entries.begin(), entries.end(),
                                     [&](const std::string& name) { return options.is_set(name); });
     if (is_own || given == entries.end()) continue;
+    const std::string given_as = options.name_given(*given);
     if (describes_wrapped_garment(option.name))
-      throw InputError("option --" + *given +
+      throw InputError("option --" + given_as +
                        " does not apply to sartor wrap: the wrapped garment is the mesh and the "
                        "marks file gives the body");
-    if (!drape) throw InputError("option --" + *given + " applies to the drape only: add --drape");
+    if (!drape)
+      throw InputError("option --" + given_as + " applies to the drape only: add --drape");
   }
   std::vector<garment::ClothMark> pattern_marks;
   const garment::Pattern pattern = garment::read_pattern_with_marks(pattern_path, pattern_marks);

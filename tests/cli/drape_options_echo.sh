@@ -12,7 +12,7 @@ rm -rf "$work" && mkdir -p "$work"
 
 "$sartor" drape "$pattern" --time-end 0.02 --sewing-time 0.01 --edge-length 0.08 -settle false \
   --no-plot --output "$work/first" > "$work/first.log"
-grep -q '^-body "mannequin' "$work/first/petsc_options.txt" ||
+grep -Eq '^-(contact_)?body "mannequin' "$work/first/petsc_options.txt" ||
   { echo "drape_options_echo: -body is not quoted" >&2; exit 1; }
 "$sartor" drape "$pattern" -options_file "$work/first/petsc_options.txt" --output "$work/again" \
   > "$work/again.log"

@@ -32,7 +32,7 @@ import json, sys
 out = sys.argv[1]
 drape, resumed, fresh = (json.load(open(f"{out}/{d}/summary.json"))
                          for d in ("drape", "resumed", "fresh"))
-assert resumed["options"]["bending-model"] == "discrete_shell", resumed["options"]
+assert resumed["options"]["material-bending-model"] == "discrete_shell", resumed["options"]
 assert resumed["options"]["output"] == f"{out}/resumed", resumed["options"]["output"]
 edit = resumed["edit"]
 assert edit["drape_resumed_from"] == f"{out}/drape", edit["drape_resumed_from"]
