@@ -221,6 +221,7 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
   problem.pins_follow_time = true;
   IncrementalSystem system(problem, x);
   system.minimise_time_steps = options.minimise;
+  system.minimise_failed_time_steps = true;
   PetscCall(VecDuplicate(x, &f));
   PetscCall(VecDuplicate(x, &work));
   DynamicState state{problem, system, x, v, f, work};

@@ -5,7 +5,9 @@
 // (the last term: mass-proportional Rayleigh damping, force -alpha M v), with
 // the pins at their prescribed places at the step's end time; then
 // v_{n+1} = (x_{n+1} - x_n) / dt. The SNES is the statics' (same options
-// database). A step SNES cannot solve is halved up to `max_cutbacks` times;
+// database; where SNES fails on a potential, the minimiser solves the step
+// from x_n, IncrementalSystem::solve). A step neither solves is halved up
+// to `max_cutbacks` times;
 // after that the run stops with SNES's reason in the report (x, v and
 // problem.time hold the last accepted step). After a cut, dt doubles back
 // towards time_step as steps succeed; steps are shortened to land on output

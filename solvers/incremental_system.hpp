@@ -14,6 +14,8 @@
 // there is no potential: pressure on a surface with a free edge, monolithic creep), MUMPS LU, and a
 // residual tolerance at round-off of the membrane forces. Where the line search on Phi stalls at
 // Phi's round-off after the residual has fallen 1e3-fold, Newton finishes on the residual norm.
+// A time step SNES fails on a potential is solved again by the minimiser below, so that whether
+// a step is cut back does not hinge on round-off near SNES's limits.
 //
 // Statics of a potential (a = b = 0, no pressure on a free edge, no pin held by
 // equations) go to `minimise` instead (solvers/minimiser.cpp) unless
@@ -84,6 +86,10 @@ public:
   // step, and the unprojected Hessian near the step's solution gives
   // Newton's quadratic convergence where compressed membranes wrinkle.
   bool minimise_time_steps = false;
+  // Time steps (dynamics): a step SNES fails on a potential is solved by the
+  // minimiser from the inertia's previous state, the last accepted one
+  // (IncrementalSystem::solve).
+  bool minimise_failed_time_steps = false;
   double loose_rtol = 0.0;
   PetscInt loose_max_iterations = 0; // with loose_rtol: at most this many (0: max_it)
   struct MinimiserStatistics {
@@ -91,7 +97,8 @@ public:
     PetscInt regularised_steps = 0;    // steps with mu > 0
     PetscInt residual_rule_trials = 0; // line-search trials decided on slopes (Phi in round-off)
     PetscInt failed_factorisations = 0;
-    PetscInt exact_steps = 0; // with the unprojected Hessian
+    PetscInt exact_steps = 0;    // with the unprojected Hessian
+    PetscInt snes_fallbacks = 0; // time steps SNES failed, minimised instead
   };
   MinimiserStatistics minimiser_statistics;
   // Progress lines of the minimiser on stdout (what is solved, iteration,
@@ -139,6 +146,7 @@ private:
   Vec trial_f_ = nullptr;
   PetscErrorCode run_snes(SNES snes, Vec x, Solve* result);
   PetscErrorCode finish_with_newton(SNES snes, Vec x, Solve* result);
+  PetscErrorCode minimise_failed_time_step(SNES snes, Vec x, Solve* result);
   double switch_at_fraction_ = 0.0; // of the first residual; 0: no switch
   double first_norm_ = 0.0;         // the first residual of the solve
   bool switched_ = false;           // the last solve stopped at switch_at_fraction_
