@@ -36,21 +36,11 @@ void check(const CreepOptions& options, double start) {
 }
 
 // The times steps must end on besides the end: the knots of the load
-// history, of pin and body motions, the pins' release times.
+// history and the problem's event times.
 std::vector<double> step_landings(const ClothProblem& problem, const CreepOptions& options) {
   std::vector<double> landings = options.load.times();
-  for (const PinGroupMotion& group : problem.pin_groups) {
-    for (const PinKnot& knot : group.history.knots())
-      landings.push_back(knot.time);
-  }
-  for (double release : problem.release_times()) {
-    if (std::isfinite(release)) landings.push_back(release);
-  }
-  for (const contact::Body& body : problem.bodies) {
-    for (const std::vector<double>& times :
-         {body.motion.translation.times(), body.motion.angle.times(), body.motion.scale.times()})
-      landings.insert(landings.end(), times.begin(), times.end());
-  }
+  const std::vector<double> events = problem.event_times();
+  landings.insert(landings.end(), events.begin(), events.end());
   return landings;
 }
 

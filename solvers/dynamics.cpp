@@ -61,38 +61,26 @@ PetscErrorCode measure(const DynamicState& s, DynamicStepReport* step) {
   PetscFunctionReturn(0);
 }
 
-// The time, the next step's length and the next output time between steps.
-struct StepClock {
-  double t;
-  double dt;
-  double next_output;
-};
-
-// One backward Euler step from clock->t, its length halved on failure up to
-// max_cutbacks times; *accepted tells whether one converged (else
-// report->reason says why).
-PetscErrorCode take_step(DynamicState& s, const DynamicOptions& options, double tiny,
-                         StepClock* clock, DynamicStepReport* step, DynamicReport* report,
+// One backward Euler step from the clock's time, of the length *dt asks for
+// unless the clock cuts it to land on an output or the end; halved on
+// failure up to max_cutbacks times; *accepted tells whether one converged
+// (else report->reason says why). After a success *dt doubles back towards
+// the time step.
+PetscErrorCode take_step(DynamicState& s, const DynamicOptions& options, StepController& clock,
+                         double* dt, DynamicStepReport* step, DynamicReport* report,
                          bool* accepted) {
   PetscFunctionBeginUser;
   IncrementalSystem& system = s.system;
-  const double t = clock->t;
+  const double t = clock.time();
   *accepted = false;
   for (int attempt = 0; !*accepted; ++attempt) {
-    double target = std::min(t + clock->dt, options.time_end);
-    bool at_output = options.output_interval <= 0.0 || target >= clock->next_output - tiny;
-    if (options.output_interval > 0.0 && target > clock->next_output) target = clock->next_output;
-    // A remainder shorter than a round-off is merged into this step.
-    if (options.time_end - target <= tiny) {
-      target = options.time_end;
-      at_output = true;
-    }
-    const double h = target - t;
+    const StepPlan plan = clock.plan(*dt);
+    const double h = plan.length;
     PetscCall(VecCopy(s.x, system.inertia().previous()));
     PetscCall(VecWAXPY(system.inertia().predicted(), h, s.v, s.x));
     system.inertia().inertia_weight = 1.0 / (h * h);
     system.inertia().damping_weight = options.damping / h;
-    s.problem.time = target;
+    s.problem.time = plan.to;
     // SNES starts from the prediction; the minimiser from the last state,
     // which is outside the bodies, so that its step bound keeps it there.
     if (!options.minimise) PetscCall(VecCopy(system.inertia().predicted(), s.x));
@@ -103,15 +91,15 @@ PetscErrorCode take_step(DynamicState& s, const DynamicOptions& options, double 
     step->reason = solve.reason;
     if (solve.converged) {
       *accepted = true;
-      step->time = target;
+      clock.accept(plan);
+      step->time = plan.to;
       step->dt = h;
-      step->output = at_output;
-      if (options.output_interval > 0.0 && at_output) clock->next_output += options.output_interval;
+      step->output = clock.output_due();
+      if (step->output) clock.pass_output();
       // v = (x - x_n) / h
       PetscCall(VecWAXPY(s.v, -1.0, system.inertia().previous(), s.x));
       PetscCall(VecScale(s.v, 1.0 / h));
-      clock->t = target;
-      clock->dt = std::min(2.0 * clock->dt, options.time_step);
+      *dt = std::min(2.0 * *dt, options.time_step);
       break;
     }
     PetscCall(VecCopy(system.inertia().previous(), s.x));
@@ -127,9 +115,9 @@ PetscErrorCode take_step(DynamicState& s, const DynamicOptions& options, double 
       break;
     }
     ++step->rejected;
-    clock->dt = 0.5 * h;
+    *dt = 0.5 * h;
     PetscCall(PetscInfo(system.snes(), "time step to %g failed (%s); retrying with dt = %g\n",
-                        target, solve.reason.c_str(), clock->dt));
+                        plan.to, solve.reason.c_str(), *dt));
   }
   PetscFunctionReturn(0);
 }
@@ -239,35 +227,33 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
     PetscCall(measure(state, &initial));
     report->steps.push_back(initial);
     if (observe) PetscCall(observe(initial, x, v));
-    control = {start,
-               start,
-               options.time_step,
-               0,
-               options.output_interval > 0.0 ? start + options.output_interval : 0.0,
-               initial.kinetic_energy,
-               initial.static_residual_norm};
+    control = {
+        start, start, options.time_step, 0, initial.kinetic_energy, initial.static_residual_norm};
   }
   const double initial_residual = control.initial_residual;
-  StepClock clock{control.time, control.next_step, control.next_output};
+  // Steps land on the outputs (multiples of the output interval), the
+  // problem's event times and the end; a step is not cut to reach a
+  // checkpoint: checkpoints do not change the answer.
+  StepController clock(start, options.time_end, tiny, problem.event_times());
+  clock.output_every(options.output_interval);
+  clock.checkpoint_every(checkpoints.interval, PeriodicEvent::Landing::first_step_past_it);
+  clock.resume(control.time);
+  double dt = control.next_step;
   double previous_kinetic = control.previous_kinetic;
   ProgressClock progress;
   PetscInt step_index = control.step;
-  // A step is not cut to reach a checkpoint: checkpoints do not change the answer.
-  PeriodicEvent next_checkpoint(checkpoints.interval, tiny,
-                                PeriodicEvent::Landing::first_step_past_it);
-  next_checkpoint.passed(clock.t);
   report->completed = true;
-  while (!report->at_rest && options.time_end - clock.t > tiny) {
+  while (!report->at_rest && !clock.finished()) {
     DynamicStepReport step;
     step.step = ++step_index;
     bool accepted = false;
-    PetscCall(take_step(state, options, tiny, &clock, &step, report, &accepted));
+    PetscCall(take_step(state, options, clock, &dt, &step, report, &accepted));
     report->newton_iterations += step.newton_iterations;
     report->linear_iterations += step.linear_iterations;
     report->rejected_steps += step.rejected;
     if (!accepted) break;
 
-    const double t = clock.t;
+    const double t = clock.time();
     PetscCall(problem.accept_step(x));
     PetscCall(measure(state, &step));
     if (options.kinetic_damping && step.kinetic_energy < previous_kinetic) {
@@ -287,18 +273,17 @@ PetscErrorCode solve_dynamic(ClothProblem& problem, Vec x, Vec v, const DynamicO
     }
     report->steps.push_back(step);
     if (observe) PetscCall(observe(step, x, v));
-    const bool finished = at_rest || options.time_end - t <= tiny;
+    const bool finished = at_rest || clock.finished();
     if (options.print_progress && progress.due(finished))
       PetscCall(print_dynamic_progress(problem, progress, step, *report, t, start, span, finished));
-    if (checkpoints.write && next_checkpoint.reached(t)) {
-      next_checkpoint.passed(t);
-      PetscCall(checkpoints.write(
-          {start, t, clock.dt, step_index, clock.next_output, previous_kinetic, initial_residual},
-          x, v));
+    if (checkpoints.write && clock.checkpoint_due()) {
+      clock.pass_checkpoint();
+      PetscCall(
+          checkpoints.write({start, t, dt, step_index, previous_kinetic, initial_residual}, x, v));
     }
     if (at_rest) break;
   }
-  report->final_time = clock.t;
+  report->final_time = clock.time();
   if (options.settle && report->completed) PetscCall(settle(state, report));
   report->solve_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

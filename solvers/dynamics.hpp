@@ -10,8 +10,10 @@
 // to `max_cutbacks` times;
 // after that the run stops with SNES's reason in the report (x, v and
 // problem.time hold the last accepted step). After a cut, dt doubles back
-// towards time_step as steps succeed; steps are shortened to land on output
-// times and on time_end.
+// towards time_step as steps succeed; steps land on the output times (the
+// multiples of output_interval), on the problem's event times (knots of pin
+// and body motions, pin releases: ClothProblem::event_times) and on
+// time_end (solvers/step_controller.hpp).
 //
 // Kinetic damping (Sensitive Couture §7): whenever the kinetic energy passes a
 // peak (it drops below the previous step's), every velocity is set to zero.
@@ -106,7 +108,6 @@ struct DynamicControl {
   double time = 0.0;             // s, of the last accepted step
   double next_step = 0.0;        // s, the next attempt's dt
   PetscInt step = 0;             // accepted steps so far
-  double next_output = 0.0;      // s
   double previous_kinetic = 0.0; // J, for kinetic damping's peak test
   double initial_residual = 0.0; // N, for rest_tolerance
 };

@@ -1,20 +1,19 @@
 #pragma once
 // The clock of a stepping loop: statics' load ramp (over the fraction of
-// the load) and creep (over time) step by it. It ends steps on the end, on
-// the times events fall on (load knots, body motions, pin releases) and on
-// periodic events that land steps (outputs; creep's checkpoints), merges a
-// sliver before such a time into the step, and says which periodic events a
-// step reached. The length of the next attempt after an accepted or a
-// rejected step, and when to give up, are each solver's own rule (creep's
+// the load), dynamics and creep (over time) step by it. It ends steps on the
+// end, on the times events fall on (load knots, body motions, pin releases)
+// and on periodic events that land steps (outputs; creep's checkpoints),
+// merges a sliver before such a time into the step, and says which periodic
+// events a step reached. The length of the next attempt after an accepted or
+// a rejected step, and when to give up, are each solver's own rule (creep's
 // tolerance, halving).
 //
-// Dynamics shares the periodic events (its checkpoints) but keeps its own
-// landing (solvers/dynamics.cpp, take_step): on this clock its time grid
-// moves by round-offs (outputs at exact multiples, steps of exactly dt), and
-// the coarse skirt's dynamic drape then rejects a step natively that it
-// accepts under OPENBLAS_CORETYPE=Prescott (a Newton solve ending on a
-// shrunk step at t = 1.0 s, the end of its sewing), which
-// reliability.prescott_drape_skirt_dynamic catches.
+// Dynamics kept a landing of its own until its step rejections stopped
+// hinging on round-off (a time step SNES fails is minimised instead,
+// IncrementalSystem::solve): on this clock its time grid moved by round-offs
+// (outputs at exact multiples, steps of exactly dt), and the coarse skirt's
+// dynamic drape then rejected a step natively that it accepted under
+// OPENBLAS_CORETYPE=Prescott (reliability.prescott_drape_skirt_dynamic).
 
 #include <cmath>
 #include <vector>

@@ -60,7 +60,6 @@ std::string state_text(const DynamicControl& c, const DynamicReport& report,
                          {"time", c.time},
                          {"next_step", c.next_step},
                          {"step", c.step},
-                         {"next_output", c.next_output},
                          {"previous_kinetic", c.previous_kinetic},
                          {"initial_residual", c.initial_residual}}},
                        {"report",
@@ -84,7 +83,6 @@ void read_state(const std::string& text, DynamicResume* resume) {
   control.time = c.at("time").get<double>();
   control.next_step = c.at("next_step").get<double>();
   control.step = c.at("step").get<PetscInt>();
-  control.next_output = c.at("next_output").get<double>();
   control.previous_kinetic = c.at("previous_kinetic").get<double>();
   control.initial_residual = c.at("initial_residual").get<double>();
   const nlohmann::json& r = state.at("report");

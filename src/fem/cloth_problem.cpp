@@ -275,6 +275,23 @@ std::vector<F*> ClothProblem::enabled(const std::vector<std::unique_ptr<F>>& all
   return forms;
 }
 
+std::vector<double> ClothProblem::event_times() const {
+  std::vector<double> times;
+  for (const PinGroupMotion& group : pin_groups) {
+    for (const PinKnot& knot : group.history.knots())
+      times.push_back(knot.time);
+  }
+  for (double release : release_times_) {
+    if (std::isfinite(release)) times.push_back(release);
+  }
+  for (const contact::Body& body : bodies) {
+    for (const std::vector<double>& knots :
+         {body.motion.translation.times(), body.motion.angle.times(), body.motion.scale.times()})
+      times.insert(times.end(), knots.begin(), knots.end());
+  }
+  return times;
+}
+
 bool ClothProblem::has_potential() const {
   const auto potential = [](const auto& form) { return form->has_potential(); };
   return std::all_of(triangle_forms_.begin(), triangle_forms_.end(), potential) &&

@@ -106,6 +106,10 @@ public:
   bool pins_follow_time = false;
   const std::vector<int>& pinned() const { return pinned_; }
   const std::vector<double>& release_times() const { return release_times_; }
+  // The times at which what is prescribed changes course, which time steps
+  // end on: the knots of the pin groups' and the bodies' motions and the
+  // pins' release times (unsorted, repeats kept).
+  std::vector<double> event_times() const;
   // Whether pin `pin` (an index into pinned()) holds its vertex now: before
   // its release time, and at it while hold_at_release (a solve at the left
   // limit of the release, as creep steps that end there do).

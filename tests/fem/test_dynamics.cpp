@@ -247,6 +247,18 @@ TriangleMesh strip(std::vector<int>* fixed, std::vector<int>* moving) {
   return mesh;
 }
 
+// Runs `problem` from rest in its mesh's placement.
+void run_from_rest(ClothProblem& problem, const DynamicOptions& options, DynamicReport* report,
+                   const DynamicObserver& observe = {}) {
+  Vec x = nullptr, v = nullptr;
+  ASSERT_EQ(problem.create_solution(&x), 0);
+  VecDuplicate(x, &v);
+  VecSet(v, 0.0);
+  EXPECT_EQ(solve_dynamic(problem, x, v, options, report, observe), 0);
+  VecDestroy(&x);
+  VecDestroy(&v);
+}
+
 TEST(PinHistory, PinsFollowTheHistoryInTime) {
   std::vector<int> fixed, moving;
   const TriangleMesh mesh = strip(&fixed, &moving);
@@ -258,10 +270,6 @@ TEST(PinHistory, PinsFollowTheHistoryInTime) {
   for (std::size_t i = fixed.size(); i < pins.size(); ++i)
     group.pins.push_back(i);
   problem.pin_groups.push_back(group);
-  Vec x = nullptr, v = nullptr;
-  ASSERT_EQ(problem.create_solution(&x), 0);
-  VecDuplicate(x, &v);
-  VecSet(v, 0.0);
   DynamicOptions options;
   options.time_step = 0.05;
   options.time_end = 2.0;
@@ -273,7 +281,7 @@ TEST(PinHistory, PinsFollowTheHistoryInTime) {
     return PetscErrorCode(0);
   };
   DynamicReport report;
-  ASSERT_EQ(solve_dynamic(problem, x, v, options, &report, record), 0);
+  run_from_rest(problem, options, &report, record);
   ASSERT_TRUE(report.completed) << report.reason;
   ASSERT_GE(states.size(), 41u); // steps of 0.05 s, more where one was cut back
   ASSERT_NEAR(states.back().first, options.time_end, 1e-12);
@@ -295,8 +303,46 @@ TEST(PinHistory, PinsFollowTheHistoryInTime) {
   const auto p = std::size_t(moving.front());
   EXPECT_NEAR(halfway->second[p][0] - mesh.positions[p][0], 0.01, 1e-15);
   EXPECT_NEAR(states.back().second[p][2] - mesh.positions[p][2], 0.1, 1e-15);
-  VecDestroy(&x);
-  VecDestroy(&v);
+}
+
+// Time steps end on the outputs, on the knots of a pin motion and on a
+// pin's release, whatever the time step: 0.04 s steps with outputs every
+// 0.1 s, a knot at 0.13 s and a release at 0.27 s.
+TEST(PinHistory, TimeStepsLandOnOutputsKnotsAndReleases) {
+  std::vector<int> fixed, moving;
+  const TriangleMesh mesh = strip(&fixed, &moving);
+  std::vector<int> pins = fixed;
+  pins.insert(pins.end(), moving.begin(), moving.end());
+  std::vector<double> releases(pins.size(), INFINITY);
+  releases.back() = 0.27;
+  ClothProblem problem(PETSC_COMM_WORLD, mesh, std::vector<ClothMaterial>{cotton(1e-6)}, pins,
+                       releases);
+  PinGroupMotion group;
+  group.history = PinHistory::parse("0:0,0,0; 0.13:0.01,0,0", "test");
+  for (std::size_t i = fixed.size(); i + 1 < pins.size(); ++i)
+    group.pins.push_back(i);
+  problem.pin_groups.push_back(group);
+  problem.loads.gravity = gravity;
+  DynamicOptions options;
+  options.time_step = 0.04;
+  options.time_end = 0.4;
+  options.damping = 5.0;
+  options.output_interval = 0.1;
+  DynamicReport report;
+  run_from_rest(problem, options, &report);
+  ASSERT_TRUE(report.completed) << report.reason;
+  const auto reached = [&](double time) {
+    return std::any_of(
+        report.steps.begin(), report.steps.end(),
+        [&](const DynamicStepReport& step) { return std::abs(step.time - time) < 1e-12; });
+  };
+  for (double landing : {0.1, 0.13, 0.2, 0.27, 0.3, 0.4})
+    EXPECT_TRUE(reached(landing)) << "no step ends at t = " << landing << " s";
+  for (const DynamicStepReport& step : report.steps) {
+    EXPECT_LE(step.dt, options.time_step + 1e-12) << "t = " << step.time;
+    const bool at_output = std::abs(step.time / 0.1 - std::round(step.time / 0.1)) < 1e-9;
+    EXPECT_EQ(step.output, at_output || step.step == 0) << "t = " << step.time;
+  }
 }
 
 TEST(PinHistory, StaticsUseTheLoadFactorAsClock) {
