@@ -1,7 +1,7 @@
 #include "mesh/seams.hpp"
 
+#include "common/autodiff.hpp"
 #include "common/csv.hpp"
-#include "common/dual.hpp"
 #include "common/error.hpp"
 #include "common/json_input.hpp"
 #include "common/output.hpp"
@@ -42,12 +42,12 @@ EdgeTriangles edge_triangles(const TriangleMesh& mesh) {
   return edges;
 }
 
-// The springs are built on double for their values and on Dual for their
-// change with the material coordinates (seam_spring_changes): the same
-// source, the lengths of the seams' segments seeded with their changes.
+// The springs are built on double for their values and on AutoDiff for
+// their change with the material coordinates (seam_spring_changes): the
+// same source, the lengths of the seams' segments seeded with their changes.
 
-// Material length of the edge p-q in triangle t; as a Dual, with its change
-// when the triangle's corners move by (*change)[t].
+// Material length of the edge p-q in triangle t; as an AutoDiff, with its
+// change when the triangle's corners move by (*change)[t].
 template <class Scalar>
 Scalar segment_length(const TriangleMesh& mesh, const MaterialChange* change, int t, int p, int q) {
   const auto& tri = mesh.triangles[std::size_t(t)];
@@ -63,7 +63,7 @@ Scalar segment_length(const TriangleMesh& mesh, const MaterialChange* change, in
     return length;
   } else {
     const auto& delta = (*change)[std::size_t(t)];
-    return Dual(length, (uq - up).dot(delta[cq] - delta[cp]) / length);
+    return seeded(length, (uq - up).dot(delta[cq] - delta[cp]) / length);
   }
 }
 
@@ -366,8 +366,9 @@ std::vector<SeamSpringChange> seam_spring_changes(const TriangleMesh& mesh,
                      " triangles for a mesh of " + std::to_string(mesh.triangle_count()));
   }
   std::vector<SeamSpringChange> changes;
-  for (const BuiltSpring<Dual>& built : build_springs<Dual>(mesh, seams, stiffness, &change))
-    changes.push_back({built.stiffness.derivative, built.s.derivative});
+  for (const BuiltSpring<AutoDiff>& built :
+       build_springs<AutoDiff>(mesh, seams, stiffness, &change))
+    changes.push_back({derivative_of(built.stiffness), derivative_of(built.s)});
   return changes;
 }
 

@@ -97,10 +97,11 @@ struct SeamSpringChange {
   double s = 0.0;
 };
 // The change of every spring of seam_springs (in its order) when the
-// material coordinates move by `change`: exact, by dual numbers through the
-// same construction (tributary and total arc lengths, the automatic kappa,
-// the normalised arc lengths that place vertex-to-edge springs). Which
-// springs there are, and between which vertices, is held.
+// material coordinates move by `change`: exact, by forward-mode automatic
+// differentiation (common/autodiff.hpp) through the same construction
+// (tributary and total arc lengths, the automatic kappa, the normalised arc
+// lengths that place vertex-to-edge springs). Which springs there are, and
+// between which vertices, is held.
 std::vector<SeamSpringChange> seam_spring_changes(const TriangleMesh& mesh,
                                                   const std::vector<Seam>& seams,
                                                   const SeamStiffness& stiffness,

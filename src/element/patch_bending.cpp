@@ -1,6 +1,6 @@
 #include "element/patch_bending.hpp"
 
-#include "common/dual_eigen.hpp"
+#include "common/autodiff.hpp"
 #include "common/error.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -181,10 +181,11 @@ Eigen::Matrix<double, 3, 6> edge_coefficients(const Matrix3d& system,
 // = (A^T A + tau^2)^-1 A^T N (the same as the SVD's filter) by
 // (A^T A + tau^2)^-1 (dA^T N + A^T dN - (dA^T A + A^T dA + d tau^2) c), with
 // d sigma_max = u_1^T dA v_1 (a simple largest singular value).
-Eigen::Matrix<Dual, 3, 6> edge_coefficients(const Matrix3<Dual>& dual_system,
-                                            const Eigen::Matrix<Dual, 3, 6>& dual_nodes) {
-  const Matrix3d system = values(dual_system), d_system = derivatives(dual_system);
-  const Eigen::Matrix<double, 3, 6> nodes = values(dual_nodes), d_nodes = derivatives(dual_nodes);
+Eigen::Matrix<AutoDiff, 3, 6> edge_coefficients(const Matrix3<AutoDiff>& moving_system,
+                                                const Eigen::Matrix<AutoDiff, 3, 6>& moving_nodes) {
+  const Matrix3d system = values(moving_system), d_system = derivatives(moving_system);
+  const Eigen::Matrix<double, 3, 6> nodes = values(moving_nodes),
+                                    d_nodes = derivatives(moving_nodes);
   const Eigen::JacobiSVD<Matrix3d> svd(system, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Eigen::Matrix<double, 3, 6> c, dc;
   if (well_conditioned(svd)) {
@@ -203,10 +204,10 @@ Eigen::Matrix<Dual, 3, 6> edge_coefficients(const Matrix3<Dual>& dual_system,
     dc = normal.partialPivLu().solve(d_system.transpose() * nodes + system.transpose() * d_nodes -
                                      d_normal * c);
   }
-  Eigen::Matrix<Dual, 3, 6> result;
+  Eigen::Matrix<AutoDiff, 3, 6> result;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 6; ++j)
-      result(i, j) = Dual(c(i, j), dc(i, j));
+      result(i, j) = seeded(c(i, j), dc(i, j));
   return result;
 }
 
@@ -375,7 +376,7 @@ PatchRest patch_rest(const std::array<Vector2d, 3>& triangle,
   template PatchWeights<Scalar> patch_weights(const PatchTriangle<Scalar>&,                        \
                                               const std::array<Eigen::Matrix<Scalar, 1, 12>, 3>&);
 SARTOR_PATCH_GEOMETRY(double)
-SARTOR_PATCH_GEOMETRY(Dual)
+SARTOR_PATCH_GEOMETRY(AutoDiff)
 #undef SARTOR_PATCH_GEOMETRY
 
 PatchResponse patch_response(const PatchRest& rest, const Vector3d& strain) {

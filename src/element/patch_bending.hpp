@@ -98,8 +98,8 @@ struct PatchRest {
 constexpr double ill_conditioned = 1e-2;
 
 // The patch's geometry on the material coordinates (steps 1-3 below) is
-// written once for either scalar: double for the rest data, Dual
-// (common/dual.hpp) for their exact derivative along a change of the
+// written once for either scalar: double for the rest data, AutoDiff
+// (common/autodiff.hpp) for their exact derivative along a change of the
 // material coordinates, which the design sensitivity needs
 // (docs/sensitivity.md). Both are instantiated.
 template <typename Scalar>

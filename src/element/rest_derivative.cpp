@@ -1,6 +1,6 @@
 #include "element/rest_derivative.hpp"
 
-#include "common/dual.hpp"
+#include "common/autodiff.hpp"
 #include "element/seam.hpp"
 
 #include <Eigen/Geometry>
@@ -73,12 +73,12 @@ HingeGeometry<Scalar> hinge_geometry(const std::array<Point<Scalar>, 3>& first,
           area_sum};
 }
 
-// The corners as dual numbers carrying their change.
-std::array<Point<Dual>, 3> seeded(const std::array<Eigen::Vector2d, 3>& uv,
-                                  const std::array<Eigen::Vector2d, 3>& delta) {
-  std::array<Point<Dual>, 3> points;
+// The corners carrying their change.
+std::array<Point<AutoDiff>, 3> moving(const std::array<Eigen::Vector2d, 3>& uv,
+                                      const std::array<Eigen::Vector2d, 3>& delta) {
+  std::array<Point<AutoDiff>, 3> points;
   for (std::size_t i = 0; i < 3; ++i)
-    points[i] = {Dual(uv[i].x(), delta[i].x()), Dual(uv[i].y(), delta[i].y())};
+    points[i] = {seeded(uv[i].x(), delta[i].x()), seeded(uv[i].y(), delta[i].y())};
   return points;
 }
 
@@ -88,19 +88,18 @@ HingeRest hinge_rest_derivative(const std::array<Eigen::Vector2d, 3>& first,
                                 const std::array<Eigen::Vector2d, 3>& second,
                                 const std::array<Eigen::Vector2d, 3>& delta_first,
                                 const std::array<Eigen::Vector2d, 3>& delta_second) {
-  const HingeGeometry<Dual> g =
-      hinge_geometry(seeded(first, delta_first), seeded(second, delta_second));
+  const HingeGeometry<AutoDiff> g =
+      hinge_geometry(moving(first, delta_first), moving(second, delta_second));
   HingeRest delta;
-  delta.weight = g.weight.derivative;
+  delta.weight = derivative_of(g.weight);
   delta.rest_angle = 0.0;
   // d(K K^T / A) = (dK K^T + K dK^T) / A - K K^T dA / A^2.
-  const double area = g.area_sum.value, d_area = g.area_sum.derivative;
+  const double area = g.area_sum.value(), d_area = derivative_of(g.area_sum);
   for (int i = 0; i < 4; ++i) {
-    const Dual ki = g.k[std::size_t(i)];
+    const double ki = g.k[std::size_t(i)].value(), dki = derivative_of(g.k[std::size_t(i)]);
     for (int j = 0; j < 4; ++j) {
-      const Dual kj = g.k[std::size_t(j)];
-      const double d_entry = (ki.derivative * kj.value + ki.value * kj.derivative) / area -
-                             ki.value * kj.value * d_area / (area * area);
+      const double kj = g.k[std::size_t(j)].value(), dkj = derivative_of(g.k[std::size_t(j)]);
+      const double d_entry = (dki * kj + ki * dkj) / area - ki * kj * d_area / (area * area);
       delta.quadratic.block<3, 3>(3 * i, 3 * j) = d_entry * Matrix3d::Identity();
     }
   }

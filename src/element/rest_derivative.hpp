@@ -6,7 +6,8 @@
 // The membrane's is in element/membrane.hpp. Each is exact: the kernels'
 // forces are differentiated by hand in their rest data, and the hinge's rest
 // data (weight, cotangent matrix) in the material coordinates by forward-mode
-// dual numbers (common/dual.hpp) through the formulas of hinge_rest.
+// automatic differentiation (common/autodiff.hpp) through the formulas of
+// hinge_rest.
 
 #include "element/bending.hpp"
 #include "element/patch_bending.hpp"

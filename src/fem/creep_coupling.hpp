@@ -18,7 +18,8 @@
 // state with the tension going linearly to T, T the element's tension with
 // unloaded lengths 1 + n; Newton's tangent includes dF/dn dn/dx, with dn/dx
 // from the implicit function theorem (exact: the law's derivative comes from
-// dual numbers, the membrane's from membrane_creep_sensitivity).
+// forward-mode automatic differentiation, the membrane's from
+// membrane_creep_sensitivity).
 //
 // Tension is the membrane's: force per unit unloaded width, N/m
 // (element::membrane_strain). A trial advance can be rolled back, so a step

@@ -1,6 +1,6 @@
 #include "material/creep_law.hpp"
 
-#include "common/dual.hpp"
+#include "common/autodiff.hpp"
 #include "common/error.hpp"
 
 #include <algorithm>
@@ -24,9 +24,10 @@ void require(bool ok, const std::string& context, const char* name, double value
   throw InputError(message.str());
 }
 
-// The law is written once, for any scalar: double for values, Dual for the
-// derivative with respect to the end tension (the monolithic coupling's
-// tangent). Branches follow the value.
+// The law is written once, for any scalar: double for values, AutoDiff for
+// the derivative with respect to the end tension (the monolithic coupling's
+// tangent). Branches follow the value. Calls name S where an argument is an
+// expression (common/autodiff.hpp).
 
 // x + expm1(-x) = x^2/2 - x^3/6 + ..., without cancellation for small x.
 template <typename S>
@@ -81,8 +82,8 @@ S advance_viscoelastic(S strain, S target, S slope, double rate_below, double ra
   const S closing = gap_closing_time(gap, slope, rate);
   if (closing >= duration) return kelvin_update(strain, target, slope, rate, duration);
   const S target_at_switch = target + slope * closing;
-  return kelvin_update(target_at_switch, target_at_switch, slope, below ? rate_above : rate_below,
-                       duration - closing);
+  return kelvin_update<S>(target_at_switch, target_at_switch, slope,
+                          below ? rate_above : rate_below, duration - closing);
 }
 
 // Permanent strain: creeps up towards its target at `rate`, never recovers.
@@ -101,7 +102,7 @@ S advance_permanent(S strain, S target, S slope, double rate, S duration) {
   const S reached = slope > 0.0 ? gap / slope : S(never);
   if (reached >= duration) return strain;
   const S target_at_switch = target + slope * reached;
-  return kelvin_update(target_at_switch, target_at_switch, slope, rate, duration - reached);
+  return kelvin_update<S>(target_at_switch, target_at_switch, slope, rate, duration - reached);
 }
 
 template <typename S>
@@ -123,11 +124,11 @@ Strains<S> advance_without_sign_change(const CreepParameters& p, Strains<S> stat
   const S saturation_begin = saturation(p, tension_begin);
   const S saturation_slope = (saturation(p, tension_end) - saturation_begin) / duration;
   Strains<S> next;
-  next.viscoelastic = advance_viscoelastic(state.viscoelastic, (1.0 - p.alpha) * saturation_begin,
-                                           (1.0 - p.alpha) * saturation_slope, p.lambda_load,
-                                           p.lambda_unload, duration);
-  next.permanent = advance_permanent(state.permanent, p.alpha * saturation_begin,
-                                     p.alpha * saturation_slope, p.lambda_load, duration);
+  next.viscoelastic = advance_viscoelastic<S>(
+      state.viscoelastic, (1.0 - p.alpha) * saturation_begin, (1.0 - p.alpha) * saturation_slope,
+      p.lambda_load, p.lambda_unload, duration);
+  next.permanent = advance_permanent<S>(state.permanent, p.alpha * saturation_begin,
+                                        p.alpha * saturation_slope, p.lambda_load, duration);
   return next;
 }
 
@@ -145,7 +146,7 @@ Strains<S> advance_step(const CreepParameters& p, const CreepState& state, doubl
     const S zero_at = duration * tension_begin / (tension_begin - tension_end);
     const Strains<S> middle =
         advance_without_sign_change(p, start, S(tension_begin), S(0.0), zero_at);
-    return advance_without_sign_change(p, middle, S(0.0), tension_end, duration - zero_at);
+    return advance_without_sign_change<S>(p, middle, S(0.0), tension_end, duration - zero_at);
   }
   return advance_without_sign_change(p, start, S(tension_begin), tension_end, S(duration));
 }
@@ -175,10 +176,10 @@ CreepState advance(const CreepParameters& p, const CreepState& state, double ten
 
 CreepAdvance advance_with_sensitivity(const CreepParameters& p, const CreepState& state,
                                       double tension_begin, double tension_end, double duration) {
-  const Strains<Dual> next =
-      advance_step(p, state, tension_begin, Dual(tension_end, 1.0), duration);
-  return {{next.viscoelastic.value, next.permanent.value},
-          next.viscoelastic.derivative + next.permanent.derivative};
+  const Strains<AutoDiff> next =
+      advance_step(p, state, tension_begin, seeded(tension_end, 1.0), duration);
+  return {{next.viscoelastic.value(), next.permanent.value()},
+          derivative_of(next.viscoelastic) + derivative_of(next.permanent)};
 }
 
 } // namespace sartor

@@ -1,10 +1,10 @@
 // The kernels' rest-coordinate derivatives (element/rest_derivative.hpp,
 // membrane_rest_derivative, membrane_tension_rest_derivative, the patch
-// geometry on dual numbers): each against central differences of the
+// geometry on AutoDiff): each against central differences of the
 // kernel's own force (or tensions, or rest data) with its rest data rebuilt
 // at X +- h dX.
 
-#include "common/dual_eigen.hpp"
+#include "common/autodiff.hpp"
 #include "element/membrane.hpp"
 #include "element/patch_bending.hpp"
 #include "element/rest_derivative.hpp"
@@ -205,15 +205,15 @@ patch_data(const PatchTriangle<Scalar>& triangle, const PatchTriangle<Scalar>& a
   return data;
 }
 
-PatchTriangle<Dual> carrying(const std::array<Vector2d, 3>& uv,
-                             const std::array<Vector2d, 3>& change) {
-  PatchTriangle<Dual> points;
+PatchTriangle<AutoDiff> carrying(const std::array<Vector2d, 3>& uv,
+                                 const std::array<Vector2d, 3>& change) {
+  PatchTriangle<AutoDiff> points;
   for (std::size_t i = 0; i < 3; ++i)
-    points[i] = {Dual(uv[i].x(), change[i].x()), Dual(uv[i].y(), change[i].y())};
+    points[i] = {seeded(uv[i].x(), change[i].x()), seeded(uv[i].y(), change[i].y())};
   return points;
 }
 
-// The patch geometry run on dual numbers against central differences
+// The patch geometry run on AutoDiff against central differences
 // (Richardson-extrapolated) of it on double, for patches with three nodes
 // across, with a boundary edge (the free-edge row), and with six nodes near
 // a conic (an ellipse), where the edge system is nearly singular and is
@@ -248,7 +248,7 @@ TEST(RestDerivative, PatchRestDataMatchesDifferences) {
     };
     const double h = 1e-6;
     const Eigen::VectorXd difference = (4.0 * central(data, 0.5 * h) - central(data, h)) / 3.0;
-    const Eigen::VectorXd exact = derivatives(patch_data<Dual>(
+    const Eigen::VectorXd exact = derivatives(patch_data<AutoDiff>(
         carrying(c.triangle, triangle_change), carrying(c.across, d_across), c.has_node, rigidity));
     EXPECT_LT(relative_error(difference, exact), 1e-7) << c.name;
   }

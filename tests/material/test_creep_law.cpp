@@ -567,7 +567,7 @@ void expect_rejected(const CreepParameters& p, const std::string& parameter) {
 TEST(CreepLawSensitivity, MatchesCentralDifferencesOnEveryBranch) {
   // Random ramps from states above and below both targets (loading,
   // recovery, switches within the step, sign changes of the tension): the
-  // dual-number derivative against a central difference of advance().
+  // AutoDiff derivative against a central difference of advance().
   std::mt19937_64 rng(8128);
   int checked = 0;
   for (int set = 0; set < 2000; ++set) {

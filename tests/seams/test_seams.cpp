@@ -102,7 +102,7 @@ TEST(SeamLines, ReversedLinePairsStartWithEnd) {
               largest_seam_gap(original, tube.mesh.positions), 1e-14);
 }
 
-// The springs' exact changes with the material coordinates (dual numbers
+// The springs' exact changes with the material coordinates (AutoDiff
 // through the construction) against central differences of springs built
 // on moved coordinates: matched lines (stiffness only) and unequal ones
 // (vertex-to-edge springs: stiffness and edge parameter), with the

@@ -2,7 +2,7 @@
 // triangle whose curvature comes from its own and its neighbours' patches,
 // and which converges to plate theory (docs/finite-elements.md#bending).
 
-#include "common/dual_eigen.hpp"
+#include "common/autodiff.hpp"
 #include "common/error.hpp"
 #include "fem/bending_models.hpp"
 #include "fem/forms/bending_forms.hpp"
@@ -44,8 +44,8 @@ std::vector<Across> neighbours(const TriangleMesh& mesh) {
 // A triangle's six-node patch: its corners, the vertices across its edges
 // (a corner repeated across a boundary edge), and the patch's outward
 // normal slopes at the edges' midpoints.
-// Of either scalar: double, or Dual for the rest data's derivative along a
-// change of the pattern.
+// Of either scalar: double, or AutoDiff for the rest data's derivative along
+// a change of the pattern.
 template <typename Scalar>
 struct Patch {
   std::array<int, 6> vertices;
@@ -163,7 +163,7 @@ Stencil<Scalar> stencil_of(const PatchGeometry& g, const PatchOf<Scalar>& patch,
 
 // The change of triangle t's rest data (area and curvature weights) when the
 // pattern moves by `change`: the patches of t and its neighbours built on
-// material coordinates carrying the change (dual numbers), their exact
+// material coordinates carrying the change (AutoDiff), their exact
 // derivative.
 element::PatchRestChange rest_change(const PatchGeometry& g, std::size_t t,
                                      const RestChange& change) {
@@ -184,28 +184,28 @@ element::PatchRestChange rest_change(const PatchGeometry& g, std::size_t t,
                        [](const Eigen::Vector2d& d) { return d.isZero(0.0); });
   });
   if (unchanged) return result;
-  const UVOf<Dual> uv_of = [&](std::size_t triangle) {
-    TriangleUV<Dual> uv;
+  const UVOf<AutoDiff> uv_of = [&](std::size_t triangle) {
+    TriangleUV<AutoDiff> uv;
     for (std::size_t c = 0; c < 3; ++c) {
       const Eigen::Vector2d& at = g.mesh.material_uv[triangle][c];
       const Eigen::Vector2d& d = change[triangle][c];
-      uv[c] = {Dual(at.x(), d.x()), Dual(at.y(), d.y())};
+      uv[c] = {seeded(at.x(), d.x()), seeded(at.y(), d.y())};
     }
     return uv;
   };
-  std::vector<std::pair<std::size_t, Patch<Dual>>> patches{{t, patch_of(g, uv_of, t)}};
+  std::vector<std::pair<std::size_t, Patch<AutoDiff>>> patches{{t, patch_of(g, uv_of, t)}};
   for (std::size_t k = 0; k < 3; ++k) {
     const int neighbour = g.across[3 * t + k].triangle;
     if (neighbour >= 0) patches.emplace_back(neighbour, patch_of(g, uv_of, std::size_t(neighbour)));
   }
-  const PatchOf<Dual> patch = [&](std::size_t triangle) -> const Patch<Dual>& {
+  const PatchOf<AutoDiff> patch = [&](std::size_t triangle) -> const Patch<AutoDiff>& {
     return std::find_if(patches.begin(), patches.end(),
                         [&](const auto& entry) { return entry.first == triangle; })
         ->second;
   };
-  const element::PatchWeights<Dual> moving =
+  const element::PatchWeights<AutoDiff> moving =
       element::patch_weights(uv_of(t), stencil_of(g, patch, t).slopes);
-  result.area = moving.area.derivative;
+  result.area = derivative_of(moving.area);
   result.weights = derivatives(moving.weights);
   return result;
 }

@@ -101,8 +101,9 @@ PetscErrorCode PatchBendingForm::add_element_hessians(const FormPoint& at,
 }
 
 // The kernel's exact response to the change of the rest data; the rest
-// data's own change, also exact, from the patch model (dual numbers through
-// the patches of the triangle and its neighbours).
+// data's own change, also exact, from the patch model (forward-mode
+// automatic differentiation through the patches of the triangle and its
+// neighbours).
 void PatchBendingForm::add_rest_derivative(const FormPoint& at, const RestChange& change,
                                            PetscScalar* f) const {
   for (const LocalPatch& p : patches_) {
