@@ -62,7 +62,7 @@ PetscErrorCode measure(const DynamicState& s, DynamicStepReport* step) {
 }
 
 // One backward Euler step from the clock's time, of the length *dt asks for
-// unless the clock cuts it to land on an output or the end; halved on
+// unless the clock cuts it to land on an output, an event or the end; halved on
 // failure up to max_cutbacks times; *accepted tells whether one converged
 // (else report->reason says why). After a success *dt doubles back towards
 // the time step.

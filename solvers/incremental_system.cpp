@@ -180,7 +180,6 @@ PetscErrorCode IncrementalSystem::minimise_failed_time_step(SNES snes, Vec x, So
   PetscCall(minimise(x, result));
   result->newton_iterations += failed.newton_iterations;
   result->linear_iterations += failed.linear_iterations;
-  ++minimiser_statistics.snes_fallbacks;
   PetscFunctionReturn(0);
 }
 

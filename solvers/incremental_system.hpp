@@ -97,8 +97,7 @@ public:
     PetscInt regularised_steps = 0;    // steps with mu > 0
     PetscInt residual_rule_trials = 0; // line-search trials decided on slopes (Phi in round-off)
     PetscInt failed_factorisations = 0;
-    PetscInt exact_steps = 0;    // with the unprojected Hessian
-    PetscInt snes_fallbacks = 0; // time steps SNES failed, minimised instead
+    PetscInt exact_steps = 0; // with the unprojected Hessian
   };
   MinimiserStatistics minimiser_statistics;
   // Progress lines of the minimiser on stdout (what is solved, iteration,
