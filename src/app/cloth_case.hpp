@@ -157,10 +157,12 @@ void assign_panel_fabrics(const std::vector<garment::Panel>& panels, CaseCloth* 
 // (the creep parameters of a wear).
 void name_single_fabric(const CaseCloth& cloth, Options* options);
 
+// `start`: the positions the solve starts from (the mesh's placement when
+// null; pinned vertices stay at their own).
 CaseResult solve_case(const ClothCase& cloth_case, int extra_refinements = 0,
                       const CaseStepObserver& observe = {},
-                      const CaseCheckpointing& checkpointing = {},
-                      const CaseCloth* cloth = nullptr);
+                      const CaseCheckpointing& checkpointing = {}, const CaseCloth* cloth = nullptr,
+                      const std::vector<Eigen::Vector3d>* start = nullptr);
 
 // The parts of `sartor run`'s summary.json that describe the solve: "mesh",
 // "converged", "solver", "load_steps" (statics) or "dynamics" (time stepping),

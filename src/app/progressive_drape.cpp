@@ -150,30 +150,6 @@ void lift_edges_out_of_body(const contact::Body& body, double offset, double spa
   }
 }
 
-// Moves the vertices of a prolonged drape that lie deeper than half the
-// contact offset out to that depth, along the body's normal, and then the
-// edges' sample points likewise. A coarse
-// triangle's chord cuts into a convex body between its vertices (by
-// h^2 / 8R: 2 cm for 16 cm edges on a 15 cm radius), so the finer vertices
-// interpolated on it start inside; their penalty forces (1e4 N on the
-// T-shirt's 2 N) would throw the static solve far off. Half the offset
-// keeps them in contact, so that friction anchors them at the start.
-// Returns the deepest vertex's start, m below the offset surface.
-double lift_out_of_bodies(const ContactCase& contact, const TriangleMesh& mesh,
-                          std::vector<Eigen::Vector3d>* positions) {
-  const double offset = contact.settings.offset;
-  const double spacing = contact.settings.edge_sample_spacing;
-  const std::vector<std::array<int, 2>> edges = mesh_edges(mesh);
-  double deepest = 0.0;
-  for (const contact::Body& body : contact.bodies) {
-    Eigen::Vector3d displacement;
-    for (Eigen::Vector3d& x : *positions)
-      deepest = std::max(deepest, lift_point(body, offset, &x, &displacement));
-    if (spacing > 0.0) lift_edges_out_of_body(body, offset, spacing, edges, positions);
-  }
-  return deepest;
-}
-
 void record(const CaseResult& result, LevelRun* run) {
   run->converged = result.converged;
   run->solve_seconds = result.solve_seconds;
@@ -309,6 +285,30 @@ void print_level(std::size_t index, std::size_t count, const LevelRun& run) {
 }
 
 } // namespace
+
+// Moves the vertices of a prolonged drape that lie deeper than half the
+// contact offset out to that depth, along the body's normal, and then the
+// edges' sample points likewise. A coarse
+// triangle's chord cuts into a convex body between its vertices (by
+// h^2 / 8R: 2 cm for 16 cm edges on a 15 cm radius), so the finer vertices
+// interpolated on it start inside; their penalty forces (1e4 N on the
+// T-shirt's 2 N) would throw the static solve far off. Half the offset
+// keeps them in contact, so that friction anchors them at the start.
+// Returns the deepest vertex's start, m below the offset surface.
+double lift_out_of_bodies(const ContactCase& contact, const TriangleMesh& mesh,
+                          std::vector<Eigen::Vector3d>* positions) {
+  const double offset = contact.settings.offset;
+  const double spacing = contact.settings.edge_sample_spacing;
+  const std::vector<std::array<int, 2>> edges = mesh_edges(mesh);
+  double deepest = 0.0;
+  for (const contact::Body& body : contact.bodies) {
+    Eigen::Vector3d displacement;
+    for (Eigen::Vector3d& x : *positions)
+      deepest = std::max(deepest, lift_point(body, offset, &x, &displacement));
+    if (spacing > 0.0) lift_edges_out_of_body(body, offset, spacing, edges, positions);
+  }
+  return deepest;
+}
 
 const std::vector<OptionSpec>& level_option_specs() {
   static const std::vector<OptionSpec> specs{

@@ -80,6 +80,14 @@ CaseResult drape_progressively(const ClothCase& cloth_case, double refine_time,
                                std::vector<LevelRun>* runs,
                                const CaseCheckpointing& checkpointing = {});
 
+// Moves the vertices of a prolonged state that lie deeper than half the
+// contact offset in one of contact's bodies out to that depth, then the
+// points its edge samples query (the coarse chords cut into curved bodies
+// between their vertices). Returns the deepest vertex's start, m below the
+// offset surface.
+double lift_out_of_bodies(const ContactCase& contact, const TriangleMesh& mesh,
+                          std::vector<Eigen::Vector3d>* positions);
+
 // summary.json's drape.levels: one object per level.
 nlohmann::json levels_json(const std::vector<LevelRun>& runs);
 

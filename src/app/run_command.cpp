@@ -10,6 +10,7 @@
 #include "app/load_case.hpp"
 #include "app/material_case.hpp"
 #include "app/mesh_case.hpp"
+#include "app/refine_levels.hpp"
 #include "app/seam_case.hpp"
 #include "app/static_case.hpp"
 #include "app/static_checkpoint.hpp"
@@ -82,6 +83,7 @@ const CommandSpec& run_command() {
         options.push_back({"checkpoint", "FILE", "", "the checkpoint file [OUTPUT/checkpoint.h5]"});
         options.push_back({"restart", "FILE", "", "resume from this checkpoint"});
         options.push_back({"no-plot", "", "", "write data only, no result.png"});
+        options.push_back(refine_levels_option());
         return options;
       }(),
       1,
@@ -316,7 +318,7 @@ void name_single_fabric(const CaseCloth& cloth, Options* options) {
 
 CaseResult solve_case(const ClothCase& cloth_case, int extra_refinements,
                       const CaseStepObserver& observe, const CaseCheckpointing& checkpointing,
-                      const CaseCloth* cloth) {
+                      const CaseCloth* cloth, const std::vector<Eigen::Vector3d>* start) {
   const auto started = std::chrono::steady_clock::now();
   CaseResult result;
   const MeshCase& mesh_case = cloth_case.mesh;
@@ -376,6 +378,7 @@ CaseResult solve_case(const ClothCase& cloth_case, int extra_refinements,
 
   Vec x = nullptr;
   SartorPetscCall(problem.create_solution(&x));
+  if (start) SartorPetscCall(problem.set_solution(*start, x));
   if (dynamic) {
     solve_dynamic_case(time, problem, x, observe, checkpointing, &result);
   } else if (creep) {
@@ -727,11 +730,15 @@ int run_run(const Invocation& invocation) {
   const CaseCheckpointing checkpointing = case_checkpointing(options, directory);
   const CaseStepObserver write_state = series_writer(directory, labels, checkpointing.restart_file);
   const ClothCase cloth_case = read_cloth_case(options);
-  const CaseResult result = solve_case(cloth_case, 0, write_state, checkpointing);
+  std::vector<RefineLevelRun> levels;
+  const CaseResult result =
+      solve_on_refine_levels(cloth_case, int(options.integer_in("refine-levels", 1, 8)),
+                             write_state, checkpointing, &levels);
 
   nlohmann::json summary = run_metadata(invocation, "run");
   summary["case"] = invocation.command_line.positionals.at(0);
   add_case_summary(result, summary);
+  if (!levels.empty()) summary["levels"] = refine_levels_json(levels);
   write_case_results(directory, result, summary, labels);
   write_petsc_options(directory, options);
   if (invocation.keep_result) invocation.keep_result(result, summary, labels);

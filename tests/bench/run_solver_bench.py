@@ -35,7 +35,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 COLUMNS = (
     "series", "size", "size_unit", "ranks", "status", "exit_status", "wall_s", "cpu_s",
     "peak_rss_mb", "vertices", "triangles", "bytes_per_vertex", "newton_iterations",
-    "linear_iterations", "settle_newton_iterations", "converged", "certificate",
+    "linear_iterations", "settle_newton_iterations", "level_newton_iterations", "converged",
+    "certificate",
     "drape_coefficient", "drape_nodes",
 )
 
@@ -144,6 +145,8 @@ def summary_figures(path):
     # Per level of a coarse-to-fine solve, when the run reports levels.
     if isinstance(summary.get("levels"), list):
         figures["levels"] = summary["levels"]
+        figures["level_newton_iterations"] = "/".join(
+            str(level.get("newton_iterations")) for level in summary["levels"])
     return figures
 
 
