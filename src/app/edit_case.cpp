@@ -3,6 +3,7 @@
 #include "app/commands.hpp"
 #include "app/edit_design.hpp"
 #include "app/seam_case.hpp"
+#include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
 #include "common/yaml_input.hpp"
@@ -81,6 +82,44 @@ CornerMove read_move(const std::string& path, const YAML::Node& node, const std:
   return move;
 }
 
+// Three finite numbers [x, y, z] under `name` of `parent`, each at most
+// `limit` in size.
+Eigen::Vector3d read_point(const std::string& path, const YAML::Node& parent,
+                           const std::string& name, const std::string& key, const std::string& what,
+                           double limit) {
+  const YAML::Node node = parent[name];
+  if (!node) edit_error(path, parent, key, "missing: " + what);
+  if (!node.IsSequence() || node.size() != 3)
+    edit_error(path, node, key, "must be three numbers [x, y, z] in m (" + what + ")");
+  Eigen::Vector3d point;
+  for (std::size_t i = 0; i < 3; ++i) {
+    double value = NAN;
+    try {
+      value = node[i].as<double>();
+    } catch (const YAML::Exception&) {
+      edit_error(path, node[i], key, "'" + node[i].Scalar() + "' is not a number");
+    }
+    if (!std::isfinite(value) || std::abs(value) > limit)
+      edit_error(path, node[i], key,
+                 node[i].Scalar() + " m: must be finite and at most " + format_number(limit) +
+                     " m");
+    point[Eigen::Index(i)] = value;
+  }
+  return point;
+}
+
+DragRequest read_drag(const std::string& path, const YAML::Node& node, const std::string& key) {
+  if (!node.IsMap()) edit_error(path, node, key, "a drag is a mapping {point, by}");
+  reject_unknown_keys(path, node, key, {"point", "by"});
+  DragRequest drag;
+  drag.point = read_point(path, node, "point", key + ".point",
+                          "the point of the drape to drag, [x, y, z] in m", 100.0);
+  drag.by =
+      read_point(path, node, "by", key + ".by", "where it should move, [dx, dy, dz] in m", 0.5);
+  if (drag.by.norm() == 0.0) edit_error(path, node["by"], key + ".by", "the drag is zero");
+  return drag;
+}
+
 // The outline corners a move moves, as (panel, corner) with corner i the
 // start of line i.
 std::vector<std::pair<std::size_t, std::size_t>> moved_corners(const garment::Pattern& pattern,
@@ -116,8 +155,8 @@ std::vector<EditStep> read_edit_file(const std::string& path, const garment::Pat
   for (std::size_t s = 0; s < steps.size(); ++s) {
     const std::string key = "steps[" + std::to_string(s) + "]";
     const YAML::Node step = steps[s];
-    if (!step.IsMap()) edit_error(path, step, key, "an edit is a mapping {name, moves}");
-    reject_unknown_keys(path, step, key, {"name", "moves"});
+    if (!step.IsMap()) edit_error(path, step, key, "an edit is a mapping {name, moves[, drag]}");
+    reject_unknown_keys(path, step, key, {"name", "moves", "drag"});
     EditStep edit;
     edit.name = step["name"] && step["name"].IsScalar() ? step["name"].Scalar()
                                                         : "edit " + std::to_string(s + 1);
@@ -139,6 +178,7 @@ std::vector<EditStep> read_edit_file(const std::string& path, const garment::Pat
                          edit.moves.back().line + "' move their shared corner differently");
       }
     }
+    if (step["drag"]) edit.drag = read_drag(path, step["drag"], key + ".drag");
     result.push_back(edit);
   }
   return result;

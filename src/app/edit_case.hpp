@@ -19,6 +19,7 @@
 #include <Eigen/Core>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,9 +33,22 @@ struct CornerMove {
   Eigen::Vector2d by = Eigen::Vector2d::Zero();
 };
 
+// A drag of the drape (Sensitive Couture §4.1, direct 3D editing): the cloth
+// vertex nearest `point` in the drape the step starts from is asked to move
+// by `by` (m). The step's moves are then the direction of one design
+// parameter g (their `by` per unit of g), and the step takes
+// dg = s . by / |s|^2 of it, s = dx/dg the vertex's sensitivity: the
+// parameter change whose linear response moves the vertex by the
+// projection of `by` on s.
+struct DragRequest {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d by = Eigen::Vector3d::Zero();
+};
+
 struct EditStep {
   std::string name;
   std::vector<CornerMove> moves;
+  std::optional<DragRequest> drag;
 };
 
 // Reads an edit file (YAML; docs/sensitivity.md#the-edit-file) against the

@@ -9,6 +9,7 @@
 #include "app/material_case.hpp"
 #include "app/seam_case.hpp"
 #include "app/static_case.hpp"
+#include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/gmls.hpp"
 #include "common/output.hpp"
@@ -217,6 +218,8 @@ private:
   std::unique_ptr<Attempt> resolve_from(Design& last, ClothProblem& problem,
                                         const std::string& start, Vec candidate);
   nlohmann::json solve_step(std::size_t k, const Eigen::VectorXd& p, const EditDesign& design);
+  double drag_parameter(std::size_t k, const Eigen::VectorXd& direction, nlohmann::json* record);
+  void report_drag(nlohmann::json* step, nlohmann::json drag);
   void write_state(const std::string& directory, const Design& design, Vec x);
 
   const Options& options_;
@@ -494,6 +497,101 @@ nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
   return step;
 }
 
+// Step k's drag (DragRequest): the parameter change dg of the step's
+// moves `direction` (per unit of g) that the drag asks for, from the
+// sensitivity s of the dragged vertex in the last design; `record` gets the
+// vertex, s, dg and the predicted move dg s. Throws InputError when the
+// moves do not move the vertex, or would move a corner more than 0.5 m.
+double EditSession::drag_parameter(std::size_t k, const Eigen::VectorXd& direction,
+                                   nlohmann::json* record) {
+  const DragRequest& drag = *steps_[k].drag;
+  const std::string step = "edit step " + std::to_string(k + 1) + " ('" + steps_[k].name + "')";
+  Design& last = *designs_.back();
+  const double started = process_cpu_seconds();
+  ensure_slope(last);
+  Vec dx = nullptr;
+  SartorPetscCall(VecDuplicate(last.x, &dx));
+  SartorPetscCall(last.slope->apply(design_->rest_change(direction), dx));
+  const std::vector<Eigen::Vector3d> positions = gathered(*last.problem, last.x);
+  const std::vector<Eigen::Vector3d> slopes = gathered(*last.problem, dx);
+  SartorPetscCall(VecDestroy(&dx));
+  // Rank 0 holds the gathered vectors: it finds the free vertex nearest the
+  // point, and every rank learns it, its sensitivity and its position.
+  double found[7] = {-1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  if (is_root()) {
+    std::vector<bool> pinned(positions.size(), false);
+    for (int v : last.problem->pinned())
+      pinned[std::size_t(v)] = true;
+    double nearest = INFINITY;
+    for (std::size_t v = 0; v < positions.size(); ++v) {
+      const double d = (positions[v] - drag.point).norm();
+      if (pinned[v] || d >= nearest) continue;
+      nearest = d;
+      found[0] = double(v);
+      for (int i = 0; i < 3; ++i) {
+        found[1 + i] = slopes[v][i];
+        found[4 + i] = positions[v][i];
+      }
+    }
+  }
+  SartorPetscCall(MPI_Bcast(found, 7, MPI_DOUBLE, 0, last.problem->comm()));
+  if (found[0] < 0.0) throw InputError(step + ": drag: the cloth has no free vertex");
+  const Eigen::Vector3d s(found[1], found[2], found[3]), at(found[4], found[5], found[6]);
+  const std::string vertex = "the vertex nearest the drag's point (" +
+                             std::to_string(long(found[0])) + ", at " + format_number(at.x()) +
+                             ", " + format_number(at.y()) + ", " + format_number(at.z()) + " m)";
+  if (!(s.squaredNorm() > 0.0))
+    throw InputError(step + ": drag: " + vertex +
+                     " does not move with the step's moves (its sensitivity is zero)");
+  const double dg = s.dot(drag.by) / s.squaredNorm();
+  const double largest = design_->largest_move(dg * direction);
+  if (!(largest <= 0.5))
+    throw InputError(step + ": drag: " + vertex + " moves " + format_number(s.norm()) +
+                     " m per unit of the step's moves, so the drag asks for corner moves of " +
+                     format_number(largest) + " m (at most 0.5 m): choose moves that carry it");
+  const auto vector = [](const Eigen::Vector3d& v) { return nlohmann::json{v.x(), v.y(), v.z()}; };
+  *record = {{"vertex", long(found[0])},
+             {"point_m", vector(drag.point)},
+             {"vertex_position_m", vector(at)},
+             {"by_m", vector(drag.by)},
+             {"sensitivity_m_per_unit", vector(s)},
+             {"parameter", dg},
+             {"predicted_move_m", vector(dg * s)},
+             {"cpu_s", process_cpu_seconds() - started}};
+  return dg;
+}
+
+// Adds to `step` (solve_step's record of a step) the drag's record with the
+// re-solved move of its vertex, its CPU time counted in the edit's.
+void EditSession::report_drag(nlohmann::json* step, nlohmann::json drag) {
+  const Design& next = *designs_.back();
+  const auto positions = gathered(*next.problem, next.x);
+  double moved[3] = {0.0, 0.0, 0.0};
+  if (is_root()) {
+    const auto v = std::size_t(drag["vertex"].get<long>());
+    for (int i = 0; i < 3; ++i)
+      moved[i] = positions[v][i] - drag["vertex_position_m"][std::size_t(i)].get<double>();
+  }
+  SartorPetscCall(MPI_Bcast(moved, 3, MPI_DOUBLE, 0, next.problem->comm()));
+  drag["resolved_move_m"] = {moved[0], moved[1], moved[2]};
+  nlohmann::json& cpu = (*step)["cpu_s"];
+  cpu["sensitivity_factorisation"] =
+      cpu["sensitivity_factorisation"].get<double>() + drag["cpu_s"].get<double>();
+  cpu["edit_total"] = cpu["edit_total"].get<double>() + drag["cpu_s"].get<double>();
+  (*step)["speedup"]["edit_total"] =
+      scratch_cpu_ / std::max(cpu["edit_total"].get<double>(), 1e-300);
+  const auto& by = drag["by_m"];
+  SartorPetscCall(PetscPrintf(
+      next.problem->comm(),
+      "sartor edit: %s drag: vertex %ld asked to move by (%.4g, %.4g, %.4g) m: %.4g of the "
+      "step's moves; predicted move (%.4g, %.4g, %.4g) m, re-solved (%.4g, %.4g, %.4g) m\n",
+      (*step)["folder"].get<std::string>().c_str(), drag["vertex"].get<long>(), by[0].get<double>(),
+      by[1].get<double>(), by[2].get<double>(), drag["parameter"].get<double>(),
+      drag["predicted_move_m"][0].get<double>(), drag["predicted_move_m"][1].get<double>(),
+      drag["predicted_move_m"][2].get<double>(), moved[0], moved[1], moved[2]));
+  (*step)["drag"] = std::move(drag);
+}
+
 void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& materials, Vec x) {
   scratch_cpu_ =
       drape_.directory.empty() ? process_cpu_seconds() - drape_.started_cpu : drape_.recorded_cpu;
@@ -513,8 +611,12 @@ void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& mat
   Eigen::VectorXd p = designs_.front()->p;
   bool all_certified = true;
   for (std::size_t k = 0; k < steps_.size(); ++k) {
-    p += design.parameters(steps_[k]);
-    const nlohmann::json step = solve_step(k, p, design);
+    Eigen::VectorXd change = design.parameters(steps_[k]);
+    nlohmann::json drag;
+    if (steps_[k].drag) change *= drag_parameter(k, change, &drag);
+    p += change;
+    nlohmann::json step = solve_step(k, p, design);
+    if (steps_[k].drag) report_drag(&step, std::move(drag));
     all_certified = all_certified && step["resolve"]["certified"].get<bool>();
     if (!step["resolve"]["converged"].get<bool>())
       run_->not_converged.push_back(step["folder"].get<std::string>());
