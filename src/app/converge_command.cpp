@@ -3,6 +3,7 @@
 #include "analysis/convergence.hpp"
 #include "app/cloth_case.hpp"
 #include "app/commands.hpp"
+#include "app/refine_levels.hpp"
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "common/output.hpp"
@@ -63,6 +64,10 @@ const CommandSpec& converge_command() {
         options.push_back(
             {"output", "DIR", "out/converge", "output folder (created; files in it are replaced)"});
         options.push_back({"no-plot", "", "", "write data only, no PNG"});
+        options.push_back({"prolong", "", "",
+                           "statics: start each level from the level before, its solution "
+                           "carried to the finer mesh (new vertices at the solved edges' "
+                           "midpoints), instead of from the case's placement"});
         return options;
       }(),
       1,
@@ -303,8 +308,15 @@ int run_converge(const Invocation& invocation) {
         "order", "Newton", "solve (s)");
 
   const ClothCase cloth_case = read_cloth_case(options);
+  const bool prolong = options.flag("prolong");
+  if (prolong && cloth_case.time.analysis != "static") {
+    throw InputError("option --prolong: starts static levels from the level before; --analysis " +
+                     cloth_case.time.analysis + " starts each from the placement");
+  }
+  report["start"] = prolong ? "prolonged" : "placement";
   std::vector<Level> levels;
   std::vector<double> h, values;
+  std::vector<Eigen::Vector3d> start; // with --prolong: the next level's
   bool warned = false;
   for (int k = 0; k < int(level_count); ++k) {
     Level level;
@@ -312,7 +324,11 @@ int run_converge(const Invocation& invocation) {
     level.directory = directory + "/level_" + std::to_string(k);
     print("%5d %6ld", k, base + k); // the rest of the row once the level is solved
     try {
-      level.result = solve_case(cloth_case, k);
+      level.result = solve_case(cloth_case, k, {}, {}, nullptr, start.empty() ? nullptr : &start);
+      // The next level's start, before this level's positions are dropped.
+      double deepest = 0.0;
+      if (prolong && k + 1 < int(level_count))
+        start = prolonged_start(cloth_case, level.result, k + 1, &deepest);
     } catch (...) {
       print("\n");
       throw;

@@ -46,23 +46,27 @@ void record(const CaseResult& result, const CertificateCase& certificate, Refine
   run->newton_iterations = long(result.report.newton_iterations);
   run->residual_force = result.report.final_residual_norm;
   if (result.certified) run->certificate = certificate_verdict(certificate, result.certified);
+  run->drape = result.contact.drape;
   run->solve_seconds = result.solve_seconds;
 }
 
 // `contact`: the case has bodies, which the prolonged start is lifted out of.
 void print_level(std::size_t index, std::size_t count, const RefineLevelRun& run, bool contact) {
+  std::string start, drape;
+  if (index > 0 && contact)
+    start = ", started " + format_number(run.deepest_start) + " m below the offset, lifted out";
+  if (run.drape) {
+    drape = ", drape coefficient " + format_number(run.drape->coefficient) + " (" +
+            std::to_string(run.drape->nodes) + " nodes)";
+  }
   SartorPetscCall(PetscPrintf(
       PETSC_COMM_WORLD,
       "sartor run: level %zu of %zu: %zu triangles (--mesh-refine %d), %s, %ld Newton "
-      "iterations, residual %.3e N, certificate: %s, %.1f s (CPU %.1f s)%s\n",
+      "iterations, residual %.3e N, certificate: %s%s, %.1f s (CPU %.1f s)%s\n",
       index + 1, count, run.triangles, run.refinements,
       run.converged ? "converged" : "NOT converged", run.newton_iterations, run.residual_force,
-      run.certificate.empty() ? "not taken" : run.certificate.c_str(), run.solve_seconds,
-      run.cpu_seconds,
-      index > 0 && contact
-          ? (", started " + format_number(run.deepest_start) + " m below the offset, lifted out")
-                .c_str()
-          : ""));
+      run.certificate.empty() ? "not taken" : run.certificate.c_str(), drape.c_str(),
+      run.solve_seconds, run.cpu_seconds, start.c_str()));
 }
 
 } // namespace
@@ -106,13 +110,7 @@ CaseResult solve_on_refine_levels(const ClothCase& cloth_case, int levels,
     const int extra = l - (levels - 1);
     RefineLevelRun run;
     const double cpu_start = process_cpu_seconds();
-    if (l > 0) {
-      const TriangleMesh fine = level_mesh(cloth_case, extra);
-      start =
-          prolong(result.mesh, broadcast_positions(result.positions, result.mesh.vertex_count()),
-                  fine, cloth_case.mesh.kind);
-      run.deepest_start = lift_out_of_bodies(cloth_case.contact, fine, &start);
-    }
+    if (l > 0) start = prolonged_start(cloth_case, result, extra, &run.deepest_start);
     result = solve_case(cloth_case, extra, l + 1 == levels ? observe : CaseStepObserver{},
                         checkpointing, nullptr, l > 0 ? &start : nullptr);
     record(result, cloth_case.certificate, &run);
@@ -127,21 +125,35 @@ CaseResult solve_on_refine_levels(const ClothCase& cloth_case, int levels,
   return result;
 }
 
+std::vector<Eigen::Vector3d> prolonged_start(const ClothCase& cloth_case, const CaseResult& coarse,
+                                             int extra_refinements, double* deepest_start) {
+  const TriangleMesh fine = level_mesh(cloth_case, extra_refinements);
+  std::vector<Eigen::Vector3d> start =
+      prolong(coarse.mesh, broadcast_positions(coarse.positions, coarse.mesh.vertex_count()), fine,
+              cloth_case.mesh.kind);
+  *deepest_start = lift_out_of_bodies(cloth_case.contact, fine, &start);
+  return start;
+}
+
 nlohmann::json refine_levels_json(const std::vector<RefineLevelRun>& runs) {
   nlohmann::json levels = nlohmann::json::array();
   for (const RefineLevelRun& run : runs) {
-    levels.push_back({{"mesh_refine", run.refinements},
-                      {"vertices", run.vertices},
-                      {"triangles", run.triangles},
-                      {"longest_edge_m", run.longest_edge},
-                      {"converged", run.converged},
-                      {"newton_iterations", run.newton_iterations},
-                      {"residual_force_N", run.residual_force},
-                      {"certificate", run.certificate.empty() ? nlohmann::json(nullptr)
-                                                              : nlohmann::json(run.certificate)},
-                      {"start_depth_below_offset_m", run.deepest_start},
-                      {"solve_s", run.solve_seconds},
-                      {"cpu_s", run.cpu_seconds}});
+    levels.push_back(
+        {{"mesh_refine", run.refinements},
+         {"vertices", run.vertices},
+         {"triangles", run.triangles},
+         {"longest_edge_m", run.longest_edge},
+         {"converged", run.converged},
+         {"newton_iterations", run.newton_iterations},
+         {"residual_force_N", run.residual_force},
+         {"certificate",
+          run.certificate.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.certificate)},
+         {"start_depth_below_offset_m", run.deepest_start},
+         {"drape_coefficient",
+          run.drape ? nlohmann::json(run.drape->coefficient) : nlohmann::json(nullptr)},
+         {"drape_nodes", run.drape ? nlohmann::json(run.drape->nodes) : nlohmann::json(nullptr)},
+         {"solve_s", run.solve_seconds},
+         {"cpu_s", run.cpu_seconds}});
   }
   return levels;
 }

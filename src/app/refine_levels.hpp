@@ -13,6 +13,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include <optional>
+
 #include <string>
 #include <vector>
 
@@ -28,11 +30,12 @@ struct RefineLevelRun {
   double longest_edge = 0.0; // m, material
   bool converged = false;
   long newton_iterations = 0;
-  double residual_force = 0.0; // N
-  std::string certificate;     // the verdict; "" when not certified
-  double deepest_start = 0.0;  // m, the prolonged start's deepest vertex below the offset
-  double solve_seconds = 0.0;  // wall clock of the level's solve
-  double cpu_seconds = 0.0;    // this process's CPU time over the level
+  double residual_force = 0.0;       // N
+  std::string certificate;           // the verdict; "" when not certified
+  double deepest_start = 0.0;        // m, the prolonged start's deepest vertex below the offset
+  std::optional<DrapeMeasure> drape; // a Cusick case's coefficient and nodes on this level
+  double solve_seconds = 0.0;        // wall clock of the level's solve
+  double cpu_seconds = 0.0;          // this process's CPU time over the level
 };
 
 // Throws InputError where the case cannot be solved on `levels` levels:
@@ -50,6 +53,15 @@ CaseResult solve_on_refine_levels(const ClothCase& cloth_case, int levels,
                                   const CaseStepObserver& observe,
                                   const CaseCheckpointing& checkpointing,
                                   std::vector<RefineLevelRun>* runs);
+
+// Collective. The start of the case's mesh with `extra_refinements` (its
+// solve_case argument) from `coarse`, solved on the mesh with one
+// refinement fewer: that mesh refined at its solved positions, lifted out
+// of the bodies; `deepest_start` gets the deepest vertex's depth below the
+// offset before lifting (m). Throws InputError when the finer mesh is not
+// the coarse one refined.
+std::vector<Eigen::Vector3d> prolonged_start(const ClothCase& cloth_case, const CaseResult& coarse,
+                                             int extra_refinements, double* deepest_start);
 
 // summary.json's "levels": one object per level.
 nlohmann::json refine_levels_json(const std::vector<RefineLevelRun>& runs);

@@ -10,6 +10,8 @@
 #    took there (it starts from the interpolated coarse solution).
 # 2. The static sphere drape on 8 x 8 cells refined once: every level
 #    certified, the finer level's start lifted out of the ball.
+# 3. `sartor converge --prolong` on Hencky (3 levels): the same values as
+#    without it (within 1e-7), each finer level in fewer Newton iterations.
 #   run_refine_levels.sh SARTOR HENCKY.yaml SPHERE.yaml WORKDIR
 set -euo pipefail
 sartor=$1 hencky=$2 sphere=$3 work=$4
@@ -23,6 +25,13 @@ run() {
 run hencky_one "$hencky" --mesh-rings 6 --mesh-refine 2
 run hencky_levels "$hencky" --mesh-rings 6 --mesh-refine 2 --refine-levels 3
 run sphere "$sphere" --mesh-nx 8 --mesh-ny 8 --mesh-refine 1 --refine-levels 2
+for start in placement prolonged; do
+  flag=()
+  [ "$start" = prolonged ] && flag=(--prolong)
+  "$sartor" converge "$hencky" --levels 3 --mesh-rings 4 --mesh-snap-boundary --probe 0,0,0 \
+    "${flag[@]}" --no-plot --output "$work/converge_$start" > "$work/converge_$start.log" 2>&1 ||
+    { cat "$work/converge_$start.log" >&2; exit 1; }
+done
 grep -q "level 3 of 3" "$work/hencky_levels.log" || { cat "$work/hencky_levels.log" >&2; exit 1; }
 /usr/bin/python3 - "$work" <<'PY'
 import json, sys
@@ -55,6 +64,16 @@ if not sphere["certificate"]["certified"]:
     failures.append(f"sphere: {sphere['certificate']['verdict']}")
 if len(runs) == 2 and not runs[1]["start_depth_below_offset_m"] >= 0.0:
     failures.append("sphere: the finer level's start depth is not reported")
+placement = json.load(open(f"{work}/converge_placement/convergence.json"))
+prolonged = json.load(open(f"{work}/converge_prolonged/convergence.json"))
+if prolonged["start"] != "prolonged" or placement["start"] != "placement":
+    failures.append(f"converge: start {placement['start']}, {prolonged['start']}")
+for a, b in zip(placement["rows"], prolonged["rows"]):
+    if not abs(a["value"] - b["value"]) <= 1e-7 * abs(a["value"]):
+        failures.append(f"converge level {a['level']}: {b['value']} prolonged, {a['value']}")
+    if a["level"] > 0 and not b["newton_iterations"] < a["newton_iterations"]:
+        failures.append(f"converge level {a['level']}: {b['newton_iterations']} Newton "
+                        f"prolonged, {a['newton_iterations']} from the placement")
 print(f"Hencky w0 {w_levels:.9e} (one level {w_one:.9e}); Newton on the finest mesh "
       f"{finest} (one level {single}); sphere levels "
       f"{[r['newton_iterations'] for r in runs]}")
