@@ -324,7 +324,9 @@ int run_converge(const Invocation& invocation) {
     level.directory = directory + "/level_" + std::to_string(k);
     print("%5d %6ld", k, base + k); // the rest of the row once the level is solved
     try {
-      level.result = solve_case(cloth_case, k, {}, {}, nullptr, start.empty() ? nullptr : &start);
+      level.result = start.empty()
+                         ? solve_case(cloth_case, k)
+                         : solve_case(finer_level_case(cloth_case), k, {}, {}, nullptr, &start);
       // The next level's start, before this level's positions are dropped.
       double deepest = 0.0;
       if (prolong && k + 1 < int(level_count))

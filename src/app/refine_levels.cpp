@@ -106,13 +106,15 @@ CaseResult solve_on_refine_levels(const ClothCase& cloth_case, int levels,
   if (levels == 1) return solve_case(cloth_case, 0, observe, checkpointing);
   CaseResult result;
   std::vector<Eigen::Vector3d> start;
+  const ClothCase finer = finer_level_case(cloth_case);
   for (int l = 0; l < levels; ++l) {
     const int extra = l - (levels - 1);
     RefineLevelRun run;
     const double cpu_start = process_cpu_seconds();
     if (l > 0) start = prolonged_start(cloth_case, result, extra, &run.deepest_start);
-    result = solve_case(cloth_case, extra, l + 1 == levels ? observe : CaseStepObserver{},
-                        checkpointing, nullptr, l > 0 ? &start : nullptr);
+    result = solve_case(l == 0 ? cloth_case : finer, extra,
+                        l + 1 == levels ? observe : CaseStepObserver{}, checkpointing, nullptr,
+                        l > 0 ? &start : nullptr);
     record(result, cloth_case.certificate, &run);
     run.cpu_seconds = process_cpu_seconds() - cpu_start;
     print_level(std::size_t(l), std::size_t(levels), run, !cloth_case.contact.bodies.empty());
@@ -123,6 +125,13 @@ CaseResult solve_on_refine_levels(const ClothCase& cloth_case, int levels,
   for (const RefineLevelRun& run : *runs)
     result.solve_seconds += run.solve_seconds;
   return result;
+}
+
+ClothCase finer_level_case(ClothCase cloth_case) {
+  cloth_case.statics.load_steps = 1;
+  cloth_case.statics.sewing_stages = 1;
+  cloth_case.statics.converge_stages = false;
+  return cloth_case;
 }
 
 std::vector<Eigen::Vector3d> prolonged_start(const ClothCase& cloth_case, const CaseResult& coarse,

@@ -54,6 +54,10 @@ CaseResult solve_on_refine_levels(const ClothCase& cloth_case, int levels,
                                   const CaseCheckpointing& checkpointing,
                                   std::vector<RefineLevelRun>* runs);
 
+// The case as a finer level solves it: it starts loaded and sewn (the
+// prolonged solution), so in one load step and without sewing stages.
+ClothCase finer_level_case(ClothCase cloth_case);
+
 // Collective. The start of the case's mesh with `extra_refinements` (its
 // solve_case argument) from `coarse`, solved on the mesh with one
 // refinement fewer: that mesh refined at its solved positions, lifted out

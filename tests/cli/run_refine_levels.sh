@@ -10,11 +10,14 @@
 #    took there (it starts from the interpolated coarse solution).
 # 2. The static sphere drape on 8 x 8 cells refined once: every level
 #    certified, the finer level's start lifted out of the ball.
-# 3. `sartor converge --prolong` on Hencky (3 levels): the same values as
+# 3. The flat-start catenary (pins moved in with the load, 4 load steps) on
+#    two levels: the finer level starts loaded, in one load step, and hangs
+#    as the one-level solve does (sag within 1e-6 m).
+# 4. `sartor converge --prolong` on Hencky (3 levels): the same values as
 #    without it (within 1e-7), each finer level in fewer Newton iterations.
-#   run_refine_levels.sh SARTOR HENCKY.yaml SPHERE.yaml WORKDIR
+#   run_refine_levels.sh SARTOR HENCKY.yaml SPHERE.yaml CATENARY.yaml WORKDIR
 set -euo pipefail
-sartor=$1 hencky=$2 sphere=$3 work=$4
+sartor=$1 hencky=$2 sphere=$3 catenary=$4 work=$5
 rm -rf "$work" && mkdir -p "$work"
 run() {
   local name=$1
@@ -25,6 +28,8 @@ run() {
 run hencky_one "$hencky" --mesh-rings 6 --mesh-refine 2
 run hencky_levels "$hencky" --mesh-rings 6 --mesh-refine 2 --refine-levels 3
 run sphere "$sphere" --mesh-nx 8 --mesh-ny 8 --mesh-refine 1 --refine-levels 2
+run catenary_one "$catenary" --mesh-refine 1 --load-steps 4
+run catenary_levels "$catenary" --mesh-refine 1 --load-steps 4 --refine-levels 2
 for start in placement prolonged; do
   flag=()
   [ "$start" = prolonged ] && flag=(--prolong)
@@ -64,6 +69,14 @@ if not sphere["certificate"]["certified"]:
     failures.append(f"sphere: {sphere['certificate']['verdict']}")
 if len(runs) == 2 and not runs[1]["start_depth_below_offset_m"] >= 0.0:
     failures.append("sphere: the finer level's start depth is not reported")
+one = json.load(open(f"{work}/catenary_one/summary.json"))
+levels = json.load(open(f"{work}/catenary_levels/summary.json"))
+sag_one, sag_levels = one["probe"]["displacement_m"][2], levels["probe"]["displacement_m"][2]
+if not abs(sag_one - sag_levels) <= 1e-6:
+    failures.append(f"catenary: sag {sag_levels} on levels, {sag_one} on one")
+if len(levels["load_steps"]) != 1 or not levels["certificate"]["certified"]:
+    failures.append(f"catenary: finest level in {len(levels['load_steps'])} load steps, "
+                    f"{levels['certificate']['verdict']}")
 placement = json.load(open(f"{work}/converge_placement/convergence.json"))
 prolonged = json.load(open(f"{work}/converge_prolonged/convergence.json"))
 if prolonged["start"] != "prolonged" or placement["start"] != "placement":
