@@ -218,7 +218,8 @@ PetscErrorCode contact_rounds(IncrementalSystem& system, Vec x, const StaticOpti
     const double scale = problem.contact.stiffness_scale;
     stiffen_contact(problem, options, *report);
     ++report->contact_rounds;
-    system.progress_label = "contact round " + std::to_string(report->contact_rounds);
+    system.progress_label =
+        options.progress_prefix + "contact round " + std::to_string(report->contact_rounds);
     ContactRound round;
     round.contact_stiffness_scale = problem.contact.stiffness_scale;
     const PetscInt before = report->newton_iterations;
@@ -317,7 +318,8 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
       }
     }
     report->sewing_stages = stage + 1;
-    system.progress_label = "stage " + std::to_string(stage + 1) + " of " + std::to_string(stages);
+    system.progress_label = options.progress_prefix + "stage " + std::to_string(stage + 1) +
+                            " of " + std::to_string(stages);
     if (!final_stage) {
       // A stage before the last only starts the next: its iterate is kept
       // even where it did not reach the loose tolerance in its budget.

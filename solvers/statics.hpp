@@ -97,6 +97,8 @@ struct StaticOptions {
   // The minimiser's progress lines (stage or round, iteration, |F|, elapsed
   // wall time), one every this many seconds; 0: none.
   double progress_interval = 0.0;
+  // Put before what the progress lines say is being solved ("level 2 of 3, ").
+  std::string progress_prefix;
   // Checkpoints (docs/reliability.md#checkpoints-and-restart): called
   // collectively after every load step short of the full load, every sewing
   // stage and every contact round with the state and the report so far.

@@ -397,6 +397,10 @@ CaseResult drape_progressively(const ClothCase& cloth_case, double refine_time,
     // started with chords deep in the body (|F| 1e6 N).
     ClothCase level_case = l == 0 ? cloth_case : finer;
     level_case.seams.seams_file = level.seams_file;
+    if (count > 1) {
+      level_case.statics.progress_prefix =
+          "level " + std::to_string(l + 1) + " of " + std::to_string(count) + ", ";
+    }
     if (l + 1 < count) {
       level_case.contact.settings.edge_sample_spacing =
           coarse_edge_spacing(cloth_case.contact.settings.edge_sample_spacing, level.edge_length);

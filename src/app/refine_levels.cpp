@@ -112,9 +112,11 @@ CaseResult solve_on_refine_levels(const ClothCase& cloth_case, int levels,
     RefineLevelRun run;
     const double cpu_start = process_cpu_seconds();
     if (l > 0) start = prolonged_start(cloth_case, result, extra, &run.deepest_start);
-    result = solve_case(l == 0 ? cloth_case : finer, extra,
-                        l + 1 == levels ? observe : CaseStepObserver{}, checkpointing, nullptr,
-                        l > 0 ? &start : nullptr);
+    ClothCase level_case = l == 0 ? cloth_case : finer;
+    level_case.statics.progress_prefix =
+        "level " + std::to_string(l + 1) + " of " + std::to_string(levels) + ", ";
+    result = solve_case(level_case, extra, l + 1 == levels ? observe : CaseStepObserver{},
+                        checkpointing, nullptr, l > 0 ? &start : nullptr);
     record(result, cloth_case.certificate, &run);
     run.cpu_seconds = process_cpu_seconds() - cpu_start;
     print_level(std::size_t(l), std::size_t(levels), run, !cloth_case.contact.bodies.empty());

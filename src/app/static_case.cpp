@@ -63,6 +63,7 @@ StaticOptions static_options(const StaticCase& statics, bool sews) {
   solve.max_contact_rounds = statics.max_contact_rounds;
   // A static solve that runs long says where it is (docs/drape.md).
   solve.progress_interval = 10.0;
+  solve.progress_prefix = statics.progress_prefix;
   return solve;
 }
 

@@ -6,6 +6,7 @@
 #include "app/cli.hpp"
 #include "solvers/statics.hpp"
 
+#include <string>
 #include <vector>
 
 namespace sartor {
@@ -22,6 +23,7 @@ struct StaticCase {
   bool converge_stages = false;     // every stage after the first to the full tolerance
   double max_offset_depth = 0.5;    // of the contact offset (0: never stiffen)
   int max_contact_rounds = 30;
+  std::string progress_prefix; // StaticOptions::progress_prefix (not an option)
 };
 
 // Throws InputError naming the option for a malformed value, or for
