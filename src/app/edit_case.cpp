@@ -120,6 +120,17 @@ DragRequest read_drag(const std::string& path, const YAML::Node& node, const std
   return drag;
 }
 
+// A drag, or a non-empty list of drags.
+std::vector<DragRequest> read_drags(const std::string& path, const YAML::Node& node,
+                                    const std::string& key) {
+  if (!node.IsSequence()) return {read_drag(path, node, key)};
+  if (node.size() == 0) edit_error(path, node, key, "must be a drag or a non-empty list of drags");
+  std::vector<DragRequest> drags;
+  for (std::size_t d = 0; d < node.size(); ++d)
+    drags.push_back(read_drag(path, node[d], key + "[" + std::to_string(d) + "]"));
+  return drags;
+}
+
 // The outline corners a move moves, as (panel, corner) with corner i the
 // start of line i.
 std::vector<std::pair<std::size_t, std::size_t>> moved_corners(const garment::Pattern& pattern,
@@ -135,6 +146,52 @@ std::vector<std::pair<std::size_t, std::size_t>> moved_corners(const garment::Pa
     }
   }
   return corners;
+}
+
+// A non-empty list of moves; a corner two moves name (the shared end of two
+// lines moved together) moves once, and two different moves of it are an
+// error.
+std::vector<CornerMove> read_moves(const std::string& path, const YAML::Node& moves,
+                                   const std::string& key, const garment::Pattern& pattern,
+                                   const std::set<std::string>& outline_lines) {
+  if (!moves.IsSequence() || moves.size() == 0)
+    edit_error(path, moves, key, "must be a non-empty list of moves");
+  std::vector<CornerMove> result;
+  std::map<std::pair<std::size_t, std::size_t>, CornerMove> corners;
+  for (std::size_t m = 0; m < moves.size(); ++m) {
+    const std::string move_key = key + "[" + std::to_string(m) + "]";
+    result.push_back(read_move(path, moves[m], move_key, outline_lines));
+    for (const auto& corner : moved_corners(pattern, result.back())) {
+      const auto [entry, fresh] = corners.emplace(corner, result.back());
+      if (!fresh && entry->second.by != result.back().by)
+        edit_error(path, moves[m], move_key,
+                   "the moves of lines '" + entry->second.line + "' and '" + result.back().line +
+                       "' move their shared corner differently");
+    }
+  }
+  return result;
+}
+
+std::vector<EditParameter> read_parameters(const std::string& path, const YAML::Node& node,
+                                           const std::string& key, const garment::Pattern& pattern,
+                                           const std::set<std::string>& outline_lines) {
+  if (!node.IsSequence() || node.size() == 0)
+    edit_error(path, node, key, "must be a non-empty list of parameters {name, moves}");
+  std::vector<EditParameter> parameters;
+  for (std::size_t j = 0; j < node.size(); ++j) {
+    const std::string parameter_key = key + "[" + std::to_string(j) + "]";
+    const YAML::Node parameter = node[j];
+    if (!parameter.IsMap())
+      edit_error(path, parameter, parameter_key, "a parameter is {name, moves}");
+    reject_unknown_keys(path, parameter, parameter_key, {"name", "moves"});
+    if (!parameter["moves"])
+      edit_error(path, parameter, parameter_key + ".moves", "missing: its moves per unit");
+    parameters.push_back(
+        {parameter["name"] && parameter["name"].IsScalar() ? parameter["name"].Scalar()
+                                                           : "parameter " + std::to_string(j + 1),
+         read_moves(path, parameter["moves"], parameter_key + ".moves", pattern, outline_lines)});
+  }
+  return parameters;
 }
 
 } // namespace
@@ -155,30 +212,28 @@ std::vector<EditStep> read_edit_file(const std::string& path, const garment::Pat
   for (std::size_t s = 0; s < steps.size(); ++s) {
     const std::string key = "steps[" + std::to_string(s) + "]";
     const YAML::Node step = steps[s];
-    if (!step.IsMap()) edit_error(path, step, key, "an edit is a mapping {name, moves[, drag]}");
-    reject_unknown_keys(path, step, key, {"name", "moves", "drag"});
+    if (!step.IsMap())
+      edit_error(path, step, key,
+                 "an edit is a mapping {name, moves} or {name, drag, moves|parameters}");
+    reject_unknown_keys(path, step, key, {"name", "moves", "drag", "parameters"});
     EditStep edit;
     edit.name = step["name"] && step["name"].IsScalar() ? step["name"].Scalar()
                                                         : "edit " + std::to_string(s + 1);
-    const YAML::Node moves = step["moves"];
-    if (!moves) edit_error(path, step, key + ".moves", "missing: the list of moves");
-    if (!moves.IsSequence() || moves.size() == 0)
-      edit_error(path, moves, key + ".moves", "must be a non-empty list of moves");
-    // A corner two moves name (the shared end of two lines moved together)
-    // moves once; two different moves of it are an error.
-    std::map<std::pair<std::size_t, std::size_t>, CornerMove> corners;
-    for (std::size_t m = 0; m < moves.size(); ++m) {
-      const std::string move_key = key + ".moves[" + std::to_string(m) + "]";
-      edit.moves.push_back(read_move(path, moves[m], move_key, outline_lines));
-      for (const auto& corner : moved_corners(pattern, edit.moves.back())) {
-        const auto [entry, fresh] = corners.emplace(corner, edit.moves.back());
-        if (!fresh && entry->second.by != edit.moves.back().by)
-          edit_error(path, moves[m], move_key,
-                     "the moves of lines '" + entry->second.line + "' and '" +
-                         edit.moves.back().line + "' move their shared corner differently");
-      }
+    if (step["drag"]) edit.drags = read_drags(path, step["drag"], key + ".drag");
+    if (step["parameters"]) {
+      if (edit.drags.empty())
+        edit_error(path, step["parameters"], key + ".parameters",
+                   "parameters are for a drag: give the step a drag, or moves");
+      if (step["moves"])
+        edit_error(path, step["moves"], key + ".moves",
+                   "a drag step has moves (one parameter) or parameters, not both");
+      edit.parameters =
+          read_parameters(path, step["parameters"], key + ".parameters", pattern, outline_lines);
+    } else {
+      if (!step["moves"]) edit_error(path, step, key + ".moves", "missing: the list of moves");
+      edit.moves = read_moves(path, step["moves"], key + ".moves", pattern, outline_lines);
+      if (!edit.drags.empty()) edit.parameters = {{edit.name, edit.moves}};
     }
-    if (step["drag"]) edit.drag = read_drag(path, step["drag"], key + ".drag");
     result.push_back(edit);
   }
   return result;

@@ -19,7 +19,6 @@
 #include <Eigen/Core>
 
 #include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,20 +34,28 @@ struct CornerMove {
 
 // A drag of the drape (Sensitive Couture §4.1, direct 3D editing): the cloth
 // vertex nearest `point` in the drape the step starts from is asked to move
-// by `by` (m). The step's moves are then the direction of one design
-// parameter g (their `by` per unit of g), and the step takes
-// dg = s . by / |s|^2 of it, s = dx/dg the vertex's sensitivity: the
-// parameter change whose linear response moves the vertex by the
-// projection of `by` on s.
+// by `by` (m).
 struct DragRequest {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   Eigen::Vector3d by = Eigen::Vector3d::Zero();
 };
 
+// A design parameter of a drag step: its moves per unit of it.
+struct EditParameter {
+  std::string name;
+  std::vector<CornerMove> moves;
+};
+
+// An edit: its moves; or, with drags, the design parameters (the moves of
+// a step with one) whose change dg makes the linear response
+// S dg (S: the dragged vertices' sensitivities to the parameters, 3 rows
+// per drag) the least-squares fit to the drags, with the least |dg| where
+// several fit as well.
 struct EditStep {
   std::string name;
   std::vector<CornerMove> moves;
-  std::optional<DragRequest> drag;
+  std::vector<DragRequest> drags;
+  std::vector<EditParameter> parameters;
 };
 
 // Reads an edit file (YAML; docs/sensitivity.md#the-edit-file) against the

@@ -78,13 +78,17 @@ EditDesign::EditDesign(const garment::Pattern& pattern, const TriangleMesh& mesh
 }
 
 Eigen::VectorXd EditDesign::parameters(const EditStep& step) const {
+  return parameters(step.moves);
+}
+
+Eigen::VectorXd EditDesign::parameters(const std::vector<CornerMove>& moves) const {
   // A corner named by several moves of a step (the shared end of two lines
   // moved together) moves once (read_edit_file refuses different moves).
   std::map<int, Eigen::Vector2d> moved;
   const auto move_corner = [&](int corner, const CornerMove& move) {
     moved.emplace(corner, move.by);
   };
-  for (const CornerMove& move : step.moves) {
+  for (const CornerMove& move : moves) {
     for (std::size_t panel = 0; panel < pattern_.panels.size(); ++panel) {
       const auto& outline = pattern_.panels[panel].outline;
       for (std::size_t i = 0; i < outline.size(); ++i) {

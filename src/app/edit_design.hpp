@@ -31,6 +31,7 @@ public:
   Eigen::Index size() const { return Eigen::Index(2 * corners_); }
   // The parameters of a step's moves (added to those of the steps before).
   Eigen::VectorXd parameters(const EditStep& step) const;
+  Eigen::VectorXd parameters(const std::vector<CornerMove>& moves) const;
   // The change of the mesh's rest coordinates for parameters p.
   RestChange rest_change(const Eigen::VectorXd& p) const;
   // Each panel's outline polygon (pattern coordinates) moved by p.

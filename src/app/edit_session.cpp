@@ -22,6 +22,8 @@
 
 #include <petscsys.h>
 
+#include <Eigen/QR>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -218,8 +220,8 @@ private:
   std::unique_ptr<Attempt> resolve_from(Design& last, ClothProblem& problem,
                                         const std::string& start, Vec candidate);
   nlohmann::json solve_step(std::size_t k, const Eigen::VectorXd& p, const EditDesign& design);
-  double drag_parameter(std::size_t k, const Eigen::VectorXd& direction, nlohmann::json* record);
-  void report_drag(nlohmann::json* step, nlohmann::json drag);
+  Eigen::VectorXd drag_change(std::size_t k, nlohmann::json* record);
+  void report_drags(nlohmann::json* step, nlohmann::json drag);
   void write_state(const std::string& directory, const Design& design, Vec x);
 
   const Options& options_;
@@ -497,98 +499,135 @@ nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
   return step;
 }
 
-// Step k's drag (DragRequest): the parameter change dg of the step's
-// moves `direction` (per unit of g) that the drag asks for, from the
-// sensitivity s of the dragged vertex in the last design; `record` gets the
-// vertex, s, dg and the predicted move dg s. Throws InputError when the
-// moves do not move the vertex, or would move a corner more than 0.5 m.
-double EditSession::drag_parameter(std::size_t k, const Eigen::VectorXd& direction,
-                                   nlohmann::json* record) {
-  const DragRequest& drag = *steps_[k].drag;
-  const std::string step = "edit step " + std::to_string(k + 1) + " ('" + steps_[k].name + "')";
+// Step k's drags (Sensitive Couture §4.1): the change of the step's design
+// parameters (EditStep) whose linear response fits the drags in least
+// squares, the smallest such where several do, from the dragged vertices'
+// sensitivities in the last design; returns the change of the design, and
+// `record` gets the parameters' changes and per drag its vertex, its
+// sensitivities and its predicted move. Throws InputError when the
+// parameters do not move the dragged vertices, or would move a corner more
+// than 0.5 m.
+Eigen::VectorXd EditSession::drag_change(std::size_t k, nlohmann::json* record) {
+  const EditStep& edit = steps_[k];
+  const std::string step = "edit step " + std::to_string(k + 1) + " ('" + edit.name + "')";
   Design& last = *designs_.back();
   const double started = process_cpu_seconds();
   ensure_slope(last);
+  const std::size_t m = edit.parameters.size(), n = edit.drags.size();
+  std::vector<Eigen::VectorXd> directions;
+  std::vector<std::vector<Eigen::Vector3d>> slopes; // per parameter, per vertex (rank 0)
   Vec dx = nullptr;
   SartorPetscCall(VecDuplicate(last.x, &dx));
-  SartorPetscCall(last.slope->apply(design_->rest_change(direction), dx));
-  const std::vector<Eigen::Vector3d> positions = gathered(*last.problem, last.x);
-  const std::vector<Eigen::Vector3d> slopes = gathered(*last.problem, dx);
+  for (const EditParameter& parameter : edit.parameters) {
+    directions.push_back(design_->parameters(parameter.moves));
+    SartorPetscCall(last.slope->apply(design_->rest_change(directions.back()), dx));
+    slopes.push_back(gathered(*last.problem, dx));
+  }
   SartorPetscCall(VecDestroy(&dx));
-  // Rank 0 holds the gathered vectors: it finds the free vertex nearest the
-  // point, and every rank learns it, its sensitivity and its position.
-  double found[7] = {-1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  const std::vector<Eigen::Vector3d> positions = gathered(*last.problem, last.x);
+  // Rank 0 finds each drag's free vertex nearest its point; every rank
+  // learns the vertex, its position and its rows of S: 4 + 3m numbers a drag.
+  const std::size_t width = 4 + 3 * m;
+  std::vector<double> found(n * width, -1.0);
   if (is_root()) {
     std::vector<bool> pinned(positions.size(), false);
     for (int v : last.problem->pinned())
       pinned[std::size_t(v)] = true;
-    double nearest = INFINITY;
-    for (std::size_t v = 0; v < positions.size(); ++v) {
-      const double d = (positions[v] - drag.point).norm();
-      if (pinned[v] || d >= nearest) continue;
-      nearest = d;
-      found[0] = double(v);
-      for (int i = 0; i < 3; ++i) {
-        found[1 + i] = slopes[v][i];
-        found[4 + i] = positions[v][i];
+    for (std::size_t i = 0; i < n; ++i) {
+      double nearest = INFINITY;
+      for (std::size_t v = 0; v < positions.size(); ++v) {
+        const double d = (positions[v] - edit.drags[i].point).norm();
+        if (pinned[v] || d >= nearest) continue;
+        nearest = d;
+        found[i * width] = double(v);
+        for (int c = 0; c < 3; ++c) {
+          found[i * width + 1 + std::size_t(c)] = positions[v][c];
+          for (std::size_t j = 0; j < m; ++j)
+            found[i * width + 4 + 3 * j + std::size_t(c)] = slopes[j][v][c];
+        }
       }
     }
   }
-  SartorPetscCall(MPI_Bcast(found, 7, MPI_DOUBLE, 0, last.problem->comm()));
-  if (found[0] < 0.0) throw InputError(step + ": drag: the cloth has no free vertex");
-  const Eigen::Vector3d s(found[1], found[2], found[3]), at(found[4], found[5], found[6]);
-  const std::string vertex = "the vertex nearest the drag's point (" +
-                             std::to_string(long(found[0])) + ", at " + format_number(at.x()) +
-                             ", " + format_number(at.y()) + ", " + format_number(at.z()) + " m)";
-  if (!(s.squaredNorm() > 0.0))
-    throw InputError(step + ": drag: " + vertex +
-                     " does not move with the step's moves (its sensitivity is zero)");
-  const double dg = s.dot(drag.by) / s.squaredNorm();
-  const double largest = design_->largest_move(dg * direction);
+  SartorPetscCall(MPI_Bcast(found.data(), int(found.size()), MPI_DOUBLE, 0, last.problem->comm()));
+  Eigen::MatrixXd S(3 * n, m);
+  Eigen::VectorXd wanted(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (found[i * width] < 0.0) throw InputError(step + ": drag: the cloth has no free vertex");
+    wanted.segment<3>(Eigen::Index(3 * i)) = edit.drags[i].by;
+    for (std::size_t j = 0; j < m; ++j)
+      for (std::size_t c = 0; c < 3; ++c)
+        S(Eigen::Index(3 * i + c), Eigen::Index(j)) = found[i * width + 4 + 3 * j + c];
+  }
+  if (!(S.squaredNorm() > 0.0))
+    throw InputError(step + ": drag: the step's moves do not move the vertices nearest the " +
+                     "drags' points (their sensitivities are zero)");
+  const Eigen::VectorXd dg = S.completeOrthogonalDecomposition().solve(wanted);
+  Eigen::VectorXd change = Eigen::VectorXd::Zero(design_->size());
+  for (std::size_t j = 0; j < m; ++j)
+    change += dg[Eigen::Index(j)] * directions[j];
+  const double largest = design_->largest_move(change);
   if (!(largest <= 0.5))
-    throw InputError(step + ": drag: " + vertex + " moves " + format_number(s.norm()) +
-                     " m per unit of the step's moves, so the drag asks for corner moves of " +
-                     format_number(largest) + " m (at most 0.5 m): choose moves that carry it");
-  const auto vector = [](const Eigen::Vector3d& v) { return nlohmann::json{v.x(), v.y(), v.z()}; };
-  *record = {{"vertex", long(found[0])},
-             {"point_m", vector(drag.point)},
-             {"vertex_position_m", vector(at)},
-             {"by_m", vector(drag.by)},
-             {"sensitivity_m_per_unit", vector(s)},
-             {"parameter", dg},
-             {"predicted_move_m", vector(dg * s)},
-             {"cpu_s", process_cpu_seconds() - started}};
-  return dg;
+    throw InputError(step + ": drag: the drags ask for corner moves of " + format_number(largest) +
+                     " m (at most 0.5 m): the step's moves hardly carry the dragged vertices; " +
+                     "choose moves that do");
+  const Eigen::VectorXd predicted = S * dg;
+  const auto vector = [](const double* v) { return nlohmann::json{v[0], v[1], v[2]}; };
+  nlohmann::json parameters = nlohmann::json::array(), drags = nlohmann::json::array();
+  for (std::size_t j = 0; j < m; ++j)
+    parameters.push_back({{"name", edit.parameters[j].name}, {"change", dg[Eigen::Index(j)]}});
+  for (std::size_t i = 0; i < n; ++i) {
+    nlohmann::json sensitivities = nlohmann::json::array();
+    for (std::size_t j = 0; j < m; ++j)
+      sensitivities.push_back(vector(&found[i * width + 4 + 3 * j]));
+    drags.push_back({{"vertex", long(found[i * width])},
+                     {"point_m", vector(edit.drags[i].point.data())},
+                     {"vertex_position_m", vector(&found[i * width + 1])},
+                     {"by_m", vector(edit.drags[i].by.data())},
+                     {"sensitivity_m_per_unit", sensitivities},
+                     {"predicted_move_m", vector(predicted.data() + 3 * i)}});
+  }
+  *record = {
+      {"parameters", parameters}, {"drags", drags}, {"cpu_s", process_cpu_seconds() - started}};
+  return change;
 }
 
-// Adds to `step` (solve_step's record of a step) the drag's record with the
-// re-solved move of its vertex, its CPU time counted in the edit's.
-void EditSession::report_drag(nlohmann::json* step, nlohmann::json drag) {
+// Adds to `step` (solve_step's record of a step) the drags' record with the
+// re-solved moves of their vertices, its CPU time counted in the edit's.
+void EditSession::report_drags(nlohmann::json* step, nlohmann::json drag) {
   const Design& next = *designs_.back();
   const auto positions = gathered(*next.problem, next.x);
-  double moved[3] = {0.0, 0.0, 0.0};
-  if (is_root()) {
-    const auto v = std::size_t(drag["vertex"].get<long>());
-    for (int i = 0; i < 3; ++i)
-      moved[i] = positions[v][i] - drag["vertex_position_m"][std::size_t(i)].get<double>();
+  for (nlohmann::json& one : drag["drags"]) {
+    double moved[3] = {0.0, 0.0, 0.0};
+    if (is_root()) {
+      const auto v = std::size_t(one["vertex"].get<long>());
+      for (std::size_t c = 0; c < 3; ++c)
+        moved[c] = positions[v][long(c)] - one["vertex_position_m"][c].get<double>();
+    }
+    SartorPetscCall(MPI_Bcast(moved, 3, MPI_DOUBLE, 0, next.problem->comm()));
+    one["resolved_move_m"] = {moved[0], moved[1], moved[2]};
+    const auto& by = one["by_m"];
+    const auto& predicted = one["predicted_move_m"];
+    SartorPetscCall(PetscPrintf(
+        next.problem->comm(),
+        "sartor edit: %s drag: vertex %ld asked to move by (%.4g, %.4g, %.4g) m; predicted move "
+        "(%.4g, %.4g, %.4g) m, re-solved (%.4g, %.4g, %.4g) m\n",
+        (*step)["folder"].get<std::string>().c_str(), one["vertex"].get<long>(),
+        by[0].get<double>(), by[1].get<double>(), by[2].get<double>(), predicted[0].get<double>(),
+        predicted[1].get<double>(), predicted[2].get<double>(), moved[0], moved[1], moved[2]));
   }
-  SartorPetscCall(MPI_Bcast(moved, 3, MPI_DOUBLE, 0, next.problem->comm()));
-  drag["resolved_move_m"] = {moved[0], moved[1], moved[2]};
+  std::string changes;
+  for (const auto& parameter : drag["parameters"])
+    changes += (changes.empty() ? "" : ", ") + parameter["name"].get<std::string>() + " " +
+               format_number(parameter["change"].get<double>());
+  SartorPetscCall(PetscPrintf(next.problem->comm(),
+                              "sartor edit: %s drag: the parameters changed by: %s\n",
+                              (*step)["folder"].get<std::string>().c_str(), changes.c_str()));
   nlohmann::json& cpu = (*step)["cpu_s"];
   cpu["sensitivity_factorisation"] =
       cpu["sensitivity_factorisation"].get<double>() + drag["cpu_s"].get<double>();
   cpu["edit_total"] = cpu["edit_total"].get<double>() + drag["cpu_s"].get<double>();
   (*step)["speedup"]["edit_total"] =
       scratch_cpu_ / std::max(cpu["edit_total"].get<double>(), 1e-300);
-  const auto& by = drag["by_m"];
-  SartorPetscCall(PetscPrintf(
-      next.problem->comm(),
-      "sartor edit: %s drag: vertex %ld asked to move by (%.4g, %.4g, %.4g) m: %.4g of the "
-      "step's moves; predicted move (%.4g, %.4g, %.4g) m, re-solved (%.4g, %.4g, %.4g) m\n",
-      (*step)["folder"].get<std::string>().c_str(), drag["vertex"].get<long>(), by[0].get<double>(),
-      by[1].get<double>(), by[2].get<double>(), drag["parameter"].get<double>(),
-      drag["predicted_move_m"][0].get<double>(), drag["predicted_move_m"][1].get<double>(),
-      drag["predicted_move_m"][2].get<double>(), moved[0], moved[1], moved[2]));
   (*step)["drag"] = std::move(drag);
 }
 
@@ -611,12 +650,11 @@ void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& mat
   Eigen::VectorXd p = designs_.front()->p;
   bool all_certified = true;
   for (std::size_t k = 0; k < steps_.size(); ++k) {
-    Eigen::VectorXd change = design.parameters(steps_[k]);
+    const bool drags = !steps_[k].drags.empty();
     nlohmann::json drag;
-    if (steps_[k].drag) change *= drag_parameter(k, change, &drag);
-    p += change;
+    p += drags ? drag_change(k, &drag) : design.parameters(steps_[k]);
     nlohmann::json step = solve_step(k, p, design);
-    if (steps_[k].drag) report_drag(&step, std::move(drag));
+    if (drags) report_drags(&step, std::move(drag));
     all_certified = all_certified && step["resolve"]["certified"].get<bool>();
     if (!step["resolve"]["converged"].get<bool>())
       run_->not_converged.push_back(step["folder"].get<std::string>());
