@@ -14,7 +14,8 @@ namespace sartor {
 
 namespace {
 
-// The mesh a level solves: the case's with `extra` (<= 0) refinements more.
+// The mesh a level solves: the case's with `extra` refinements more (fewer
+// where negative).
 TriangleMesh level_mesh(const ClothCase& cloth_case, int extra) {
   int refinements = 0;
   return build_mesh(cloth_case.mesh, extra, &refinements, nullptr);
@@ -30,9 +31,10 @@ std::vector<Eigen::Vector3d> prolong(const TriangleMesh& coarse,
   deformed.positions = std::move(solved);
   TriangleMesh refined = mesh::refine(deformed);
   if (refined.triangles != fine.triangles) {
-    throw InputError("option --refine-levels: the case's mesh (--mesh-kind " + kind +
+    throw InputError("the case's mesh (--mesh-kind " + kind +
                      ") is not the refinement of its coarser mesh by splitting every triangle "
-                     "in four; solve it on one level");
+                     "in four, so a level cannot start from the one before: solve it without "
+                     "--refine-levels or --prolong");
   }
   return std::move(refined.positions);
 }
