@@ -3,6 +3,7 @@
 #include "analysis/convergence.hpp"
 #include "app/cloth_case.hpp"
 #include "app/commands.hpp"
+#include "app/log_stage.hpp"
 #include "app/refine_levels.hpp"
 #include "common/csv.hpp"
 #include "common/error.hpp"
@@ -324,6 +325,7 @@ int run_converge(const Invocation& invocation) {
     level.directory = directory + "/level_" + std::to_string(k);
     print("%5d %6ld", k, base + k); // the rest of the row once the level is solved
     try {
+      const LogStage stage("Converge level " + std::to_string(k));
       level.result = start.empty()
                          ? solve_case(cloth_case, k)
                          : solve_case(finer_level_case(cloth_case), k, {}, {}, nullptr, &start);

@@ -3,6 +3,7 @@
 #include "app/case_checks.hpp"
 #include "app/commands.hpp"
 #include "app/contact_case.hpp"
+#include "app/log_stage.hpp"
 #include "common/csv.hpp"
 #include "common/error.hpp"
 #include "contact/body_spec.hpp"
@@ -48,19 +49,6 @@ ClothCase finer_level_case(ClothCase level_case, double refine_time) {
 double coarse_edge_spacing(double spacing, double edge_length) {
   return spacing > 0.0 ? std::max(spacing, edge_length / 4.0) : 0.0;
 }
-
-// -log_view reports each level as its own stage, for as long as this lives.
-class LogStage {
-public:
-  explicit LogStage(const std::string& name) {
-    PetscLogStage stage = 0;
-    SartorPetscCall(PetscLogStageRegister(name.c_str(), &stage));
-    SartorPetscCall(PetscLogStagePush(stage));
-  }
-  LogStage(const LogStage&) = delete;
-  LogStage& operator=(const LogStage&) = delete;
-  ~LogStage() { PetscLogStagePop(); }
-};
 
 // A copy of the level's mesh whose material ids are its panels, as the
 // prolongation reads them.

@@ -1,6 +1,7 @@
 #include "app/refine_levels.hpp"
 
 #include "app/commands.hpp"
+#include "app/log_stage.hpp"
 #include "app/progressive_drape.hpp"
 #include "common/csv.hpp"
 #include "common/error.hpp"
@@ -113,6 +114,7 @@ CaseResult solve_on_refine_levels(const ClothCase& cloth_case, int levels,
     const int extra = l - (levels - 1);
     RefineLevelRun run;
     const double cpu_start = process_cpu_seconds();
+    const LogStage stage("Refine level " + std::to_string(l));
     if (l > 0) start = prolonged_start(cloth_case, result, extra, &run.deepest_start);
     ClothCase level_case = l == 0 ? cloth_case : finer;
     level_case.statics.progress_prefix =
