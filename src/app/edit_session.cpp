@@ -36,6 +36,9 @@ namespace sartor {
 
 namespace {
 
+// A drag's point farther than this from every cloth vertex is warned of, m.
+constexpr double far_drag_point = 0.02;
+
 // A solved design: its parameters, problem, equilibrium and, once needed,
 // its sensitivity.
 struct Design {
@@ -572,6 +575,18 @@ Eigen::VectorXd EditSession::drag_change(std::size_t k, nlohmann::json* record) 
                      "choose moves that do");
   const Eigen::VectorXd predicted = S * dg;
   const auto vector = [](const double* v) { return nlohmann::json{v[0], v[1], v[2]}; };
+  // A point far from the drape picks a vertex the user may not have meant.
+  std::vector<std::string> warnings;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d at(found[i * width + 1], found[i * width + 2], found[i * width + 3]);
+    const double distance = (at - edit.drags[i].point).norm();
+    if (distance > far_drag_point) {
+      warnings.push_back(step + ": drag " + std::to_string(i + 1) + "'s point is " +
+                         format_number(distance) + " m from the nearest cloth vertex (" +
+                         std::to_string(long(found[i * width])) + "), which it drags");
+    }
+  }
+  print_warnings(warnings);
   nlohmann::json parameters = nlohmann::json::array(), drags = nlohmann::json::array();
   for (std::size_t j = 0; j < m; ++j)
     parameters.push_back({{"name", edit.parameters[j].name}, {"change", dg[Eigen::Index(j)]}});
@@ -579,8 +594,10 @@ Eigen::VectorXd EditSession::drag_change(std::size_t k, nlohmann::json* record) 
     nlohmann::json sensitivities = nlohmann::json::array();
     for (std::size_t j = 0; j < m; ++j)
       sensitivities.push_back(vector(&found[i * width + 4 + 3 * j]));
+    const Eigen::Vector3d at(found[i * width + 1], found[i * width + 2], found[i * width + 3]);
     drags.push_back({{"vertex", long(found[i * width])},
                      {"point_m", vector(edit.drags[i].point.data())},
+                     {"point_distance_m", (at - edit.drags[i].point).norm()},
                      {"vertex_position_m", vector(&found[i * width + 1])},
                      {"by_m", vector(edit.drags[i].by.data())},
                      {"sensitivity_m_per_unit", sensitivities},

@@ -76,6 +76,8 @@ if not abs(math.sqrt(dot(predicted, predicted)) - abs(dot(s, by)) / math.sqrt(do
     failures.append("the predicted move is not the drag's projection on s")
 if not abs(step["largest_corner_move_m"] - 0.01 * dg) <= 1e-12:
     failures.append(f"corner moves {step['largest_corner_move_m']} m, dg x 1 cm = {0.01 * dg}")
+if not drag["point_distance_m"] <= 1e-9:
+    failures.append(f"the dragged vertex is {drag['point_distance_m']} m from the point")
 moved = drag["resolved_move_m"]
 if not 0.005 <= -moved[2] <= 0.015:
     failures.append(f"the re-solved point moved {moved} m, asked 1 cm down")
