@@ -77,10 +77,6 @@ EditDesign::EditDesign(const garment::Pattern& pattern, const TriangleMesh& mesh
   }
 }
 
-Eigen::VectorXd EditDesign::parameters(const EditStep& step) const {
-  return parameters(step.moves);
-}
-
 Eigen::VectorXd EditDesign::parameters(const std::vector<CornerMove>& moves) const {
   // A corner named by several moves of a step (the shared end of two lines
   // moved together) moves once (read_edit_file refuses different moves).

@@ -29,8 +29,8 @@ public:
              const std::vector<int>& panel_of_triangle);
 
   Eigen::Index size() const { return Eigen::Index(2 * corners_); }
-  // The parameters of a step's moves (added to those of the steps before).
-  Eigen::VectorXd parameters(const EditStep& step) const;
+  // The parameters of a step's (or a drag parameter's) moves (added to
+  // those of the steps before).
   Eigen::VectorXd parameters(const std::vector<CornerMove>& moves) const;
   // The change of the mesh's rest coordinates for parameters p.
   RestChange rest_change(const Eigen::VectorXd& p) const;

@@ -575,34 +575,31 @@ Eigen::VectorXd EditSession::drag_change(std::size_t k, nlohmann::json* record) 
                      "choose moves that do");
   const Eigen::VectorXd predicted = S * dg;
   const auto vector = [](const double* v) { return nlohmann::json{v[0], v[1], v[2]}; };
-  // A point far from the drape picks a vertex the user may not have meant.
-  std::vector<std::string> warnings;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d at(found[i * width + 1], found[i * width + 2], found[i * width + 3]);
-    const double distance = (at - edit.drags[i].point).norm();
-    if (distance > far_drag_point) {
-      warnings.push_back(step + ": drag " + std::to_string(i + 1) + "'s point is " +
-                         format_number(distance) + " m from the nearest cloth vertex (" +
-                         std::to_string(long(found[i * width])) + "), which it drags");
-    }
-  }
-  print_warnings(warnings);
   nlohmann::json parameters = nlohmann::json::array(), drags = nlohmann::json::array();
   for (std::size_t j = 0; j < m; ++j)
     parameters.push_back({{"name", edit.parameters[j].name}, {"change", dg[Eigen::Index(j)]}});
+  // A point far from the drape picks a vertex the user may not have meant.
+  std::vector<std::string> warnings;
   for (std::size_t i = 0; i < n; ++i) {
+    const double* row = &found[i * width];
+    const double distance = (Eigen::Vector3d(row[1], row[2], row[3]) - edit.drags[i].point).norm();
+    if (distance > far_drag_point) {
+      warnings.push_back(step + ": drag " + std::to_string(i + 1) + "'s point is " +
+                         format_number(distance) + " m from the nearest cloth vertex (" +
+                         std::to_string(long(row[0])) + "), which it drags");
+    }
     nlohmann::json sensitivities = nlohmann::json::array();
     for (std::size_t j = 0; j < m; ++j)
-      sensitivities.push_back(vector(&found[i * width + 4 + 3 * j]));
-    const Eigen::Vector3d at(found[i * width + 1], found[i * width + 2], found[i * width + 3]);
-    drags.push_back({{"vertex", long(found[i * width])},
+      sensitivities.push_back(vector(row + 4 + 3 * j));
+    drags.push_back({{"vertex", long(row[0])},
                      {"point_m", vector(edit.drags[i].point.data())},
-                     {"point_distance_m", (at - edit.drags[i].point).norm()},
-                     {"vertex_position_m", vector(&found[i * width + 1])},
+                     {"point_distance_m", distance},
+                     {"vertex_position_m", vector(row + 1)},
                      {"by_m", vector(edit.drags[i].by.data())},
                      {"sensitivity_m_per_unit", sensitivities},
                      {"predicted_move_m", vector(predicted.data() + 3 * i)}});
   }
+  print_warnings(warnings);
   *record = {
       {"parameters", parameters}, {"drags", drags}, {"cpu_s", process_cpu_seconds() - started}};
   return change;
@@ -669,7 +666,7 @@ void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& mat
   for (std::size_t k = 0; k < steps_.size(); ++k) {
     const bool drags = !steps_[k].drags.empty();
     nlohmann::json drag;
-    p += drags ? drag_change(k, &drag) : design.parameters(steps_[k]);
+    p += drags ? drag_change(k, &drag) : design.parameters(steps_[k].moves);
     nlohmann::json step = solve_step(k, p, design);
     if (drags) report_drags(&step, std::move(drag));
     all_certified = all_certified && step["resolve"]["certified"].get<bool>();

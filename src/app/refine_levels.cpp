@@ -109,14 +109,13 @@ CaseResult solve_on_refine_levels(const ClothCase& cloth_case, int levels,
   if (levels == 1) return solve_case(cloth_case, 0, observe, checkpointing);
   CaseResult result;
   std::vector<Eigen::Vector3d> start;
-  const ClothCase finer = finer_level_case(cloth_case);
   for (int l = 0; l < levels; ++l) {
     const int extra = l - (levels - 1);
     RefineLevelRun run;
     const double cpu_start = process_cpu_seconds();
     const LogStage stage("Refine level " + std::to_string(l));
     if (l > 0) start = prolonged_start(cloth_case, result, extra, &run.deepest_start);
-    ClothCase level_case = l == 0 ? cloth_case : finer;
+    ClothCase level_case = l == 0 ? cloth_case : finer_level_case(cloth_case);
     level_case.statics.progress_prefix =
         "level " + std::to_string(l + 1) + " of " + std::to_string(levels) + ", ";
     result = solve_case(level_case, extra, l + 1 == levels ? observe : CaseStepObserver{},
