@@ -8,6 +8,7 @@
 #include "common/output.hpp"
 #include "common/yaml_input.hpp"
 #include "fem/petsc_call.hpp"
+#include "garment/pattern_edit.hpp"
 #include "solvers/sensitivity.hpp"
 #include "solvers/statics.hpp"
 
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 
 namespace sartor {
@@ -41,10 +43,54 @@ void reject_unknown_keys(const std::string& path, const YAML::Node& node, const 
   }
 }
 
+// Two finite numbers [a, b] (`node`, under `key`), each at most `limit`.
+Eigen::Vector2d read_pair(const std::string& path, const YAML::Node& node, const std::string& key,
+                          const std::string& what, double limit) {
+  if (!node.IsSequence() || node.size() != 2)
+    edit_error(path, node, key, "must be two numbers [" + what + "]");
+  Eigen::Vector2d pair;
+  for (std::size_t i = 0; i < 2; ++i) {
+    double value = NAN;
+    try {
+      value = node[i].as<double>();
+    } catch (const YAML::Exception&) {
+      edit_error(path, node[i], key, "'" + node[i].Scalar() + "' is not a number");
+    }
+    if (!std::isfinite(value) || std::abs(value) > limit)
+      edit_error(path, node[i], key,
+                 node[i].Scalar() + ": must be finite and at most " + format_number(limit));
+    pair[Eigen::Index(i)] = value;
+  }
+  return pair;
+}
+
+// Sensitive Couture's Psi tensor of a move: the corners move by Psi times
+// the step's pointer movement. `psi: [[a, b], [c, d]]` gives it whole,
+// `along: [ex, ey]` is e e^T (e normalised): the corners shadow the
+// pointer along e only.
+Eigen::Matrix2d read_psi(const std::string& path, const YAML::Node& node, const std::string& key) {
+  if (node["along"]) {
+    const Eigen::Vector2d e = read_pair(path, node["along"], key + ".along", "ex, ey", 1e3);
+    if (e.norm() == 0.0) edit_error(path, node["along"], key + ".along", "the direction is zero");
+    return e.normalized() * e.normalized().transpose();
+  }
+  const YAML::Node psi = node["psi"];
+  if (!psi.IsSequence() || psi.size() != 2)
+    edit_error(path, psi, key + ".psi", "must be two rows [[a, b], [c, d]]");
+  Eigen::Matrix2d tensor;
+  for (std::size_t r = 0; r < 2; ++r)
+    tensor.row(Eigen::Index(r)) =
+        read_pair(path, psi[r], key + ".psi", "a, b (a row of the tensor)", 1e3).transpose();
+  return tensor;
+}
+
+// A move {line, by[, end]}; or, where the step has a pointer movement,
+// {line, psi | along[, end]}, its `by` the tensor times the pointer's.
 CornerMove read_move(const std::string& path, const YAML::Node& node, const std::string& key,
-                     const std::set<std::string>& outline_lines) {
+                     const std::set<std::string>& outline_lines,
+                     const std::optional<Eigen::Vector2d>& pointer) {
   if (!node.IsMap()) edit_error(path, node, key, "a move is a mapping {line, by[, end]}");
-  reject_unknown_keys(path, node, key, {"line", "by", "end"});
+  reject_unknown_keys(path, node, key, {"line", "by", "end", "psi", "along"});
   CornerMove move;
   if (!node["line"] || !node["line"].IsScalar())
     edit_error(path, node, key + ".line", "missing: the id of an outline line of the pattern");
@@ -52,21 +98,21 @@ CornerMove read_move(const std::string& path, const YAML::Node& node, const std:
   if (!outline_lines.count(move.line))
     edit_error(path, node["line"], key + ".line",
                "'" + move.line + "' is not an outline line of the pattern");
-  const YAML::Node by = node["by"];
-  if (!by) edit_error(path, node, key + ".by", "missing: the move [dx, dy] in m");
-  if (!by.IsSequence() || by.size() != 2)
-    edit_error(path, by, key + ".by", "must be two numbers [dx, dy] in m");
-  for (std::size_t i = 0; i < 2; ++i) {
-    double value = NAN;
-    try {
-      value = by[i].as<double>();
-    } catch (const YAML::Exception&) {
-      edit_error(path, by[i], key + ".by", "'" + by[i].Scalar() + "' is not a number");
-    }
-    if (!std::isfinite(value) || std::abs(value) > 0.5)
-      edit_error(path, by[i], key + ".by",
-                 "a move of " + by[i].Scalar() + " m: moves are finite and at most 0.5 m");
-    move.by[Eigen::Index(i)] = value;
+  const int given = int(bool(node["by"])) + int(bool(node["psi"])) + int(bool(node["along"]));
+  if (given != 1)
+    edit_error(path, node, key,
+               "give one of by (the move [dx, dy] in m), psi or along (with the step's pointer)");
+  if (node["by"]) {
+    move.by = read_pair(path, node["by"], key + ".by", "dx, dy in m", 0.5);
+  } else {
+    if (!pointer)
+      edit_error(path, node, key,
+                 "psi and along map the step's pointer movement: give the step a pointer [dx, dy]");
+    move.by = read_psi(path, node, key) * *pointer;
+    if (move.by.lpNorm<Eigen::Infinity>() > 0.5)
+      edit_error(path, node, key,
+                 "the pointer moves the corners by " + format_number(move.by.norm()) +
+                     " m: moves are at most 0.5 m");
   }
   if (node["end"]) {
     const std::string end = node["end"].IsScalar() ? node["end"].Scalar() : "";
@@ -153,14 +199,15 @@ std::vector<std::pair<std::size_t, std::size_t>> moved_corners(const garment::Pa
 // error.
 std::vector<CornerMove> read_moves(const std::string& path, const YAML::Node& moves,
                                    const std::string& key, const garment::Pattern& pattern,
-                                   const std::set<std::string>& outline_lines) {
+                                   const std::set<std::string>& outline_lines,
+                                   const std::optional<Eigen::Vector2d>& pointer = std::nullopt) {
   if (!moves.IsSequence() || moves.size() == 0)
     edit_error(path, moves, key, "must be a non-empty list of moves");
   std::vector<CornerMove> result;
   std::map<std::pair<std::size_t, std::size_t>, CornerMove> corners;
   for (std::size_t m = 0; m < moves.size(); ++m) {
     const std::string move_key = key + "[" + std::to_string(m) + "]";
-    result.push_back(read_move(path, moves[m], move_key, outline_lines));
+    result.push_back(read_move(path, moves[m], move_key, outline_lines, pointer));
     for (const auto& corner : moved_corners(pattern, result.back())) {
       const auto [entry, fresh] = corners.emplace(corner, result.back());
       if (!fresh && entry->second.by != result.back().by)
@@ -172,17 +219,42 @@ std::vector<CornerMove> read_moves(const std::string& path, const YAML::Node& mo
   return result;
 }
 
+// The named parameter `name` (named_edit_parameters), or an error listing
+// the names there are.
+const EditParameter& named_parameter(const std::string& path, const YAML::Node& node,
+                                     const std::string& key, const std::string& name,
+                                     const std::map<std::string, EditParameter>& named) {
+  const auto found = named.find(name);
+  if (found != named.end()) return found->second;
+  std::string list;
+  for (const auto& [known, parameter] : named)
+    list += (list.empty() ? "" : ", ") + known;
+  edit_error(path, node, key,
+             "'" + name + "' is not a parameter of the pattern (" +
+                 (list.empty() ? "it has none: no sloper parameters, no darts" : "known: " + list) +
+                 ")");
+}
+
+// The design parameters of a drag step: each a named parameter, or
+// {name, moves} with its moves per unit.
 std::vector<EditParameter> read_parameters(const std::string& path, const YAML::Node& node,
                                            const std::string& key, const garment::Pattern& pattern,
-                                           const std::set<std::string>& outline_lines) {
+                                           const std::set<std::string>& outline_lines,
+                                           const std::map<std::string, EditParameter>& named) {
   if (!node.IsSequence() || node.size() == 0)
-    edit_error(path, node, key, "must be a non-empty list of parameters {name, moves}");
+    edit_error(path, node, key,
+               "must be a non-empty list of parameters (a parameter's name, or {name, moves})");
   std::vector<EditParameter> parameters;
   for (std::size_t j = 0; j < node.size(); ++j) {
     const std::string parameter_key = key + "[" + std::to_string(j) + "]";
     const YAML::Node parameter = node[j];
+    if (parameter.IsScalar()) {
+      parameters.push_back(
+          named_parameter(path, parameter, parameter_key, parameter.Scalar(), named));
+      continue;
+    }
     if (!parameter.IsMap())
-      edit_error(path, parameter, parameter_key, "a parameter is {name, moves}");
+      edit_error(path, parameter, parameter_key, "a parameter is a name or {name, moves}");
     reject_unknown_keys(path, parameter, parameter_key, {"name", "moves"});
     if (!parameter["moves"])
       edit_error(path, parameter, parameter_key + ".moves", "missing: its moves per unit");
@@ -194,7 +266,148 @@ std::vector<EditParameter> read_parameters(const std::string& path, const YAML::
   return parameters;
 }
 
+// A step's `change`: {NAME: by, ...}, named parameters changed by `by` (m);
+// the corners they move are checked against the 0.5 m limit of a move.
+std::vector<ParameterChange> read_changes(const std::string& path, const YAML::Node& node,
+                                          const std::string& key,
+                                          const std::map<std::string, EditParameter>& named) {
+  if (!node.IsMap() || node.size() == 0)
+    edit_error(path, node, key, "must be a mapping {parameter: change in m, ...}");
+  std::vector<ParameterChange> changes;
+  for (const auto& entry : node) {
+    const std::string name = entry.first.Scalar();
+    const std::string entry_key = key + "." + name;
+    ParameterChange change{named_parameter(path, entry.first, entry_key, name, named), NAN};
+    try {
+      change.by = entry.second.as<double>();
+    } catch (const YAML::Exception&) {
+      edit_error(path, entry.second, entry_key, "'" + entry.second.Scalar() + "' is not a number");
+    }
+    double largest = 0.0;
+    for (const CornerMove& move : change.parameter.moves)
+      largest = std::max(largest, std::abs(change.by) * move.by.norm());
+    if (!std::isfinite(change.by) || largest > 0.5)
+      edit_error(path, entry.second, entry_key,
+                 "a change of " + entry.second.Scalar() + " m moves corners by " +
+                     format_number(largest) + " m: moves are finite and at most 0.5 m");
+    changes.push_back(change);
+  }
+  return changes;
+}
+
+// The line of `panel` with this id.
+const garment::OutlineLine& outline_line(const garment::Panel& panel, const std::string& id) {
+  for (const garment::OutlineLine& line : panel.outline)
+    if (line.id == id) return line;
+  throw std::logic_error("named_edit_parameters: dart leg '" + id + "' is not on its panel");
+}
+
+// DART.slide, DART.open and DART.depth of one dart (named_edit_parameters).
+void add_dart_parameters(const garment::Panel& panel, const garment::Dart& dart,
+                         std::map<std::string, EditParameter>* named) {
+  using Which = CornerMove::Which;
+  const Eigen::Vector2d first_base = outline_line(panel, dart.first_leg).curve.start();
+  const Eigen::Vector2d apex = outline_line(panel, dart.first_leg).curve.end();
+  const Eigen::Vector2d second_base = outline_line(panel, dart.second_leg).curve.end();
+  const Eigen::Vector2d along = (second_base - first_base).normalized();
+  const Eigen::Vector2d axis = (apex - 0.5 * (first_base + second_base)).normalized();
+  const auto add = [&](const std::string& what, std::vector<CornerMove> moves) {
+    (*named)[dart.id + "." + what] = {dart.id + "." + what, std::move(moves)};
+  };
+  add("slide", {{dart.first_leg, Which::both, along}, {dart.second_leg, Which::end, along}});
+  add("open",
+      {{dart.first_leg, Which::start, -0.5 * along}, {dart.second_leg, Which::end, 0.5 * along}});
+  add("depth", {{dart.first_leg, Which::end, axis}});
+}
+
+// Whether any move of the list `moves` maps the pointer (psi or along).
+bool maps_pointer(const YAML::Node& moves) {
+  if (!moves.IsSequence()) return false;
+  for (const auto& move : moves)
+    if (move.IsMap() && (move["psi"] || move["along"])) return true;
+  return false;
+}
+
+// A drag step: its drags and design parameters (`parameters`, or its
+// `moves` as one).
+void read_drag_step(const std::string& path, const YAML::Node& step, const std::string& key,
+                    const garment::Pattern& pattern, const std::set<std::string>& outline_lines,
+                    const std::map<std::string, EditParameter>& named, EditStep* edit) {
+  edit->drags = read_drags(path, step["drag"], key + ".drag");
+  if (step["change"])
+    edit_error(path, step["change"], key + ".change",
+               "a drag step finds its parameters' change: give it parameters (or moves), "
+               "not a change");
+  if (step["parameters"] && step["moves"])
+    edit_error(path, step["moves"], key + ".moves",
+               "a drag step has moves (one parameter) or parameters, not both");
+  if (step["parameters"]) {
+    edit->parameters = read_parameters(path, step["parameters"], key + ".parameters", pattern,
+                                       outline_lines, named);
+    return;
+  }
+  if (!step["moves"])
+    edit_error(path, step, key + ".moves",
+               "missing: the drag's parameters (or moves: the direction of one)");
+  edit->moves = read_moves(path, step["moves"], key + ".moves", pattern, outline_lines);
+  edit->parameters = {{edit->name, edit->moves}};
+}
+
+EditStep read_step(const std::string& path, const YAML::Node& step, const std::string& key,
+                   std::size_t index, const garment::Pattern& pattern,
+                   const std::set<std::string>& outline_lines,
+                   const std::map<std::string, EditParameter>& named) {
+  if (!step.IsMap())
+    edit_error(path, step, key,
+               "an edit is a mapping {name, moves, change} or {name, drag, moves|parameters}");
+  reject_unknown_keys(path, step, key,
+                      {"name", "moves", "change", "pointer", "drag", "parameters"});
+  EditStep edit;
+  edit.name = step["name"] && step["name"].IsScalar() ? step["name"].Scalar()
+                                                      : "edit " + std::to_string(index + 1);
+  std::optional<Eigen::Vector2d> pointer;
+  if (step["pointer"]) {
+    if (!maps_pointer(step["moves"]))
+      edit_error(path, step["pointer"], key + ".pointer",
+                 "no move maps the pointer: give moves with psi or along");
+    pointer = read_pair(path, step["pointer"], key + ".pointer", "dx, dy in m", 0.5);
+  }
+  if (step["drag"]) {
+    read_drag_step(path, step, key, pattern, outline_lines, named, &edit);
+    return edit;
+  }
+  if (step["parameters"])
+    edit_error(path, step["parameters"], key + ".parameters",
+               "parameters are for a drag: give the step a drag, or moves or a change");
+  if (!step["moves"] && !step["change"])
+    edit_error(path, step, key + ".moves",
+               "missing: the list of moves, or a change of the pattern's parameters");
+  if (step["moves"])
+    edit.moves = read_moves(path, step["moves"], key + ".moves", pattern, outline_lines, pointer);
+  if (step["change"]) edit.changes = read_changes(path, step["change"], key + ".change", named);
+  return edit;
+}
+
 } // namespace
+
+std::map<std::string, EditParameter> named_edit_parameters(const garment::Pattern& pattern) {
+  std::map<std::string, EditParameter> named;
+  for (const garment::SloperParameter& parameter : pattern.parameters) {
+    EditParameter& edit = named[parameter.id];
+    edit.name = parameter.id;
+    for (const garment::ParameterMove& move : parameter.moves) {
+      const CornerMove::Which which =
+          move.corner == garment::ParameterMove::Corner::start ? CornerMove::Which::start
+          : move.corner == garment::ParameterMove::Corner::end ? CornerMove::Which::end
+                                                               : CornerMove::Which::both;
+      edit.moves.push_back({move.line, which, move.per_unit});
+    }
+  }
+  for (const garment::Panel& panel : pattern.panels)
+    for (const garment::Dart& dart : panel.darts)
+      add_dart_parameters(panel, dart, &named);
+  return named;
+}
 
 std::vector<EditStep> read_edit_file(const std::string& path, const garment::Pattern& pattern) {
   const YAML::Node root = load_yaml_input(path, "edit file");
@@ -208,35 +421,19 @@ std::vector<EditStep> read_edit_file(const std::string& path, const garment::Pat
   for (const auto& panel : pattern.panels)
     for (const auto& line : panel.outline)
       outline_lines.insert(line.id);
+  const std::map<std::string, EditParameter> named = named_edit_parameters(pattern);
   std::vector<EditStep> result;
-  for (std::size_t s = 0; s < steps.size(); ++s) {
-    const std::string key = "steps[" + std::to_string(s) + "]";
-    const YAML::Node step = steps[s];
-    if (!step.IsMap())
-      edit_error(path, step, key,
-                 "an edit is a mapping {name, moves} or {name, drag, moves|parameters}");
-    reject_unknown_keys(path, step, key, {"name", "moves", "drag", "parameters"});
-    EditStep edit;
-    edit.name = step["name"] && step["name"].IsScalar() ? step["name"].Scalar()
-                                                        : "edit " + std::to_string(s + 1);
-    if (step["drag"]) edit.drags = read_drags(path, step["drag"], key + ".drag");
-    if (step["parameters"]) {
-      if (edit.drags.empty())
-        edit_error(path, step["parameters"], key + ".parameters",
-                   "parameters are for a drag: give the step a drag, or moves");
-      if (step["moves"])
-        edit_error(path, step["moves"], key + ".moves",
-                   "a drag step has moves (one parameter) or parameters, not both");
-      edit.parameters =
-          read_parameters(path, step["parameters"], key + ".parameters", pattern, outline_lines);
-    } else {
-      if (!step["moves"]) edit_error(path, step, key + ".moves", "missing: the list of moves");
-      edit.moves = read_moves(path, step["moves"], key + ".moves", pattern, outline_lines);
-      if (!edit.drags.empty()) edit.parameters = {{edit.name, edit.moves}};
-    }
-    result.push_back(edit);
-  }
+  for (std::size_t s = 0; s < steps.size(); ++s)
+    result.push_back(read_step(path, steps[s], "steps[" + std::to_string(s) + "]", s, pattern,
+                               outline_lines, named));
   return result;
+}
+
+garment::InteriorCoordinates interior_coordinates_option(const Options& options) {
+  const std::string kind = options.text("edit-interior");
+  if (kind == "positive") return garment::InteriorCoordinates::positive_mean_value;
+  if (kind == "mean-value") return garment::InteriorCoordinates::mean_value;
+  throw InputError("option --edit-interior: unknown kind '" + kind + "' (positive or mean-value)");
 }
 
 const std::vector<OptionSpec>& edit_option_specs() {
@@ -254,6 +451,14 @@ const std::vector<OptionSpec>& edit_option_specs() {
        "the sensitivity's tangent: exact (the derivative) or projected (the minimiser's, "
        "PSD-projected element Hessians: damps the wrinkles' negative curvature)"},
       {"gmls-degree", "N", "2", "degree of GMLS's polynomial basis: 1 (Sensitive Couture's) or 2"},
+      {"edit-smoothing-quality", "Q", "0.3",
+       "Delaunay smoothing (edge flips, the vertices kept) of an edited rest mesh whose worst "
+       "triangle's quality (sqrt(3) times the incircle's diameter over the longest edge: 1 "
+       "equilateral) fell below Q (0: never)"},
+      {"edit-interior", "KIND", "positive",
+       "how a panel's interior follows its outline's edits: positive (positive mean value "
+       "coordinates, Lipman et al., never negative in a notched panel) or mean-value "
+       "(Floater's, negative behind a notch)"},
       {"edit-max-newton", "N", "0",
        "the most Newton iterations of each solve (sewing stage or contact round) of a "
        "re-solve; a start that needs more fails, and the next is tried (0: the drape's "

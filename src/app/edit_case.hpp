@@ -11,6 +11,7 @@
 #include "app/commands.hpp"
 #include "fem/cloth_output.hpp"
 #include "garment/pattern.hpp"
+#include "garment/pattern_edit.hpp"
 #include "mesh/seams.hpp"
 #include "mesh/triangle_mesh.hpp"
 
@@ -18,6 +19,7 @@
 
 #include <Eigen/Core>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -46,22 +48,40 @@ struct EditParameter {
   std::vector<CornerMove> moves;
 };
 
-// An edit: its moves; or, with drags, the design parameters (the moves of
-// a step with one) whose change dg makes the linear response
-// S dg (S: the dragged vertices' sensitivities to the parameters, 3 rows
-// per drag) the least-squares fit to the drags, with the least |dg| where
-// several fit as well.
+// A named parameter changed by a step (a slider): `by` units of it (m).
+struct ParameterChange {
+  EditParameter parameter;
+  double by = 0.0;
+};
+
+// An edit: its moves and its parameter changes, added; or, with drags, the
+// design parameters (the moves of a step with one) whose change dg makes the
+// linear response S dg (S: the dragged vertices' sensitivities to the
+// parameters, 3 rows per drag) the least-squares fit to the drags, with the
+// least |dg| where several fit as well.
 struct EditStep {
   std::string name;
   std::vector<CornerMove> moves;
+  std::vector<ParameterChange> changes;
   std::vector<DragRequest> drags;
   std::vector<EditParameter> parameters;
 };
+
+// The parameters an edit may name: the pattern's sloper parameters (by id)
+// and, per dart, DART.slide (the dart rides the outline: its three corners
+// move along the line from its first to its second base corner), DART.open
+// (its base corners move apart along that line, half a unit each) and
+// DART.depth (its apex moves away from its bases' midpoint); per unit, m.
+std::map<std::string, EditParameter> named_edit_parameters(const garment::Pattern& pattern);
 
 // Reads an edit file (YAML; docs/sensitivity.md#the-edit-file) against the
 // pattern its lines must belong to. Throws InputError "FILE:LINE: KEY: what
 // is wrong".
 std::vector<EditStep> read_edit_file(const std::string& path, const garment::Pattern& pattern);
+
+// --edit-interior: the coordinates a panel's interior follows its outline
+// by. Throws InputError naming the option for an unknown kind.
+garment::InteriorCoordinates interior_coordinates_option(const Options& options);
 
 // The options of `sartor edit` beyond drape's.
 const std::vector<OptionSpec>& edit_option_specs();

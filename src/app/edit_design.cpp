@@ -37,7 +37,8 @@ std::vector<std::pair<Eigen::Vector2d, double>> line_points(const garment::Curve
 } // namespace
 
 EditDesign::EditDesign(const garment::Pattern& pattern, const TriangleMesh& mesh,
-                       const std::vector<int>& panel_of_triangle)
+                       const std::vector<int>& panel_of_triangle,
+                       garment::InteriorCoordinates interior)
     : pattern_(pattern), mesh_(mesh) {
   for (const garment::Panel& panel : pattern.panels) {
     const int first = corners_;
@@ -66,7 +67,7 @@ EditDesign::EditDesign(const garment::Pattern& pattern, const TriangleMesh& mesh
     std::vector<Eigen::Vector2d> polygon;
     for (const OutlinePoint& point : polygons_[std::size_t(panel)])
       polygon.push_back(point.at);
-    const std::vector<double> lambda = garment::mean_value_coordinates(polygon, at);
+    const std::vector<double> lambda = garment::panel_coordinates(interior, polygon, at);
     std::map<int, double> weights;
     for (std::size_t k = 0; k < polygon.size(); ++k) {
       const OutlinePoint& point = polygons_[std::size_t(panel)][k];
@@ -102,7 +103,7 @@ Eigen::VectorXd EditDesign::parameters(const std::vector<CornerMove>& moves) con
   return p;
 }
 
-RestChange EditDesign::rest_change(const Eigen::VectorXd& p) const {
+RestChange EditDesign::rest_change(const Eigen::VectorXd& p, const TriangleMesh& mesh) const {
   std::vector<Eigen::Vector2d> delta(vertices_.size(), Eigen::Vector2d::Zero());
   for (std::size_t v = 0; v < vertices_.size(); ++v) {
     if (vertices_[v].panel < 0) continue;
@@ -112,7 +113,7 @@ RestChange EditDesign::rest_change(const Eigen::VectorXd& p) const {
     const garment::GrainLine& grain = pattern_.panels[std::size_t(vertices_[v].panel)].grain;
     delta[v] = {move.dot(grain.warp), move.dot(grain.weft())};
   }
-  return rest_change_per_vertex(mesh_, delta);
+  return rest_change_per_vertex(mesh, delta);
 }
 
 std::vector<std::vector<Eigen::Vector2d>> EditDesign::outlines(const Eigen::VectorXd& p) const {

@@ -3,12 +3,13 @@
 // (the starts of its lines), two coordinates each. A design p moves the
 // corners; each outline line follows by blending its two corners' moves
 // along its arc length (a line whose both corners move by d translates by
-// d), and the panel's interior follows its outline by mean value
-// coordinates (garment/pattern_edit.hpp). The change of the mesh's rest
+// d), and the panel's interior follows its outline by positive mean value
+// coordinates (or mean value coordinates; garment/pattern_edit.hpp). The change of the mesh's rest
 // coordinates is linear in p.
 
 #include "app/edit_case.hpp"
 #include "garment/pattern.hpp"
+#include "garment/pattern_edit.hpp"
 #include "mesh/triangle_mesh.hpp"
 #include "solvers/sensitivity.hpp"
 
@@ -25,15 +26,19 @@ class EditDesign {
 public:
   // `mesh`: the cloth, its material coordinates those of each panel's grain
   // (garment's panel mesher); `panel_of_triangle` indexes pattern.panels.
-  EditDesign(const garment::Pattern& pattern, const TriangleMesh& mesh,
-             const std::vector<int>& panel_of_triangle);
+  EditDesign(
+      const garment::Pattern& pattern, const TriangleMesh& mesh,
+      const std::vector<int>& panel_of_triangle,
+      garment::InteriorCoordinates interior = garment::InteriorCoordinates::positive_mean_value);
 
   Eigen::Index size() const { return Eigen::Index(2 * corners_); }
   // The parameters of a step's (or a drag parameter's) moves (added to
   // those of the steps before).
   Eigen::VectorXd parameters(const std::vector<CornerMove>& moves) const;
-  // The change of the mesh's rest coordinates for parameters p.
-  RestChange rest_change(const Eigen::VectorXd& p) const;
+  // The change of the rest coordinates of `mesh` for parameters p: the
+  // cloth mesh the design was made for, or one with its vertices and other
+  // triangles (Delaunay smoothing flips edges, the vertices stay).
+  RestChange rest_change(const Eigen::VectorXd& p, const TriangleMesh& mesh) const;
   // Each panel's outline polygon (pattern coordinates) moved by p.
   std::vector<std::vector<Eigen::Vector2d>> outlines(const Eigen::VectorXd& p) const;
   // The largest corner move of p, m.

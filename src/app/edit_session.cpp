@@ -16,6 +16,7 @@
 #include "contact/body.hpp"
 #include "fem/petsc_call.hpp"
 #include "garment/mesh_levels.hpp"
+#include "mesh/remesh.hpp"
 #include "solvers/incremental_system.hpp"
 #include "solvers/sensitivity.hpp"
 #include "solvers/statics.hpp"
@@ -49,6 +50,7 @@ struct Design {
   ClothProblem* problem = nullptr;
   Vec x = nullptr;
   std::unique_ptr<DesignSensitivity> slope;
+  nlohmann::json rest_mesh; // its quality, and the Delaunay smoothing's flips
   Design() = default;
   Design(const Design&) = delete;
   Design& operator=(const Design&) = delete;
@@ -279,7 +281,7 @@ void EditSession::add_slope(Design& from, const Eigen::VectorXd& dp, ClothProble
   Vec dx = nullptr, moved = nullptr;
   SartorPetscCall(VecDuplicate(from.x, &dx));
   SartorPetscCall(VecDuplicate(into, &moved));
-  SartorPetscCall(from.slope->apply(design_->rest_change(dp), dx));
+  SartorPetscCall(from.slope->apply(design_->rest_change(dp, *from.mesh), dx));
   SartorPetscCall(transfer_vector(*from.problem, dx, to, moved));
   SartorPetscCall(VecAXPY(into, 1.0, moved));
   SartorPetscCall(VecDestroy(&dx));
@@ -381,14 +383,97 @@ void EditSession::write_state(const std::string& directory, const Design& design
   if (is_root()) write_cloth_results(directory, *design.mesh, positions, strains, garment_.labels);
 }
 
+// A rest triangle squashed below this fraction of its area by an edit (or
+// turned inside out) makes the edited pattern fold over itself.
+constexpr double least_area_kept = 0.05;
+
+double material_area(const std::array<Eigen::Vector2d, 3>& uv) {
+  const Eigen::Vector2d a = uv[1] - uv[0], b = uv[2] - uv[0];
+  return 0.5 * (a.x() * b.y() - a.y() * b.x());
+}
+
+// Throws InputError where the edited rest coordinates fold a panel over
+// itself (a dart slid past its neighbours, a corner dragged across the
+// panel), naming the panels and how many triangles.
+void refuse_folded_rest(const TriangleMesh& before, const TriangleMesh& after,
+                        const std::vector<int>& panel_of_triangle,
+                        const garment::Pattern& pattern) {
+  std::map<std::string, int> folded;
+  for (std::size_t t = 0; t < before.triangle_count(); ++t) {
+    const double area = material_area(before.material_uv[t]);
+    if (material_area(after.material_uv[t]) / area < least_area_kept)
+      ++folded[pattern.panels[std::size_t(panel_of_triangle[t])].id];
+  }
+  if (folded.empty()) return;
+  std::string where;
+  for (const auto& [panel, count] : folded)
+    where += (where.empty() ? "" : ", ") + std::to_string(count) + " in panel '" + panel + "'";
+  throw InputError("sartor edit: the edited pattern folds over itself: triangles turned inside "
+                   "out or squashed below " +
+                   format_number(100.0 * least_area_kept) + " % of their area (" + where +
+                   "); make the edit smaller");
+}
+
+// Delaunay smoothing (Sensitive Couture §6) of an edited rest mesh whose
+// worst triangle's quality (triangle_quality: 1 equilateral, 0 flat) fell
+// below `least_quality`: edges flipped, the vertices kept, so positions,
+// sensitivities and seams carry over. The report: the worst quality before
+// and after, the flips, and whether the mesh stays distorted (remeshing
+// with state transfer is not done).
+nlohmann::json smooth_distorted_mesh(TriangleMesh* mesh, double least_quality) {
+  const double worst = worst_quality(*mesh);
+  nlohmann::json report = {{"worst_quality", worst}, {"flips", 0}, {"smoothed", false}};
+  if (worst >= least_quality) return report;
+  const FlipReport flipped = delaunay_smoothing(*mesh);
+  report["smoothed"] = true;
+  report["flips"] = flipped.flips;
+  report["worst_quality_before_smoothing"] = flipped.worst_before;
+  report["worst_quality"] = flipped.worst_after;
+  report["still_distorted"] = flipped.worst_after < least_quality;
+  return report;
+}
+
+// The line of a step whose rest mesh was smoothed, and the warning where it
+// stays distorted.
+void report_smoothing(MPI_Comm comm, const nlohmann::json& step) {
+  const nlohmann::json& mesh = step["rest_mesh"];
+  if (!mesh["smoothed"].get<bool>()) return;
+  SartorPetscCall(PetscPrintf(
+      comm,
+      "sartor edit: %s: the edit squashed triangles (worst quality %.3f, 1 equilateral); "
+      "Delaunay smoothing flipped %d edges: worst quality %.3f\n",
+      step["folder"].get<std::string>().c_str(),
+      mesh["worst_quality_before_smoothing"].get<double>(), mesh["flips"].get<int>(),
+      mesh["worst_quality"].get<double>()));
+  if (mesh["still_distorted"].get<bool>())
+    SartorPetscCall(PetscPrintf(
+        comm,
+        "sartor edit: warning: %s: the rest mesh stays distorted after smoothing (remeshing "
+        "is not implemented): split the edit into smaller steps or mesh finer\n",
+        step["folder"].get<std::string>().c_str()));
+}
+
+// A step's change of the design: its moves', plus each named parameter's
+// moves per unit times its change.
+Eigen::VectorXd step_change(const EditStep& step, const EditDesign& design) {
+  Eigen::VectorXd change = design.parameters(step.moves);
+  for (const ParameterChange& slider : step.changes)
+    change += slider.by * design.parameters(slider.parameter.moves);
+  return change;
+}
+
 // The design p on the mesh moved to its rest coordinates, its problem in
 // the last design's state and its solution vector made (not yet filled).
 std::unique_ptr<Design> EditSession::next_design(Design& last, const Eigen::VectorXd& p,
                                                  const EditDesign& design) {
   auto next = std::make_unique<Design>();
   next->p = p;
+  const TriangleMesh& drape_mesh = *designs_.front()->mesh;
   next->owned_mesh = std::make_unique<TriangleMesh>(
-      moved_rest(*designs_.front()->mesh, design.rest_change(p), 1.0));
+      moved_rest(drape_mesh, design.rest_change(p, drape_mesh), 1.0));
+  refuse_folded_rest(drape_mesh, *next->owned_mesh, garment_.panel_of_triangle, garment_.pattern);
+  next->rest_mesh = smooth_distorted_mesh(next->owned_mesh.get(),
+                                          options_.nonnegative_real("edit-smoothing-quality"));
   next->mesh = next->owned_mesh.get();
   next->owned = factory_(last.problem->comm(), *next->mesh, 0.0);
   next->problem = next->owned.get();
@@ -467,6 +552,7 @@ nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
       {"name", steps_[k].name},
       {"folder", name},
       {"largest_corner_move_m", design.largest_move(p - last.p)},
+      {"rest_mesh", next->rest_mesh},
       {"error_against_resolved",
        {{"unchanged", distance_json(distance(problem, unchanged, next->x))},
         {"linear", distance_json(distance(problem, linear, next->x))},
@@ -523,7 +609,7 @@ Eigen::VectorXd EditSession::drag_change(std::size_t k, nlohmann::json* record) 
   SartorPetscCall(VecDuplicate(last.x, &dx));
   for (const EditParameter& parameter : edit.parameters) {
     directions.push_back(design_->parameters(parameter.moves));
-    SartorPetscCall(last.slope->apply(design_->rest_change(directions.back()), dx));
+    SartorPetscCall(last.slope->apply(design_->rest_change(directions.back(), *last.mesh), dx));
     slopes.push_back(gathered(*last.problem, dx));
   }
   SartorPetscCall(VecDestroy(&dx));
@@ -651,7 +737,8 @@ void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& mat
   if (garment_.panel_of_triangle.size() != base.mesh().triangle_count())
     throw std::logic_error("sartor edit: the drape's mesh is not the constructed garment's");
   factory_ = factory(base, materials);
-  const EditDesign design(garment_.pattern, base.mesh(), garment_.panel_of_triangle);
+  const EditDesign design(garment_.pattern, base.mesh(), garment_.panel_of_triangle,
+                          interior_coordinates_option(options_));
   design_ = &design;
   auto first = std::make_unique<Design>();
   first->p = Eigen::VectorXd::Zero(design.size());
@@ -666,9 +753,11 @@ void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& mat
   for (std::size_t k = 0; k < steps_.size(); ++k) {
     const bool drags = !steps_[k].drags.empty();
     nlohmann::json drag;
-    p += drags ? drag_change(k, &drag) : design.parameters(steps_[k].moves);
+    p += drags ? drag_change(k, &drag) : step_change(steps_[k], design);
     nlohmann::json step = solve_step(k, p, design);
     if (drags) report_drags(&step, std::move(drag));
+    for (const ParameterChange& change : steps_[k].changes)
+      step["changes"].push_back({{"parameter", change.parameter.name}, {"by", change.by}});
     all_certified = all_certified && step["resolve"]["certified"].get<bool>();
     if (!step["resolve"]["converged"].get<bool>())
       run_->not_converged.push_back(step["folder"].get<std::string>());
@@ -699,6 +788,7 @@ void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& mat
         int(step["resolve"]["newton_iterations"].get<long>()),
         step["resolve"]["certificate"].get<std::string>().c_str(), cpu["resolve"].get<double>(),
         cpu["edit_total"].get<double>(), cpu["drape_from_scratch"].get<double>()));
+    report_smoothing(base.comm(), step);
     steps.push_back(step);
     // The edits build on each other: none follows a drape out of equilibrium.
     if (!run_->not_converged.empty()) break;
@@ -710,7 +800,8 @@ void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& mat
                    {"drape_from_scratch_cpu_s", scratch_cpu_},
                    {"drape_resumed_from", drape_.directory},
                    {"start", options_.text("edit-start")},
-                   {"gmls_degree", int(options_.positive_real("gmls-degree"))}};
+                   {"gmls_degree", int(options_.positive_real("gmls-degree"))},
+                   {"interior", options_.text("edit-interior")}};
 }
 
 } // namespace

@@ -830,7 +830,7 @@ Pattern parse_pattern(const std::string& text, const std::string& source) {
   const Node root{document, "", source};
   root.object();
   root.only_keys({"format", "version", "name", "units", "tolerance", "hangs_from", "panels",
-                  "packs", "pleats"});
+                  "packs", "pleats", "parameters"});
   const std::string format = root.require("format").text();
   if (format != "sartor-pattern")
     root.child("format").fail("expected \"sartor-pattern\", got \"" + format + "\"");
@@ -888,6 +888,9 @@ Pattern parse_pattern(const std::string& text, const std::string& source) {
   }
   read_packs(root, pattern, scale);
   if (root.has("pleats")) apply_pleats(pattern, document.at("pleats"), scale);
+  if (root.has("parameters"))
+    pattern.parameters =
+        read_sloper_parameters(document.at("parameters"), "parameters", source, pattern);
   return pattern;
 }
 

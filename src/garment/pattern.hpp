@@ -166,6 +166,23 @@ struct Stitch {
   std::string origin; // what made it, for messages and summaries
 };
 
+// A sloper parameter (Sensitive Couture §3): a named dimension of the
+// pattern (a skirt's length, a waist's width) that outline corners follow
+// linearly. A change g of it moves each move's corners by g * per_unit
+// (docs/pattern-format.md#parameters); `sartor edit` sets it by a slider
+// (an edit step's `change`) or by a drag of the drape.
+struct ParameterMove {
+  std::string line; // an outline line
+  enum class Corner { both, start, end } corner = Corner::both;
+  Eigen::Vector2d per_unit = Eigen::Vector2d::Zero(); // m per m of the parameter
+};
+struct SloperParameter {
+  std::string id;
+  std::string description;
+  std::vector<ParameterMove> moves;
+  std::string json_path;
+};
+
 struct Pattern {
   int version = 1;
   std::string name;
@@ -177,6 +194,7 @@ struct Pattern {
   std::vector<Panel> panels;
   std::vector<Pack> packs; // every panel in exactly one
   std::vector<Stitch> stitches;
+  std::vector<SloperParameter> parameters;
 
   const Panel* find_panel(const std::string& id) const;
   int pack_of(int panel) const; // index into packs
@@ -203,6 +221,16 @@ Pattern parse_pattern(const std::string& text, const std::string& source);
 // Throws InputError naming the dart's JSON path. pattern_darts.cpp.
 std::vector<Dart> read_darts(const nlohmann::json& darts, const std::string& path,
                              const std::string& source, const Panel& panel);
+
+// The pattern's "parameters" (JSON array at `path` of `source`), validated
+// against its outline lines (after pleats): ids unique, every move an
+// outline line's, per-unit moves finite and at most 10 m per m, no corner
+// moved two ways by one parameter. Throws InputError naming the JSON path.
+// pattern_parameters.cpp.
+std::vector<SloperParameter> read_sloper_parameters(const nlohmann::json& parameters,
+                                                    const std::string& path,
+                                                    const std::string& source,
+                                                    const Pattern& pattern);
 
 // Each panel's placement on the flat sheet where the pattern is drawn: packs
 // as the file places them, packs side by side left to right in file order,

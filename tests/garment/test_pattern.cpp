@@ -58,6 +58,21 @@ TEST(PatternSamples, SkirtHasTwoTorsoPanels) {
   EXPECT_NEAR(skirt.panels[1].grain.origin.x(), 0.30, 1e-15);
 }
 
+TEST(PatternSamples, SkirtHasSloperParameters) {
+  const Pattern skirt = read_pattern(samples + "/skirt.json");
+  ASSERT_EQ(skirt.parameters.size(), 2u);
+  const SloperParameter& length = skirt.parameters[0];
+  EXPECT_EQ(length.id, "skirt_length");
+  ASSERT_EQ(length.moves.size(), 3u);
+  EXPECT_EQ(length.moves[2].line, "sb_hem");
+  EXPECT_EQ(length.moves[2].corner, ParameterMove::Corner::both);
+  EXPECT_EQ(length.moves[2].per_unit, Vector2d(0, -1));
+  const SloperParameter& width = skirt.parameters[1];
+  EXPECT_EQ(width.moves[0].corner, ParameterMove::Corner::start);
+  EXPECT_EQ(width.moves[1].corner, ParameterMove::Corner::end);
+  EXPECT_EQ(width.moves[3].per_unit, Vector2d(0.5, 0));
+}
+
 TEST(PatternSamples, TshirtHasTagsPacksAndLayers) {
   const Pattern shirt = read_pattern(samples + "/tshirt.json");
   ASSERT_EQ(shirt.panels.size(), 8u);
@@ -240,6 +255,51 @@ const std::vector<ErrorCase> error_cases = {
                                       {"points", {{0.1, 0.1}, {0.2, 0.1}}}}};
      },
      {"panels[0].interior[0].kind: unknown interior line kind 'dart'"}},
+    {"ParameterNotArray",
+     [](json& d) {
+       d["parameters"] = {{"id", "length"}};
+     },
+     {"parameters: expected an array, got object"}},
+    {"ParameterWithoutId",
+     [](json& d) {
+       d["parameters"] = {{{"moves", json::array()}}};
+     },
+     {"parameters[0]: a parameter needs a non-empty string 'id'"}},
+    {"ParameterUnknownLine",
+     [](json& d) {
+       d["parameters"] = {
+           {{"id", "length"}, {"moves", {{{"line", "a_hem"}, {"per_unit", {0, -1}}}}}}};
+     },
+     {"parameters[0].moves[0].line: 'a_hem' is not an outline line of the pattern"}},
+    {"ParameterDuplicateId",
+     [](json& d) {
+       const json move = {{"line", "a_bottom"}, {"per_unit", {0, -1}}};
+       d["parameters"] = {{{"id", "length"}, {"moves", {move}}},
+                          {{"id", "length"}, {"moves", {move}}}};
+     },
+     {"parameters[1].id: duplicate parameter id 'length'"}},
+    {"ParameterPerUnitTooLarge",
+     [](json& d) {
+       d["parameters"] = {
+           {{"id", "length"}, {"moves", {{{"line", "a_bottom"}, {"per_unit", {0, -100}}}}}}};
+     },
+     {"parameters[0].moves[0].per_unit: a move of 100 m per m: at most 10"}},
+    {"ParameterBadCorner",
+     [](json& d) {
+       d["parameters"] = {
+           {{"id", "length"},
+            {"moves", {{{"line", "a_bottom"}, {"corner", "middle"}, {"per_unit", {0, -1}}}}}}};
+     },
+     {"parameters[0].moves[0].corner: expected \"start\" or \"end\""}},
+    {"ParameterMovesACornerTwoWays",
+     [](json& d) {
+       d["parameters"] = {{{"id", "length"},
+                           {"moves",
+                            {{{"line", "a_bottom"}, {"per_unit", {0, -1}}},
+                             {{"line", "a_right"}, {"per_unit", {1, 0}}}}}}};
+     },
+     {"parameters[0].moves[1]: moves the corner it shares with an earlier move of this "
+      "parameter differently"}},
 };
 
 INSTANTIATE_TEST_SUITE_P(Pattern, PatternErrors, ::testing::ValuesIn(error_cases),
