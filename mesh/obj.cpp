@@ -26,13 +26,14 @@ struct Corner {
 struct Face {
   long line;
   std::vector<Corner> corners;
+  std::string group; // the last `g` statement's first name
 };
 
 class ObjParser {
 public:
   ObjParser(std::string path, double uv_scale) : path_(std::move(path)), uv_scale_(uv_scale) {}
 
-  TriangleMesh read() {
+  TriangleMesh read(std::vector<std::string>* groups) {
     ObjLineReader reader(path_);
     std::string text;
     while (reader.next(text, line_)) {
@@ -47,8 +48,10 @@ public:
         read_face(words);
       } else if (keyword == "vn") {
         ++normals_;
-      } else if (keyword == "vp" || keyword == "o" || keyword == "g" || keyword == "s" ||
-                 keyword == "usemtl" || keyword == "mtllib" || keyword == "l" || keyword == "p") {
+      } else if (keyword == "g") {
+        group_ = words.size() > 1 ? words[1] : "";
+      } else if (keyword == "vp" || keyword == "o" || keyword == "s" || keyword == "usemtl" ||
+                 keyword == "mtllib" || keyword == "l" || keyword == "p") {
         continue;
       } else {
         fail("unknown OBJ statement '" + keyword +
@@ -58,8 +61,10 @@ public:
     if (faces_.empty()) throw InputError(path_ + ": the file has no faces (f lines)");
     TriangleMesh mesh;
     mesh.positions = std::move(positions_);
-    for (const Face& face : faces_)
+    for (const Face& face : faces_) {
       add_face(mesh, face);
+      if (groups) groups->resize(mesh.triangle_count(), face.group);
+    }
     validate(mesh, path_);
     return mesh;
   }
@@ -136,7 +141,7 @@ private:
     if (words.size() < 4) {
       fail("a face needs at least 3 corners, found " + std::to_string(words.size() - 1));
     }
-    Face face{line_, {}};
+    Face face{line_, {}, group_};
     for (std::size_t k = 1; k < words.size(); ++k) {
       const std::string& word = words[k];
       std::vector<std::string> parts;
@@ -221,16 +226,19 @@ private:
   std::vector<Eigen::Vector2d> textures_;
   std::size_t normals_ = 0; // only counted: normal indices are checked for form, then ignored
   std::vector<Face> faces_;
+  std::string group_;
 };
 
 } // namespace
 
-TriangleMesh read_obj(const std::string& path, const ObjReadOptions& options) {
+TriangleMesh read_obj(const std::string& path, const ObjReadOptions& options,
+                      std::vector<std::string>* groups) {
   if (!(std::isfinite(options.uv_scale) && options.uv_scale > 0.0)) {
     throw InputError(path + ": uv_scale must be a positive finite number, got " +
                      format_number(options.uv_scale));
   }
-  return ObjParser(path, options.uv_scale).read();
+  if (groups) groups->clear();
+  return ObjParser(path, options.uv_scale).read(groups);
 }
 
 namespace {

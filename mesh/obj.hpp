@@ -8,7 +8,8 @@
 // Read: `v x y z [w | r g b]`, `vt u v [w]`, `f` with corners `a/b` or
 // `a/b/c` (normals ignored), 1-based or negative (relative) indices, polygons
 // fan-triangulated from their first corner; `#` comments, `\` line
-// continuations; `vn vp o g s usemtl mtllib l p` are ignored (material ids
+// continuations; `g NAME` names the faces after it (read_obj's groups);
+// `vn vp o s usemtl mtllib l p` are ignored (material ids
 // are not read: the mesh comes back with none). Any other statement, a bad
 // number or index, a face without vt, a face that repeats a vertex, has no
 // material area or whose fan folds is an InputError at FILE:LINE; the result
@@ -17,6 +18,7 @@
 #include "mesh/triangle_mesh.hpp"
 
 #include <string>
+#include <vector>
 
 namespace sartor {
 
@@ -24,7 +26,10 @@ struct ObjReadOptions {
   double uv_scale = 1.0; // multiplies every vt: file units to metres
 };
 
-TriangleMesh read_obj(const std::string& path, const ObjReadOptions& options = {});
+// `groups` (optional) receives per triangle the name of the `g` statement
+// before its face ("" before any).
+TriangleMesh read_obj(const std::string& path, const ObjReadOptions& options = {},
+                      std::vector<std::string>* groups = nullptr);
 
 // v per vertex; vt one per vertex in vertex order where every vertex has a
 // single uv (then v and vt pair by line, as meshio reads them), else each

@@ -11,6 +11,7 @@
 #include "app/edit_case.hpp"
 #include "app/garment_construction.hpp"
 #include "app/progressive_drape.hpp"
+#include "app/start_from.hpp"
 #include "app/wear_case.hpp"
 #include "app/wear_checkpoint.hpp"
 #include "common/checksum.hpp"
@@ -35,6 +36,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 
 namespace sartor {
 
@@ -354,6 +356,11 @@ const CommandSpec& drape_command() {
         options.push_back({"checkpoint", "FILE", "", "the checkpoint file [OUTPUT/checkpoint.h5]"});
         options.push_back(
             {"restart", "FILE", "", "resume from this checkpoint (the same pattern and options)"});
+        options.push_back(
+            {"start-from", "DRAPE_DIR", "",
+             "start where the drape in DRAPE_DIR left the cloth: another version of this pattern "
+             "(a dart added, lines moved, another --edge-length), its panels found by id and "
+             "their grain lines unchanged; one level (docs/drape.md#starting-from-another-drape)"});
         for (const OptionSpec& option : wear_option_specs())
           options.push_back(option);
         options.push_back({"drop-tolerance", "M", "0.1",
@@ -660,6 +667,41 @@ void check_drape(const Options& options, const CaseResult& result, const DrapeMe
   }
 }
 
+// --start-from drapes the finest level only: a coarser level would start
+// afresh. Throws InputError for --levels over 1 and with --restart.
+double start_from_level(const Options& options, const std::vector<double>& edge_lengths) {
+  if (options.is_set("levels") && options.integer_in("levels", 1, 8) > 1)
+    throw InputError("option --start-from: the drape starts on the finest mesh; give --levels 1");
+  if (options.is_set("restart"))
+    throw InputError("option --start-from: --restart resumes a checkpoint instead; give one");
+  return edge_lengths.back();
+}
+
+void print_start_from(const StartFromReport& report) {
+  SartorPetscCall(PetscPrintf(
+      PETSC_COMM_WORLD,
+      "sartor drape: started from %s: %ld vertices placed on its drape, %ld beyond its panels "
+      "(up to %.3g m, extended), the deepest %.3g m below the offset lifted out\n",
+      report.directory.c_str(), report.vertices, report.extrapolated, report.farthest_beyond_m,
+      report.lifted_depth_m));
+}
+
+// --start-from: the cloth placed where the old drape left it, on the
+// finest level alone (`edge_lengths` cut to it); none without the option.
+std::optional<StartFromReport> start_from(const Options& options,
+                                          const ConstructedGarment& constructed,
+                                          const SewableGarment& sewable,
+                                          const ClothCase& cloth_case, CaseCloth* cloth,
+                                          std::vector<double>* edge_lengths) {
+  if (!options.is_set("start-from")) return std::nullopt;
+  *edge_lengths = {start_from_level(options, *edge_lengths)};
+  const StartFromReport report =
+      start_from_drape(options.text("start-from"), constructed.pattern, sewable.mesh.material_ids,
+                       cloth_case.contact, &cloth->mesh);
+  print_start_from(report);
+  return report;
+}
+
 } // namespace
 
 int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
@@ -696,9 +738,8 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
   CaseCloth cloth = drape_cloth(options, constructed, sewable, &labels);
   name_single_fabric(cloth, &options);
 
-  // 3. Sew and drape: the options of `sartor run` with drape's defaults; the
-  // seams drape's own (the user's --seams-file, read by the construction, is
-  // what petsc_options.txt echoes: the echoed options re-run the job).
+  // 3. Sew and drape: `sartor run`'s options, drape's defaults, drape's seams (the
+  // user's --seams-file is what petsc_options.txt echoes, to re-run the job).
   options.set("seams-file", seams_file);
   const bool dynamic =
       set_drape_defaults(options, !sewable.seams.empty(), !sewable.mesh.creases.empty());
@@ -723,20 +764,23 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
                 edit->steps, {edit->drape.directory, edit->drape.recorded_cpu, started_cpu}, &cloth,
                 edit->run);
   }
-  // Progressive refinement (app/progressive_drape.hpp): coarser levels
-  // first when --edge-length allows them; one level is the drape above.
-  const DrapeLevel finest{constructed.mesh_options.edge_length, cloth, sewable.mesh.material_ids,
-                          sewable.seams, seams_file};
   std::vector<LevelRun> levels;
   // The drape's final state, at full precision: `sartor edit DIRECTORY` resumes from it.
   CaseCheckpointing checkpointing = case_checkpointing(options, directory);
   checkpointing.final_state = directory + "/" + drape_state_file;
   const ClothCase cloth_case = read_cloth_case(options, false);
   const double refine_time = cloth_case.time.dynamic() ? options.positive_real("refine-time") : 0.0;
-  const CaseResult result = drape_progressively(
-      cloth_case, refine_time, constructed.construction, constructed.mesh_options, finest,
-      drape_level_edge_lengths(options, constructed.construction, constructed.mesh_options),
-      directory, labels, &levels, checkpointing);
+  std::vector<double> edge_lengths =
+      drape_level_edge_lengths(options, constructed.construction, constructed.mesh_options);
+  const std::optional<StartFromReport> started_from =
+      start_from(options, constructed, sewable, cloth_case, &cloth, &edge_lengths);
+  // Progressive refinement (app/progressive_drape.hpp): coarser levels
+  // first when --edge-length allows them; one level is the drape above.
+  const DrapeLevel finest{constructed.mesh_options.edge_length, cloth, sewable.mesh.material_ids,
+                          sewable.seams, seams_file};
+  const CaseResult result = drape_progressively(cloth_case, refine_time, constructed.construction,
+                                                constructed.mesh_options, finest, edge_lengths,
+                                                directory, labels, &levels, checkpointing);
 
   // 4. What the drape achieved.
   const DrapeMeasures measures =
@@ -763,6 +807,7 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
        {"total", total_seconds}},
       levels);
   summary["drape"]["cpu_s"] = result.cpu_at_end - started_cpu;
+  if (started_from) summary["drape"]["start_from"] = started_from->json();
   if (edit && edit->run->ran) summary["edit"] = edit->run->summary;
   if (wear->ran) {
     add_wear_summary(*wear, labels, summary);

@@ -20,10 +20,14 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <tuple>
 
 namespace sartor {
 
 namespace {
+
+// The pattern's outline lines: id, and the kind of its curve.
+using LineKinds = std::map<std::string, garment::Curve::Kind>;
 
 [[noreturn]] void edit_error(const std::string& path, const YAML::Node& node,
                              const std::string& key, const std::string& what) {
@@ -84,13 +88,31 @@ Eigen::Matrix2d read_psi(const std::string& path, const YAML::Node& node, const 
   return tensor;
 }
 
+// A curve edit's `control`: 1 or 2, the inner control point of a Bezier
+// line that moves (its corners are `end`'s).
+int read_control(const std::string& path, const YAML::Node& node, const std::string& key,
+                 garment::Curve::Kind kind) {
+  if (node["end"])
+    edit_error(path, node["end"], key + ".end",
+               "a move is of corners (end) or of a control point (control), not both");
+  if (kind != garment::Curve::Kind::bezier)
+    edit_error(path, node["control"], key + ".control",
+               "line '" + node["line"].Scalar() + "' is " + garment::name_of(kind) +
+                   ": only a Bezier line has control points to move");
+  const std::string control = node["control"].IsScalar() ? node["control"].Scalar() : "";
+  if (control != "1" && control != "2")
+    edit_error(path, node["control"], key + ".control",
+               "must be 1 or 2 (the Bezier's inner control points; its ends are corners)");
+  return control == "1" ? 1 : 2;
+}
+
 // A move {line, by[, end]}; or, where the step has a pointer movement,
 // {line, psi | along[, end]}, its `by` the tensor times the pointer's.
 CornerMove read_move(const std::string& path, const YAML::Node& node, const std::string& key,
-                     const std::set<std::string>& outline_lines,
+                     const LineKinds& outline_lines,
                      const std::optional<Eigen::Vector2d>& pointer) {
   if (!node.IsMap()) edit_error(path, node, key, "a move is a mapping {line, by[, end]}");
-  reject_unknown_keys(path, node, key, {"line", "by", "end", "psi", "along"});
+  reject_unknown_keys(path, node, key, {"line", "by", "end", "control", "psi", "along"});
   CornerMove move;
   if (!node["line"] || !node["line"].IsScalar())
     edit_error(path, node, key + ".line", "missing: the id of an outline line of the pattern");
@@ -113,6 +135,10 @@ CornerMove read_move(const std::string& path, const YAML::Node& node, const std:
       edit_error(path, node, key,
                  "the pointer moves the corners by " + format_number(move.by.norm()) +
                      " m: moves are at most 0.5 m");
+  }
+  if (node["control"]) {
+    move.control = read_control(path, node, key, outline_lines.at(move.line));
+    return move;
   }
   if (node["end"]) {
     const std::string end = node["end"].IsScalar() ? node["end"].Scalar() : "";
@@ -177,43 +203,51 @@ std::vector<DragRequest> read_drags(const std::string& path, const YAML::Node& n
   return drags;
 }
 
-// The outline corners a move moves, as (panel, corner) with corner i the
-// start of line i.
-std::vector<std::pair<std::size_t, std::size_t>> moved_corners(const garment::Pattern& pattern,
-                                                               const CornerMove& move) {
-  std::vector<std::pair<std::size_t, std::size_t>> corners;
+// The points a move moves, as (panel, i, 0) for corner i (the start of
+// line i), or (panel, i, c) for line i's control point c.
+std::vector<std::tuple<std::size_t, std::size_t, int>> moved_points(const garment::Pattern& pattern,
+                                                                    const CornerMove& move) {
+  std::vector<std::tuple<std::size_t, std::size_t, int>> points;
   for (std::size_t panel = 0; panel < pattern.panels.size(); ++panel) {
     const auto& outline = pattern.panels[panel].outline;
     for (std::size_t i = 0; i < outline.size(); ++i) {
       if (outline[i].id != move.line) continue;
-      if (move.which != CornerMove::Which::end) corners.emplace_back(panel, i);
+      if (move.control > 0) {
+        points.emplace_back(panel, i, move.control);
+        continue;
+      }
+      if (move.which != CornerMove::Which::end) points.emplace_back(panel, i, 0);
       if (move.which != CornerMove::Which::start)
-        corners.emplace_back(panel, (i + 1) % outline.size());
+        points.emplace_back(panel, (i + 1) % outline.size(), 0);
     }
   }
-  return corners;
+  return points;
 }
 
 // A non-empty list of moves; a corner two moves name (the shared end of two
-// lines moved together) moves once, and two different moves of it are an
-// error.
+// lines moved together) moves once, and two different moves of it (or of a
+// control point) are an error.
 std::vector<CornerMove> read_moves(const std::string& path, const YAML::Node& moves,
                                    const std::string& key, const garment::Pattern& pattern,
-                                   const std::set<std::string>& outline_lines,
+                                   const LineKinds& outline_lines,
                                    const std::optional<Eigen::Vector2d>& pointer = std::nullopt) {
   if (!moves.IsSequence() || moves.size() == 0)
     edit_error(path, moves, key, "must be a non-empty list of moves");
   std::vector<CornerMove> result;
-  std::map<std::pair<std::size_t, std::size_t>, CornerMove> corners;
+  std::map<std::tuple<std::size_t, std::size_t, int>, CornerMove> points;
   for (std::size_t m = 0; m < moves.size(); ++m) {
     const std::string move_key = key + "[" + std::to_string(m) + "]";
     result.push_back(read_move(path, moves[m], move_key, outline_lines, pointer));
-    for (const auto& corner : moved_corners(pattern, result.back())) {
-      const auto [entry, fresh] = corners.emplace(corner, result.back());
-      if (!fresh && entry->second.by != result.back().by)
+    for (const auto& point : moved_points(pattern, result.back())) {
+      const auto [entry, fresh] = points.emplace(point, result.back());
+      if (fresh || entry->second.by == result.back().by) continue;
+      if (std::get<2>(point) > 0)
         edit_error(path, moves[m], move_key,
-                   "the moves of lines '" + entry->second.line + "' and '" + result.back().line +
-                       "' move their shared corner differently");
+                   "moves control point " + std::to_string(std::get<2>(point)) + " of line '" +
+                       result.back().line + "' a second time, differently");
+      edit_error(path, moves[m], move_key,
+                 "the moves of lines '" + entry->second.line + "' and '" + result.back().line +
+                     "' move their shared corner differently");
     }
   }
   return result;
@@ -239,7 +273,7 @@ const EditParameter& named_parameter(const std::string& path, const YAML::Node& 
 // {name, moves} with its moves per unit.
 std::vector<EditParameter> read_parameters(const std::string& path, const YAML::Node& node,
                                            const std::string& key, const garment::Pattern& pattern,
-                                           const std::set<std::string>& outline_lines,
+                                           const LineKinds& outline_lines,
                                            const std::map<std::string, EditParameter>& named) {
   if (!node.IsSequence() || node.size() == 0)
     edit_error(path, node, key,
@@ -331,7 +365,7 @@ bool maps_pointer(const YAML::Node& moves) {
 // A drag step: its drags and design parameters (`parameters`, or its
 // `moves` as one).
 void read_drag_step(const std::string& path, const YAML::Node& step, const std::string& key,
-                    const garment::Pattern& pattern, const std::set<std::string>& outline_lines,
+                    const garment::Pattern& pattern, const LineKinds& outline_lines,
                     const std::map<std::string, EditParameter>& named, EditStep* edit) {
   edit->drags = read_drags(path, step["drag"], key + ".drag");
   if (step["change"])
@@ -355,7 +389,7 @@ void read_drag_step(const std::string& path, const YAML::Node& step, const std::
 
 EditStep read_step(const std::string& path, const YAML::Node& step, const std::string& key,
                    std::size_t index, const garment::Pattern& pattern,
-                   const std::set<std::string>& outline_lines,
+                   const LineKinds& outline_lines,
                    const std::map<std::string, EditParameter>& named) {
   if (!step.IsMap())
     edit_error(path, step, key,
@@ -417,10 +451,10 @@ std::vector<EditStep> read_edit_file(const std::string& path, const garment::Pat
   if (!steps) throw InputError(path, 1, "steps: missing: the list of edits, applied in turn");
   if (!steps.IsSequence() || steps.size() == 0)
     edit_error(path, steps, "steps", "must be a non-empty list of edits");
-  std::set<std::string> outline_lines;
+  LineKinds outline_lines;
   for (const auto& panel : pattern.panels)
     for (const auto& line : panel.outline)
-      outline_lines.insert(line.id);
+      outline_lines[line.id] = line.curve.kind;
   const std::map<std::string, EditParameter> named = named_edit_parameters(pattern);
   std::vector<EditStep> result;
   for (std::size_t s = 0; s < steps.size(); ++s)

@@ -27,11 +27,13 @@
 namespace sartor {
 
 // One move of an edit file: the corners of an outline line (both, or its
-// start or its end) move by `by` (pattern coordinates, m).
+// start or its end) move by `by` (pattern coordinates, m); or, with
+// `control` 1 or 2, that inner control point of a Bezier line (a curve edit).
 struct CornerMove {
   std::string line;
   enum class Which { both, start, end } which = Which::both;
   Eigen::Vector2d by = Eigen::Vector2d::Zero();
+  int control = 0;
 };
 
 // A drag of the drape (Sensitive Couture §4.1, direct 3D editing): the cloth

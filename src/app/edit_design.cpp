@@ -11,16 +11,25 @@ namespace sartor {
 
 namespace {
 
-// Points along an outline line, its end left out (the next line's start),
-// with their arc-length fractions: a straight line its start, a polyline its
-// points, a Bezier 16 pieces of equal arc length.
-std::vector<std::pair<Eigen::Vector2d, double>> line_points(const garment::Curve& curve) {
-  std::vector<std::pair<Eigen::Vector2d, double>> points;
+// A point along an outline line: where, its arc-length fraction, its
+// curve parameter.
+struct LinePoint {
+  Eigen::Vector2d at;
+  double s = 0.0;
+  double t = 0.0;
+};
+
+// Points along an outline line, its end left out (the next line's start):
+// a straight line its start, a polyline its points, a Bezier 16 pieces of
+// equal arc length.
+std::vector<LinePoint> line_points(const garment::Curve& curve) {
+  std::vector<LinePoint> points;
   if (curve.kind == garment::Curve::Kind::bezier) {
     constexpr int pieces = 16;
-    const auto split = curve.split_equal_arc_length(pieces);
+    std::vector<double> t;
+    const auto split = curve.split_equal_arc_length(pieces, &t);
     for (int k = 0; k < pieces; ++k)
-      points.emplace_back(split[std::size_t(k)], double(k) / pieces);
+      points.push_back({split[std::size_t(k)], double(k) / pieces, t[std::size_t(k)]});
     return points;
   }
   double total = 0.0;
@@ -28,10 +37,15 @@ std::vector<std::pair<Eigen::Vector2d, double>> line_points(const garment::Curve
     total += (curve.points[k] - curve.points[k - 1]).norm();
   double along = 0.0;
   for (std::size_t k = 0; k + 1 < curve.points.size(); ++k) {
-    points.emplace_back(curve.points[k], along / total);
+    points.push_back({curve.points[k], along / total, 0.0});
     along += (curve.points[k + 1] - curve.points[k]).norm();
   }
   return points;
+}
+
+// The Bernstein weights of a cubic's inner control points at t.
+Eigen::Vector2d inner_bernstein(double t) {
+  return {3.0 * t * (1.0 - t) * (1.0 - t), 3.0 * t * t * (1.0 - t)};
 }
 
 } // namespace
@@ -41,14 +55,26 @@ EditDesign::EditDesign(const garment::Pattern& pattern, const TriangleMesh& mesh
                        garment::InteriorCoordinates interior)
     : pattern_(pattern), mesh_(mesh) {
   for (const garment::Panel& panel : pattern.panels) {
-    const int first = corners_;
-    first_corner_of_panel_.push_back(first);
-    const int n = int(panel.outline.size());
-    corners_ += n;
+    first_corner_of_panel_.push_back(corners_);
+    corners_ += int(panel.outline.size());
+  }
+  slots_ = corners_;
+  for (std::size_t panel = 0; panel < pattern.panels.size(); ++panel) {
+    const auto& outline = pattern.panels[panel].outline;
+    const int first = first_corner_of_panel_[panel];
+    const int n = int(outline.size());
     std::vector<OutlinePoint> polygon;
-    for (int i = 0; i < n; ++i)
-      for (const auto& [at, s] : line_points(panel.outline[std::size_t(i)].curve))
-        polygon.push_back({at, first + i, first + (i + 1) % n, s});
+    for (int i = 0; i < n; ++i) {
+      const garment::Curve& curve = outline[std::size_t(i)].curve;
+      int control = -1;
+      if (curve.kind == garment::Curve::Kind::bezier) {
+        control = slots_;
+        first_control_[{panel, std::size_t(i)}] = control;
+        slots_ += 2;
+      }
+      for (const LinePoint& point : line_points(curve))
+        polygon.push_back({point.at, first + i, first + (i + 1) % n, point.s, control, point.t});
+    }
     polygons_.push_back(polygon);
   }
   vertices_.resize(mesh.vertex_count());
@@ -73,33 +99,45 @@ EditDesign::EditDesign(const garment::Pattern& pattern, const TriangleMesh& mesh
       const OutlinePoint& point = polygons_[std::size_t(panel)][k];
       weights[point.first_corner] += lambda[k] * (1.0 - point.s);
       weights[point.second_corner] += lambda[k] * point.s;
+      if (point.first_control < 0) continue;
+      const Eigen::Vector2d bernstein = inner_bernstein(point.t);
+      weights[point.first_control] += lambda[k] * bernstein[0];
+      weights[point.first_control + 1] += lambda[k] * bernstein[1];
     }
     vertices_[v].corners.assign(weights.begin(), weights.end());
   }
+}
+
+std::vector<int> EditDesign::moved_slots(const CornerMove& move) const {
+  std::vector<int> slots;
+  for (std::size_t panel = 0; panel < pattern_.panels.size(); ++panel) {
+    const auto& outline = pattern_.panels[panel].outline;
+    for (std::size_t i = 0; i < outline.size(); ++i) {
+      if (outline[i].id != move.line) continue;
+      if (move.control > 0) {
+        // read_edit_file lets control moves name Bezier lines only.
+        slots.push_back(first_control_.at({panel, i}) + move.control - 1);
+        continue;
+      }
+      const int first = first_corner_of_panel_[panel];
+      if (move.which != CornerMove::Which::end) slots.push_back(first + int(i));
+      if (move.which != CornerMove::Which::start)
+        slots.push_back(first + int((i + 1) % outline.size()));
+    }
+  }
+  return slots;
 }
 
 Eigen::VectorXd EditDesign::parameters(const std::vector<CornerMove>& moves) const {
   // A corner named by several moves of a step (the shared end of two lines
   // moved together) moves once (read_edit_file refuses different moves).
   std::map<int, Eigen::Vector2d> moved;
-  const auto move_corner = [&](int corner, const CornerMove& move) {
-    moved.emplace(corner, move.by);
-  };
-  for (const CornerMove& move : moves) {
-    for (std::size_t panel = 0; panel < pattern_.panels.size(); ++panel) {
-      const auto& outline = pattern_.panels[panel].outline;
-      for (std::size_t i = 0; i < outline.size(); ++i) {
-        if (outline[i].id != move.line) continue;
-        const int first = first_corner_of_panel_[panel];
-        if (move.which != CornerMove::Which::end) move_corner(first + int(i), move);
-        if (move.which != CornerMove::Which::start)
-          move_corner(first + int((i + 1) % outline.size()), move);
-      }
-    }
-  }
+  for (const CornerMove& move : moves)
+    for (int slot : moved_slots(move))
+      moved.emplace(slot, move.by);
   Eigen::VectorXd p = Eigen::VectorXd::Zero(size());
-  for (const auto& [corner, move] : moved)
-    p.segment<2>(2 * corner) = move;
+  for (const auto& [slot, move] : moved)
+    p.segment<2>(2 * slot) = move;
   return p;
 }
 
@@ -120,9 +158,16 @@ std::vector<std::vector<Eigen::Vector2d>> EditDesign::outlines(const Eigen::Vect
   std::vector<std::vector<Eigen::Vector2d>> result;
   for (const auto& polygon : polygons_) {
     std::vector<Eigen::Vector2d> moved;
-    for (const OutlinePoint& point : polygon)
-      moved.push_back(point.at + (1.0 - point.s) * p.segment<2>(2 * point.first_corner) +
-                      point.s * p.segment<2>(2 * point.second_corner));
+    for (const OutlinePoint& point : polygon) {
+      Eigen::Vector2d at = point.at + (1.0 - point.s) * p.segment<2>(2 * point.first_corner) +
+                           point.s * p.segment<2>(2 * point.second_corner);
+      if (point.first_control >= 0) {
+        const Eigen::Vector2d bernstein = inner_bernstein(point.t);
+        at += bernstein[0] * p.segment<2>(2 * point.first_control) +
+              bernstein[1] * p.segment<2>(2 * point.first_control + 2);
+      }
+      moved.push_back(at);
+    }
     result.push_back(moved);
   }
   return result;
@@ -130,8 +175,8 @@ std::vector<std::vector<Eigen::Vector2d>> EditDesign::outlines(const Eigen::Vect
 
 double EditDesign::largest_move(const Eigen::VectorXd& p) const {
   double largest = 0.0;
-  for (int c = 0; c < corners_; ++c)
-    largest = std::max(largest, p.segment<2>(2 * c).norm());
+  for (int slot = 0; slot < slots_; ++slot)
+    largest = std::max(largest, p.segment<2>(2 * slot).norm());
   return largest;
 }
 

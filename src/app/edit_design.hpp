@@ -1,11 +1,14 @@
 #pragma once
 // The design space of `sartor edit`: the corners of every panel's outline
-// (the starts of its lines), two coordinates each. A design p moves the
-// corners; each outline line follows by blending its two corners' moves
-// along its arc length (a line whose both corners move by d translates by
-// d), and the panel's interior follows its outline by positive mean value
-// coordinates (or mean value coordinates; garment/pattern_edit.hpp). The change of the mesh's rest
-// coordinates is linear in p.
+// (the starts of its lines), then the two inner control points of every
+// Bezier outline line, two coordinates each. A design p moves them; each
+// outline line follows by blending its two corners' moves along its arc
+// length (a line whose both corners move by d translates by d), plus its
+// control points' moves by their Bernstein weights 3t(1-t)^2 and 3t^2(1-t)
+// (a curve edit), and the panel's interior follows its outline by positive
+// mean value coordinates (or mean value coordinates;
+// garment/pattern_edit.hpp). The change of the mesh's rest coordinates is
+// linear in p.
 
 #include "app/edit_case.hpp"
 #include "garment/pattern.hpp"
@@ -17,6 +20,7 @@
 
 #include <Eigen/Core>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -31,7 +35,7 @@ public:
       const std::vector<int>& panel_of_triangle,
       garment::InteriorCoordinates interior = garment::InteriorCoordinates::positive_mean_value);
 
-  Eigen::Index size() const { return Eigen::Index(2 * corners_); }
+  Eigen::Index size() const { return Eigen::Index(2 * slots_); }
   // The parameters of a step's (or a drag parameter's) moves (added to
   // those of the steps before).
   Eigen::VectorXd parameters(const std::vector<CornerMove>& moves) const;
@@ -50,7 +54,13 @@ private:
     int first_corner = 0; // global corner index of the line's start
     int second_corner = 0;
     double s = 0.0; // arc-length fraction along the line
+    // A Bezier line's: the slot of its first inner control point (the
+    // second is the next), and the point's Bezier parameter.
+    int first_control = -1;
+    double t = 0.0;
   };
+  // The slots a move moves (corners, or a control point).
+  std::vector<int> moved_slots(const CornerMove& move) const;
   struct VertexWeights {
     std::vector<std::pair<int, double>> corners; // global corner, weight
     int panel = -1;
@@ -58,8 +68,10 @@ private:
   const garment::Pattern& pattern_;
   const TriangleMesh& mesh_;
   int corners_ = 0;
+  int slots_ = 0; // the corners, then two per Bezier outline line
   std::vector<int> first_corner_of_panel_;
-  std::vector<std::vector<OutlinePoint>> polygons_; // per panel
+  std::map<std::pair<std::size_t, std::size_t>, int> first_control_; // (panel, line)
+  std::vector<std::vector<OutlinePoint>> polygons_;                  // per panel
   std::vector<VertexWeights> vertices_;
 };
 

@@ -453,6 +453,26 @@ void report_smoothing(MPI_Comm comm, const nlohmann::json& step) {
         step["folder"].get<std::string>().c_str()));
 }
 
+// Each seam's two sides' rest lengths in `mesh` (along their vertices'
+// material coordinates): an edit that lengthens one side of a seam sews
+// unequal lengths, the longer eased (gathered) into the shorter.
+nlohmann::json seam_rest_lengths(const TriangleMesh& mesh, const std::vector<Seam>& seams) {
+  std::vector<Eigen::Vector2d> uv(mesh.vertex_count(), Eigen::Vector2d::Zero());
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+    for (std::size_t c = 0; c < 3; ++c)
+      uv[std::size_t(mesh.triangles[t][c])] = mesh.material_uv[t][c];
+  const auto length = [&](const std::vector<int>& line) {
+    double sum = 0.0;
+    for (std::size_t i = 1; i < line.size(); ++i)
+      sum += (uv[std::size_t(line[i])] - uv[std::size_t(line[i - 1])]).norm();
+    return sum;
+  };
+  nlohmann::json lengths = nlohmann::json::array();
+  for (const Seam& seam : seams)
+    lengths.push_back({{"seam", seam.name}, {"a_m", length(seam.a)}, {"b_m", length(seam.b)}});
+  return lengths;
+}
+
 // A step's change of the design: its moves', plus each named parameter's
 // moves per unit times its change.
 Eigen::VectorXd step_change(const EditStep& step, const EditDesign& design) {
@@ -553,6 +573,7 @@ nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
       {"folder", name},
       {"largest_corner_move_m", design.largest_move(p - last.p)},
       {"rest_mesh", next->rest_mesh},
+      {"seam_rest_lengths", seam_rest_lengths(*next->mesh, garment_.seams)},
       {"error_against_resolved",
        {{"unchanged", distance_json(distance(problem, unchanged, next->x))},
         {"linear", distance_json(distance(problem, linear, next->x))},

@@ -172,9 +172,11 @@ double Curve::length() const {
   return sum;
 }
 
-std::vector<Vector2d> Curve::split_equal_arc_length(int pieces) const {
+std::vector<Vector2d> Curve::split_equal_arc_length(int pieces,
+                                                    std::vector<double>* parameters) const {
   const double total = length();
   std::vector<Vector2d> out{start()};
+  std::vector<double> at{0.0};
   if (kind == Kind::bezier) {
     // Newton on s(t) = target, safeguarded by bisection.
     double t = 0, s = 0;
@@ -197,10 +199,12 @@ std::vector<Vector2d> Curve::split_equal_arc_length(int pieces) const {
       s += bezier_length(points, t, guess);
       t = guess;
       out.push_back(bezier_point(points, t));
+      at.push_back(t);
     }
   } else {
     std::size_t k = 0;
     double before = 0; // arc length up to points[k]
+    const double segments = double(points.size() - 1);
     for (int i = 1; i < pieces; ++i) {
       const double target = total * i / pieces;
       while (k + 2 < points.size() && before + (points[k + 1] - points[k]).norm() < target) {
@@ -210,9 +214,12 @@ std::vector<Vector2d> Curve::split_equal_arc_length(int pieces) const {
       const double piece = (points[k + 1] - points[k]).norm();
       const double f = piece > 0 ? std::clamp((target - before) / piece, 0.0, 1.0) : 0.0;
       out.push_back((1 - f) * points[k] + f * points[k + 1]);
+      at.push_back((double(k) + f) / segments);
     }
   }
   out.push_back(end());
+  at.push_back(1.0);
+  if (parameters) *parameters = std::move(at);
   return out;
 }
 

@@ -60,7 +60,9 @@ struct Curve {
   double length() const;
   // pieces + 1 points on the curve (start and end included) that split it
   // into pieces of equal arc length (to a relative 1e-9 of its length).
-  std::vector<Eigen::Vector2d> split_equal_arc_length(int pieces) const;
+  // parameters (optional) receives each point's t, as at() takes it.
+  std::vector<Eigen::Vector2d>
+  split_equal_arc_length(int pieces, std::vector<double>* parameters = nullptr) const;
   Curve reversed() const;
 };
 const char* name_of(Curve::Kind kind);

@@ -11,7 +11,11 @@
 #     lower (the skirt hangs from the waist);
 #  4. the back hem moved by a pointer through Psi = e e^T (SC §6), e along
 #     x: its corners move by the pointer's x only;
-#  5. a drag of the front hem 1 cm down on the parameter skirt_length:
+#  5. a curve edit, the front right side's second control point 2 cm out:
+#     every point of that Bezier moves by 3 t^2 (1 - t) of it (t found here
+#     on the original curve), no corner moves, and its side seam's front
+#     side gets longer in the rest mesh while the back side stays;
+#  6. a drag of the front hem 1 cm down on the parameter skirt_length:
 #     dg = s . dd / |s|^2 (SC §4.1), reported under the parameter's name.
 # Every re-solve is certified. The expected corner moves are computed here
 # from the pattern file. Then, resuming the drape directory: the rest mesh
@@ -35,6 +39,9 @@ steps:
     pointer: [0.01, 0.005]
     moves:
       - {line: sb_hem, along: [2, 0]}
+  - name: front right side bowed out
+    moves:
+      - {line: sf_side_r, control: 2, by: [0.02, 0]}
 YAML
 "$sartor" edit "$pattern" "$out/edits.yaml" -options_file_yaml \
   "$root/cases/garments/skirt_coarse.yaml" --no-plot --no-edit-outputs --output "$out/edit" \
@@ -99,7 +106,45 @@ step4 = dict(step3)
 for corner in ((0.0, 0.0), (0.6, 0.0)):
     step4[("skirt_back", corner)] = [0.01, -0.02]
 expect_moves(4, step4)
+expect_moves(5, step4)
+side = line["sf_side_r"]
+def bezier(t):
+    b = [(1 - t) ** 3, 3 * t * (1 - t) ** 2, 3 * t * t * (1 - t), t ** 3]
+    return [sum(w * p[c] for w, p in zip(b, side)) for c in (0, 1)]
+def parameter_of(point):  # t on the original side line nearest `point`
+    best = min((math.dist(bezier(k / 2000), point), k / 2000) for k in range(2001))[1]
+    lo, hi = max(0.0, best - 1e-3), min(1.0, best + 1e-3)
+    for _ in range(100):
+        a, b = lo + (hi - lo) / 3, hi - (hi - lo) / 3
+        if math.dist(bezier(a), point) < math.dist(bezier(b), point):
+            hi = b
+        else:
+            lo = a
+    return 0.5 * (lo + hi), math.dist(bezier(0.5 * (lo + hi)), point)
+fifth = next(p for p in json.load(open(f"{out}/edit/edit_05/outlines.json"))["panels"]
+             if p["id"] == "skirt_front")
+fourth = next(p for p in json.load(open(f"{out}/edit/edit_04/outlines.json"))["panels"]
+              if p["id"] == "skirt_front")
+origin = original["skirt_front"][0]
+on_side = 0
+for b, a, o in zip(fourth["after"], fifth["after"], original["skirt_front"]):
+    t, off = parameter_of([o[0] - origin[0], o[1] - origin[1]])
+    if off > 1e-9 or not 1e-6 < t < 1 - 1e-6:
+        continue  # not on the side line, or its corner
+    on_side += 1
+    want = [0.02 * 3 * t * t * (1 - t), 0.0]
+    if math.dist([a[0] - b[0], a[1] - b[1]], want) > 1e-9:
+        failures.append(f"edit 5: side point at t = {t} moved {[a[0] - b[0], a[1] - b[1]]}, "
+                        f"expected {want}")
+if on_side != 15:
+    failures.append(f"edit 5: {on_side} inner points found on the side line, expected 15")
 summary = json.load(open(f"{out}/edit/summary.json"))["edit"]["steps"]
+before_seam, after_seam = (next(s for s in summary[k]["seam_rest_lengths"]
+                                if "sf_side_r" in s["seam"]) for k in (3, 4))
+grown = [after_seam[k] - before_seam[k] for k in ("a_m", "b_m")]
+if not (max(grown) > 1e-4 and abs(min(grown)) <= 1e-12):
+    failures.append(f"edit 5: the side seam's rest lengths changed by {grown} m: one side "
+                    "should grow, the other stay")
 for k, step in enumerate(summary, 1):
     if not (step["resolve"]["converged"] and step["resolve"]["certificate"] == "certified"):
         failures.append(f"edit {k}: re-solve {step['resolve']}")

@@ -431,10 +431,20 @@ TEST(BezierFlattening, EqualArcLengthSplit) {
     return s;
   };
   const int pieces = 7;
-  const auto points = curve.split_equal_arc_length(pieces);
+  std::vector<double> parameters;
+  const auto points = curve.split_equal_arc_length(pieces, &parameters);
   ASSERT_EQ(points.size(), std::size_t(pieces + 1));
-  for (int i = 0; i <= pieces; ++i)
+  ASSERT_EQ(parameters.size(), points.size());
+  for (int i = 0; i <= pieces; ++i) {
     EXPECT_NEAR(arc_at(points[i]), arc.back() * i / pieces, 1e-8) << "point " << i;
+    // The curve's own point at the reported parameter, by de Casteljau.
+    const double t = parameters[std::size_t(i)];
+    std::vector<Vector2d> level = curve.points;
+    for (std::size_t n = level.size() - 1; n > 0; --n)
+      for (std::size_t k = 0; k < n; ++k)
+        level[k] = (1 - t) * level[k] + t * level[k + 1];
+    EXPECT_LT((level[0] - points[i]).norm(), 1e-15) << "point " << i;
+  }
 }
 
 TEST(PolylineCurve, SplitAndLength) {
@@ -442,9 +452,14 @@ TEST(PolylineCurve, SplitAndLength) {
   curve.kind = Curve::Kind::polyline;
   curve.points = {{0, 0}, {0.3, 0}, {0.3, 0.1}};
   EXPECT_NEAR(curve.length(), 0.4, 1e-15);
-  const auto points = curve.split_equal_arc_length(4);
+  std::vector<double> parameters;
+  const auto points = curve.split_equal_arc_length(4, &parameters);
   EXPECT_NEAR((points[3] - Vector2d(0.3, 0)).norm(), 0, 1e-15);
   EXPECT_NEAR((points[2] - Vector2d(0.2, 0)).norm(), 0, 1e-15);
+  // t: the segment's index plus the fraction along it, over the segments.
+  EXPECT_NEAR(parameters[2], (0.0 + 2.0 / 3.0) / 2.0, 1e-15);
+  EXPECT_NEAR(parameters[3], 0.5, 1e-15);
+  EXPECT_EQ(parameters[4], 1.0);
 }
 
 // ------------------------------------------------------- layout, SVG ----

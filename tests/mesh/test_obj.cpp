@@ -66,6 +66,18 @@ TEST(ReadObj, PanelWithPolygonsRelativeIndicesAndExtras) {
   EXPECT_EQ(read_obj(data("panel_cm.obj")).material_uv[2][1], Eigen::Vector2d(40, 10));
 }
 
+TEST(ReadObj, GivesEachTriangleItsGroup) {
+  const std::string path = scratch("groups.obj");
+  std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
+                         "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 2 0\nvt 2 1\n"
+                         "f 1/1 2/2 3/3\ng front left\nf 2/2 5/5 6/6 3/3\ng back\nf 1/1 3/3 4/4\n";
+  std::vector<std::string> groups{"stale"};
+  const auto mesh = read_obj(path, {}, &groups);
+  // The quad's fan gives two triangles of its group; a name's first word counts.
+  EXPECT_EQ(groups, (std::vector<std::string>{"", "front", "front", "back"}));
+  EXPECT_EQ(mesh.triangle_count(), groups.size());
+}
+
 TEST(ReadObj, RejectsABadUvScale) {
   for (const double scale : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(),
                              std::numeric_limits<double>::infinity()}) {
