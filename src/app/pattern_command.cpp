@@ -3,8 +3,10 @@
 #include "app/case_checks.hpp"
 #include "app/commands.hpp"
 #include "common/error.hpp"
+#include "common/json_input.hpp"
 #include "common/output.hpp"
 #include "fem/petsc_call.hpp"
+#include "garment/dart_insertion.hpp"
 #include "garment/pattern.hpp"
 #include "garment/pattern_svg.hpp"
 #include "mesh/obj.hpp"
@@ -13,8 +15,13 @@
 #include <nlohmann/json.hpp>
 #include <petscsys.h>
 
+#include <array>
 #include <cctype>
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
 
 namespace sartor {
 
@@ -23,7 +30,7 @@ const CommandSpec& pattern_command() {
       "pattern",
       "validate a sewing pattern (JSON), draw it as SVG, mesh its panels",
       "sartor pattern PATTERN.json [--output DIR] [--edge-length M] [--min-angle DEG] "
-      "[--no-mesh]",
+      "[--no-mesh] [--add-dart LINE:AT:WIDTH:DEPTH[:ID]]",
       "Reads a pattern in the JSON format of docs/pattern-format.md: panels with\n"
       "closed outlines of lines (straight, cubic Bezier, polyline), interior fold\n"
       "and T-seam lines, a grain line, a fabric and a TAGCON tag (cylinder, side,\n"
@@ -40,14 +47,24 @@ const CommandSpec& pattern_command() {
       "as laid out in the SVG), lines.json (per line: its panel and the mesh\n"
       "vertices along it, in order), summary.json (triangles, angles, areas,\n"
       "meshing times).\n\n"
+      "With --add-dart, a dart is added first (docs/pattern-format.md#adding-a-dart):\n"
+      "the outline line LINE is cut WIDTH m wide around AT (the fraction of its arc\n"
+      "length) and a V reaching DEPTH m into the panel is sewn there; the pattern\n"
+      "with the dart is written to DIR/pattern.json and is what the rest checks,\n"
+      "draws and meshes. Drape it from the drape of the pattern without it with\n"
+      "sartor drape DIR/pattern.json --start-from DRAPE_DIR.\n\n"
       "examples:\n"
       "  sartor pattern cases/patterns/skirt.json --output out/skirt\n"
-      "  sartor pattern cases/patterns/tshirt.json --edge-length 0.01 --min-angle 30",
+      "  sartor pattern cases/patterns/tshirt.json --edge-length 0.01 --min-angle 30\n"
+      "  sartor pattern cases/patterns/skirt.json --add-dart sf_waist_r:0.5:0.03:0.1",
       {
           {"output", "DIR", "out/pattern", "output folder (created; files in it are replaced)"},
           {"edge-length", "M", "0.02", "target (longest) triangle edge length, m"},
           {"min-angle", "DEG", "25", "smallest triangle angle, degrees, in (0, 33]"},
           {"no-mesh", "", "", "validate and draw only"},
+          {"add-dart", "LINE:AT:WIDTH:DEPTH[:ID]", "",
+           "add a dart on outline line LINE, its middle at the fraction AT of the line's arc "
+           "length, WIDTH m wide, DEPTH m deep (id ID, or LINE_dart); writes DIR/pattern.json"},
       },
       1};
   return spec;
@@ -159,12 +176,63 @@ nlohmann::json packs_json(const garment::Pattern& pattern) {
   return packs;
 }
 
+// --add-dart LINE:AT:WIDTH:DEPTH[:ID].
+garment::DartInsertion dart_option(const std::string& text) {
+  std::vector<std::string> fields;
+  std::size_t start = 0;
+  for (std::size_t colon; (colon = text.find(':', start)) != std::string::npos; start = colon + 1)
+    fields.push_back(text.substr(start, colon - start));
+  fields.push_back(text.substr(start));
+  const auto fail = [&](const std::string& what) {
+    throw InputError("option --add-dart: '" + text + "': " + what +
+                     " (expected LINE:AT:WIDTH:DEPTH[:ID], e.g. sf_waist_r:0.5:0.03:0.1)");
+  };
+  if (fields.size() != 4 && fields.size() != 5) fail("four or five fields separated by ':'");
+  garment::DartInsertion dart;
+  dart.line = fields[0];
+  const std::array<double*, 3> numbers{&dart.at, &dart.width, &dart.depth};
+  for (std::size_t k = 0; k < 3; ++k) {
+    char* end = nullptr;
+    *numbers[k] = std::strtod(fields[k + 1].c_str(), &end);
+    if (fields[k + 1].empty() || *end != '\0' || !std::isfinite(*numbers[k]))
+      fail("'" + fields[k + 1] + "' is not a number");
+  }
+  if (fields.size() == 5) dart.id = fields[4];
+  return dart;
+}
+
+// The pattern file with the dart of --add-dart, written to
+// DIRECTORY/pattern.json; its path.
+std::string add_dart_to_pattern(const std::string& path, const std::string& option,
+                                const std::string& directory) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open the pattern file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  const garment::DartInsertion dart = dart_option(option);
+  const nlohmann::json with_dart =
+      garment::add_dart(parse_json_input(text.str(), path), path, dart);
+  const std::string written = directory + "/pattern.json";
+  if (is_root()) {
+    make_output_directory(directory);
+    write_json(written, with_dart);
+  }
+  SartorPetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s: added dart '%s' on line '%s': wrote %s\n",
+                              path.c_str(),
+                              (dart.id.empty() ? dart.line + "_dart" : dart.id).c_str(),
+                              dart.line.c_str(), written.c_str()));
+  return written;
+}
+
 } // namespace
 
 int run_pattern(const Invocation& invocation) {
   const Options& options = invocation.options;
-  const std::string path = invocation.command_line.positionals.at(0);
   const std::string directory = options.text("output");
+  const std::string path = options.is_set("add-dart")
+                               ? add_dart_to_pattern(invocation.command_line.positionals.at(0),
+                                                     options.text("add-dart"), directory)
+                               : invocation.command_line.positionals.at(0);
   const bool mesh = !options.flag("no-mesh");
   PanelMeshOptions mesh_options;
   mesh_options.edge_length = options.positive_real("edge-length");
