@@ -47,25 +47,29 @@ void reject_unknown_keys(const std::string& path, const YAML::Node& node, const 
   }
 }
 
+// A finite number (`item`, under `key`) at most `limit` in size; `unit`
+// (" m" or "") follows the numbers in the message.
+double read_bounded(const std::string& path, const YAML::Node& item, const std::string& key,
+                    double limit, const std::string& unit) {
+  double value = NAN;
+  try {
+    value = item.as<double>();
+  } catch (const YAML::Exception&) {
+    edit_error(path, item, key, "'" + item.Scalar() + "' is not a number");
+  }
+  if (!std::isfinite(value) || std::abs(value) > limit)
+    edit_error(path, item, key,
+               item.Scalar() + unit + ": must be finite and at most " + format_number(limit) +
+                   unit);
+  return value;
+}
+
 // Two finite numbers [a, b] (`node`, under `key`), each at most `limit`.
 Eigen::Vector2d read_pair(const std::string& path, const YAML::Node& node, const std::string& key,
                           const std::string& what, double limit) {
   if (!node.IsSequence() || node.size() != 2)
     edit_error(path, node, key, "must be two numbers [" + what + "]");
-  Eigen::Vector2d pair;
-  for (std::size_t i = 0; i < 2; ++i) {
-    double value = NAN;
-    try {
-      value = node[i].as<double>();
-    } catch (const YAML::Exception&) {
-      edit_error(path, node[i], key, "'" + node[i].Scalar() + "' is not a number");
-    }
-    if (!std::isfinite(value) || std::abs(value) > limit)
-      edit_error(path, node[i], key,
-                 node[i].Scalar() + ": must be finite and at most " + format_number(limit));
-    pair[Eigen::Index(i)] = value;
-  }
-  return pair;
+  return {read_bounded(path, node[0], key, limit, ""), read_bounded(path, node[1], key, limit, "")};
 }
 
 // Sensitive Couture's Psi tensor of a move: the corners move by Psi times
@@ -164,19 +168,8 @@ Eigen::Vector3d read_point(const std::string& path, const YAML::Node& parent,
   if (!node.IsSequence() || node.size() != 3)
     edit_error(path, node, key, "must be three numbers [x, y, z] in m (" + what + ")");
   Eigen::Vector3d point;
-  for (std::size_t i = 0; i < 3; ++i) {
-    double value = NAN;
-    try {
-      value = node[i].as<double>();
-    } catch (const YAML::Exception&) {
-      edit_error(path, node[i], key, "'" + node[i].Scalar() + "' is not a number");
-    }
-    if (!std::isfinite(value) || std::abs(value) > limit)
-      edit_error(path, node[i], key,
-                 node[i].Scalar() + " m: must be finite and at most " + format_number(limit) +
-                     " m");
-    point[Eigen::Index(i)] = value;
-  }
+  for (std::size_t i = 0; i < 3; ++i)
+    point[Eigen::Index(i)] = read_bounded(path, node[i], key, limit, " m");
   return point;
 }
 
