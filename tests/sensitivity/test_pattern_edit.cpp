@@ -356,5 +356,30 @@ TEST(PatternEdit, AffineOutlineEditsMoveNotchedPanelsAffinelyByPositiveCoordinat
   }
 }
 
+// A mesh vertex on a curved line lies a little outside the polygon that
+// flattens it: it takes the interpolation at the polygon's nearest point
+// (by hand: the notched panel's bottom edge from (0, 0) to (0.5, 0)), and
+// inside the panel_coordinates are the interior coordinates.
+TEST(PatternEdit, PointsJustOutsideFollowTheNearestEdge) {
+  const std::vector<Vector2d> outline = notched_panel();
+  for (const auto kind :
+       {InteriorCoordinates::positive_mean_value, InteriorCoordinates::mean_value}) {
+    const std::vector<double> below = panel_coordinates(kind, outline, Vector2d(0.2, -1e-4));
+    EXPECT_NEAR(below[0], 0.6, 1e-14);
+    EXPECT_NEAR(below[1], 0.4, 1e-14);
+    // Beyond a corner: the corner itself.
+    const std::vector<double> corner = panel_coordinates(kind, outline, Vector2d(0.51, -0.01));
+    EXPECT_NEAR(corner[1], 1.0, 1e-14);
+    const Vector2d inside(0.25, 0.1);
+    EXPECT_EQ(panel_coordinates(kind, outline, inside),
+              interior_coordinates(kind, outline, inside));
+  }
+  // Continuous across the edge: just inside, the edge's interpolation too.
+  const std::vector<double> above =
+      panel_coordinates(InteriorCoordinates::positive_mean_value, outline, Vector2d(0.2, 1e-9));
+  EXPECT_NEAR(above[0], 0.6, 1e-6);
+  EXPECT_NEAR(above[1], 0.4, 1e-6);
+}
+
 } // namespace
 } // namespace sartor::garment
