@@ -104,7 +104,7 @@ EditDesign::EditDesign(const garment::Pattern& pattern, const TriangleMesh& mesh
       weights[point.first_control] += lambda[k] * bernstein[0];
       weights[point.first_control + 1] += lambda[k] * bernstein[1];
     }
-    vertices_[v].corners.assign(weights.begin(), weights.end());
+    vertices_[v].slots.assign(weights.begin(), weights.end());
   }
 }
 
@@ -146,8 +146,8 @@ RestChange EditDesign::rest_change(const Eigen::VectorXd& p, const TriangleMesh&
   for (std::size_t v = 0; v < vertices_.size(); ++v) {
     if (vertices_[v].panel < 0) continue;
     Eigen::Vector2d move = Eigen::Vector2d::Zero();
-    for (const auto& [corner, weight] : vertices_[v].corners)
-      move += weight * p.segment<2>(2 * corner);
+    for (const auto& [slot, weight] : vertices_[v].slots)
+      move += weight * p.segment<2>(2 * slot);
     const garment::GrainLine& grain = pattern_.panels[std::size_t(vertices_[v].panel)].grain;
     delta[v] = {move.dot(grain.warp), move.dot(grain.weft())};
   }

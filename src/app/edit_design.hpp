@@ -45,7 +45,7 @@ public:
   RestChange rest_change(const Eigen::VectorXd& p, const TriangleMesh& mesh) const;
   // Each panel's outline polygon (pattern coordinates) moved by p.
   std::vector<std::vector<Eigen::Vector2d>> outlines(const Eigen::VectorXd& p) const;
-  // The largest corner move of p, m.
+  // The largest move of a corner or control point in p, m.
   double largest_move(const Eigen::VectorXd& p) const;
 
 private:
@@ -62,7 +62,7 @@ private:
   // The slots a move moves (corners, or a control point).
   std::vector<int> moved_slots(const CornerMove& move) const;
   struct VertexWeights {
-    std::vector<std::pair<int, double>> corners; // global corner, weight
+    std::vector<std::pair<int, double>> slots; // design slot (corner or control point), weight
     int panel = -1;
   };
   const garment::Pattern& pattern_;
