@@ -204,4 +204,12 @@ std::vector<int> boundary_vertices(const TriangleMesh& mesh) {
   return vertices;
 }
 
+std::vector<Eigen::Vector2d> vertex_material_uv(const TriangleMesh& mesh) {
+  std::vector<Eigen::Vector2d> uv(mesh.vertex_count(), Eigen::Vector2d::Zero());
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+    for (std::size_t c = 0; c < 3; ++c)
+      uv[std::size_t(mesh.triangles[t][c])] = mesh.material_uv[t][c];
+  return uv;
+}
+
 } // namespace sartor

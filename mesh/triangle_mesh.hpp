@@ -66,6 +66,10 @@ std::vector<Hinge> interior_edges(const TriangleMesh& mesh);
 // Sorted indices of the vertices on edges that have one triangle. Throws as
 // interior_edges does for non-manifold edges.
 std::vector<int> boundary_vertices(const TriangleMesh& mesh);
+// Each vertex's material (u, v): that of its corner in the last triangle
+// holding it (a vertex on a tube's seam has two; this is one of them).
+std::vector<Eigen::Vector2d> vertex_material_uv(const TriangleMesh& mesh);
+
 // Edges of one triangle only, (lower, higher vertex index), sorted.
 std::vector<std::array<int, 2>> boundary_edges(const TriangleMesh& mesh);
 // Every edge once, (lower, higher vertex index), sorted; any connectivity.

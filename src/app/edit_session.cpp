@@ -457,10 +457,7 @@ void report_smoothing(MPI_Comm comm, const nlohmann::json& step) {
 // material coordinates): an edit that lengthens one side of a seam sews
 // unequal lengths, the longer eased (gathered) into the shorter.
 nlohmann::json seam_rest_lengths(const TriangleMesh& mesh, const std::vector<Seam>& seams) {
-  std::vector<Eigen::Vector2d> uv(mesh.vertex_count(), Eigen::Vector2d::Zero());
-  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
-    for (std::size_t c = 0; c < 3; ++c)
-      uv[std::size_t(mesh.triangles[t][c])] = mesh.material_uv[t][c];
+  const std::vector<Eigen::Vector2d> uv = vertex_material_uv(mesh);
   const auto length = [&](const std::vector<int>& line) {
     double sum = 0.0;
     for (std::size_t i = 1; i < line.size(); ++i)

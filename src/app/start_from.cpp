@@ -44,18 +44,14 @@ OldDrape read_old_drape(const std::string& directory) {
   return old;
 }
 
-// Each vertex's material coordinates and panel (a corner's; a tube's seam
-// gives a vertex two, and either is on the panel).
-void vertex_material(const TriangleMesh& mesh, const std::vector<int>& panel_of_triangle,
-                     std::vector<Eigen::Vector2d>* uv, std::vector<int>* panel) {
-  uv->assign(mesh.vertex_count(), Eigen::Vector2d::Zero());
-  panel->assign(mesh.vertex_count(), -1);
+// Each vertex's panel (a corner's, as vertex_material_uv takes its uv).
+std::vector<int> vertex_panels(const TriangleMesh& mesh,
+                               const std::vector<int>& panel_of_triangle) {
+  std::vector<int> panel(mesh.vertex_count(), -1);
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
-    for (std::size_t c = 0; c < 3; ++c) {
-      const auto v = std::size_t(mesh.triangles[t][c]);
-      (*uv)[v] = mesh.material_uv[t][c];
-      (*panel)[v] = panel_of_triangle.at(t);
-    }
+    for (std::size_t c = 0; c < 3; ++c)
+      panel[std::size_t(mesh.triangles[t][c])] = panel_of_triangle.at(t);
+  return panel;
 }
 
 // The barycentric coordinates of `point` in triangle `uv`, not clamped: an
@@ -82,9 +78,8 @@ StartFromReport start_from_drape(const std::string& directory, const garment::Pa
                                  const std::vector<int>& panel_of_triangle,
                                  const ContactCase& contact, TriangleMesh* mesh) {
   const OldDrape old = read_old_drape(directory);
-  std::vector<Eigen::Vector2d> uv;
-  std::vector<int> panel;
-  vertex_material(*mesh, panel_of_triangle, &uv, &panel);
+  const std::vector<Eigen::Vector2d> uv = vertex_material_uv(*mesh);
+  const std::vector<int> panel = vertex_panels(*mesh, panel_of_triangle);
   std::vector<int> group(mesh->vertex_count(), 0);
   for (std::size_t v = 0; v < group.size(); ++v) {
     const std::string& id = pattern.panels.at(std::size_t(panel[v])).id;
