@@ -308,7 +308,9 @@ void check_on_root(const ClothProblem& problem, const VertexForces& forces,
 
 // The true Hessian at x; its symmetric part when the problem has no potential.
 PetscErrorCode true_hessian(ClothProblem& problem, Vec x, Mat* hessian, bool* symmetrised) {
+  bool changed = false;
   PetscFunctionBeginUser;
+  PetscCall(problem.refresh_couplings(x, &changed)); // every self-contact pair at x
   PetscCall(problem.create_jacobian(hessian));
   const bool saved = problem.exact_hessian;
   problem.exact_hessian = true;

@@ -101,8 +101,29 @@ IncrementalSystem::~IncrementalSystem() {
     VecDestroy(v);
 }
 
+PetscErrorCode IncrementalSystem::refresh_couplings(Vec x) {
+  bool changed = false;
+  Mat J = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(problem_.refresh_couplings(x, &changed));
+  if (!changed) PetscFunctionReturn(0);
+  PetscCall(problem_.create_jacobian(&J));
+  PetscCall(attach_near_null_space(x, J));
+  PetscCall(SNESSetJacobian(snes_, J, J, form_jacobian, this));
+  if (snes_without_potential_)
+    PetscCall(SNESSetJacobian(snes_without_potential_, J, J, form_jacobian, this));
+  PetscCall(MatDestroy(&jacobian_));
+  jacobian_ = J;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode IncrementalSystem::solve(Vec x, Solve* result) {
   PetscFunctionBeginUser;
+  // SNES's steps have no bound that keeps the cloth from passing through itself.
+  PetscCheck(minimises() || !problem_.has_self_contact(), problem_.comm(), PETSC_ERR_SUP,
+             "cloth self-contact needs the minimiser (a potential, and --static-solver or "
+             "--dynamic-solver minimise)");
+  PetscCall(refresh_couplings(x));
   if (minimises()) {
     PetscCall(minimise(x, result));
     PetscFunctionReturn(0);
@@ -264,7 +285,7 @@ PetscErrorCode IncrementalSystem::jacobian(Vec x, Mat J) {
   PetscFunctionBeginUser;
   PetscCall(problem_.jacobian(x, J));
   if (inertia_->active()) {
-    PetscCall(inertia_->add_hessian(J));
+    PetscCall(inertia_->add_hessian(x, false, J));
     PetscCall(problem_.replace_held_rows(J));
   }
   PetscFunctionReturn(0);

@@ -127,6 +127,9 @@ public:
 
 private:
   PetscErrorCode create_snes(bool with_objective, SNES* snes);
+  // The Jacobian created anew when the problem's couplings (self-contact
+  // pairs) have changed at x (ClothProblem::refresh_couplings).
+  PetscErrorCode refresh_couplings(Vec x);
   // solvers/minimiser.cpp
   PetscErrorCode minimise(Vec x, Solve* result);
   struct Trial;

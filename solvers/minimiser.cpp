@@ -72,6 +72,12 @@ PetscErrorCode IncrementalSystem::newton_direction(Vec x, Vec gradient, double m
   PetscInt iterations = 0;
   PetscFunctionBeginUser;
   PetscCall(jacobian(x, jacobian_));
+  bool stale = false;
+  PetscCall(problem_.couplings_stale(&stale));
+  if (stale) { // a pair came into contact outside the structure
+    PetscCall(refresh_couplings(x));
+    PetscCall(jacobian(x, jacobian_));
+  }
   if (mu > 0.0) {
     PetscCall(VecCopy(inertia_->mass(), work_));
     PetscCall(VecScale(work_, mu));

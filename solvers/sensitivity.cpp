@@ -171,13 +171,15 @@ PetscErrorCode DesignSensitivity::factorise_tangent(ClothProblem& problem, bool*
   PetscFunctionBeginUser;
   PetscCall(KSPDestroy(&ksp_));
   PetscCall(MatDestroy(&tangent_));
-  PetscCall(problem.create_jacobian(&tangent_));
   tangent_problem_ = &problem;
   // The state in this problem's layout (a rebuilt problem may distribute
   // the vertices differently).
   Vec x = nullptr;
   PetscCall(problem.create_solution(&x));
   PetscCall(transfer_vector(problem_, x_, problem, x));
+  bool changed = false;
+  PetscCall(problem.refresh_couplings(x, &changed)); // every self-contact pair at x
+  PetscCall(problem.create_jacobian(&tangent_));
   const bool exact = problem.exact_hessian;
   problem.exact_hessian = options_.exact_tangent;
   const PetscErrorCode assembled = problem.jacobian(x, tangent_);

@@ -27,8 +27,21 @@ const std::vector<OptionSpec>& contact_option_specs() {
            "static drapes: 0.015)"},
           {"drape-support-radius", "M", "",
            "report the Cusick drape coefficient for a support disk of this radius, m"},
+          {"self-contact", "", "",
+           "cloth self-contact: no vertex comes closer than --self-contact-offset to a triangle "
+           "of the cloth (docs/contact.md#cloth-self-contact)"},
+          {"self-contact-offset", "M", "0.002", "the distance layers of cloth keep, m"},
+          {"self-contact-stiffness", "N/M", "",
+           "self-contact penalty stiffness per pair, N/m [the largest membrane modulus]"},
+          {"self-contact-rings", "N", "2",
+           "pairs fewer edges apart in the cloth (or across a seam) have no self-contact"},
       },
-      {"contact"}, {{"drape-support-radius", "contact-support-radius"}});
+      {"contact"},
+      {{"drape-support-radius", "contact-support-radius"},
+       {"self-contact", "self-contact"},
+       {"self-contact-offset", "self-contact-offset"},
+       {"self-contact-stiffness", "self-contact-stiffness"},
+       {"self-contact-rings", "self-contact-rings"}});
   return specs;
 }
 
@@ -67,7 +80,20 @@ ContactCase read_contact_case(const Options& options) {
   contact.settings.edge_sample_spacing = options.nonnegative_real("contact-edge-spacing");
   if (options.is_set("drape-support-radius"))
     contact.support_radius = options.positive_real("drape-support-radius");
+  contact.self_contact.enabled = options.flag("self-contact");
+  contact.self_contact.offset = options.positive_real("self-contact-offset");
+  if (options.is_set("self-contact-stiffness"))
+    contact.self_contact.stiffness = options.positive_real("self-contact-stiffness");
+  const long rings = options.integer("self-contact-rings");
+  if (rings < 1 || rings > 10)
+    throw InputError("option --self-contact-rings: " + std::to_string(rings) +
+                     " is not between 1 and 10");
+  contact.self_contact.rings = int(rings);
   return contact;
+}
+
+void set_up_self_contact(const ContactCase& contact, ClothProblem& problem) {
+  if (contact.self_contact.enabled) problem.set_self_contact(contact.self_contact);
 }
 
 void set_up_contact(const ContactCase& contact, ClothProblem& problem) {
@@ -169,6 +195,11 @@ CaseContact measure_contact(const ContactCase& contact, ClothProblem& problem, V
   for (const contact::Body& body : problem.bodies)
     result.bodies.push_back(body.describe());
   SartorPetscCall(problem.contact_report(x, &result.reports));
+  if (problem.has_self_contact()) {
+    fem::SelfContactReport self;
+    SartorPetscCall(problem.self_contact_report(x, &self));
+    result.self_contact = self;
+  }
   if (contact.support_radius) {
     const double radius = *contact.support_radius;
     DrapeMeasure drape;
@@ -226,6 +257,16 @@ nlohmann::json contact_summary(const CaseContact& contact) {
                             {"max_penetration_m", penetration},
                             {"contacting_vertices", contacting},
                             {"bodies", bodies}};
+  if (contact.self_contact) {
+    const fem::SelfContactReport& s = *contact.self_contact;
+    summary["self_contact"] = {{"pairs", s.pairs},
+                               {"min_distance_m", std::isfinite(s.min_distance)
+                                                      ? nlohmann::json(s.min_distance)
+                                                      : nlohmann::json(nullptr)},
+                               {"normal_force_N", s.normal_force},
+                               {"candidate_pairs", s.candidates},
+                               {"structure_refreshes", s.refreshes}};
+  }
   if (contact.drape) {
     summary["drape"] = {{"coefficient", contact.drape->coefficient},
                         {"nodes", contact.drape->nodes},

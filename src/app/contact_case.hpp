@@ -28,6 +28,7 @@ struct ContactCase {
   std::vector<contact::Body> bodies;
   ContactSettings settings;
   std::optional<double> support_radius; // m
+  fem::SelfContactSettings self_contact;
 };
 
 // Throws InputError naming the option for a bad specification or two bodies
@@ -35,6 +36,8 @@ struct ContactCase {
 ContactCase read_contact_case(const Options& options);
 
 void set_up_contact(const ContactCase& contact, ClothProblem& problem);
+// After the seams: cloth self-contact where the case asks for it.
+void set_up_self_contact(const ContactCase& contact, ClothProblem& problem);
 
 // The Cusick drape coefficient: the cloth's shadow on the horizontal plane
 // (the area covered by its triangles projected along z) against the flat
@@ -70,6 +73,7 @@ struct CaseContact {
   std::vector<BodyContact> reports;
   ContactSettings settings;
   std::optional<DrapeMeasure> drape;
+  std::optional<fem::SelfContactReport> self_contact;
 };
 
 // Collective: the contact state at x; `positions` (rank 0) give the drape

@@ -228,6 +228,22 @@ void solve_static_case(ClothProblem& problem, Vec x, const StaticOptions& solve,
 // --analysis, checked with the options that only some analyses take, and
 // what the analysis needs of the built cloth: stiffness out of a flat
 // membrane's plane in statics, a positive areal density in dynamics.
+// Self-contact keeps each vertex on its side of the cloth by the
+// minimiser's step bound: SNES's steps have none.
+void check_self_contact(const ClothCase& cloth_case) {
+  if (!cloth_case.contact.self_contact.enabled) return;
+  const TimeCase& time = cloth_case.time;
+  if (time.creep())
+    throw InputError("option --self-contact: --analysis creep has no self-contact yet");
+  if (time.dynamic() && !time.minimise)
+    throw InputError("option --self-contact needs --dynamic-solver minimise with --analysis "
+                     "dynamic (SNES's steps have no bound that keeps cloth from passing through "
+                     "itself)");
+  if (!time.dynamic() && !cloth_case.statics.minimise)
+    throw InputError("option --self-contact needs --static-solver minimise (SNES's steps have no "
+                     "bound that keeps cloth from passing through itself)");
+}
+
 void check_analysis(const ClothCase& cloth_case, const TriangleMesh& mesh,
                     const std::vector<ClothMaterial>& materials, const std::vector<int>& pinned,
                     const ClothMaterial& material) {
@@ -245,6 +261,7 @@ void check_analysis(const ClothCase& cloth_case, const TriangleMesh& mesh,
     throw InputError("option --density: --analysis dynamic needs a positive areal density, got " +
                      format_number(material.areal_density));
   }
+  check_self_contact(cloth_case);
 }
 
 // The mesh vertex nearest the --probe point.
@@ -368,6 +385,7 @@ CaseResult solve_case(const ClothCase& cloth_case, int extra_refinements,
       problem.sewing_tension = statics.sewing_start_tension;
     attach_seams(seam_case, time, seams, material, problem, &*result.seams);
   }
+  set_up_self_contact(contact_case, problem);
   check_analysis(cloth_case, mesh, materials, pinned, material);
   const bool dynamic = time.dynamic();
   const bool creep = time.creep();
@@ -590,7 +608,8 @@ void add_case_summary(const CaseResult& result, nlohmann::json& summary) {
                         {"initial_position_m", vector_json(result.probe->initial_position)},
                         {"displacement_m", vector_json(result.probe->displacement)}};
   }
-  if (!result.contact.bodies.empty()) summary["contact"] = contact_summary(result.contact);
+  if (!result.contact.bodies.empty() || result.contact.self_contact)
+    summary["contact"] = contact_summary(result.contact);
   if (result.certified) {
     summary["certificate"] = certificate_json(result.certified->certificate);
     summary["certificate"]["saddle_escapes"] = result.certified->escapes;

@@ -709,7 +709,7 @@ PetscErrorCode ClothProblem::jacobian(Vec x, Mat J) {
     PetscCall(logged(form->name(), [&] { return form->add_hessian(at, J); }));
   PetscCall(VecRestoreArrayRead(local_x_, &values));
   for (auto* form : enabled(coupling_forms_)) // global indices, across partitions
-    PetscCall(logged(form->name(), [&] { return form->add_hessian(J); }));
+    PetscCall(logged(form->name(), [&] { return form->add_hessian(x, exact_hessian, J); }));
   PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
   PetscCall(replace_held_rows(J));

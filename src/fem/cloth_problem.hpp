@@ -24,6 +24,7 @@
 #include "fem/cloth_output.hpp"
 #include "fem/form.hpp"
 #include "fem/forms/seam_coupling.hpp"
+#include "fem/forms/self_contact_form.hpp"
 #include "fem/pin_motion.hpp"
 #include "mesh/triangle_mesh.hpp"
 
@@ -160,7 +161,9 @@ public:
   // distance at x and a tenth of the contact offset, found by conservative advancement
   // on the signed distance and the shape's slope bound (IPC's CCD filter,
   // with the body's distance in place of CCD). Vertices already inside a
-  // body (d <= 0) do not bound the step: the penalty pushes them out.
+  // body (d <= 0) do not bound the step: the penalty pushes them out. With
+  // self-contact, no vertex-triangle pair comes closer than the same
+  // fraction of its distance (SelfContactForm::step_bound) either.
   PetscErrorCode contact_step_bound(Vec x, Vec direction, double* bound);
   // Collective. The thesis' penetration handling before a solve (ch. 4,
   // Alg. 1): every vertex inside a body at the contact clock is moved out
@@ -187,6 +190,21 @@ public:
   // given springs) have an exact rest derivative once sewn.
   std::vector<SeamSpring> set_seams(const std::vector<Seam>& seams, const SeamStiffness& stiffness);
   const SeamCoupling* seam_coupling() const;
+  // Cloth self-contact (fem/forms/self_contact_form.hpp), after the seams
+  // (sewn vertices are near each other) and before create_jacobian.
+  // Collective. Throws InputError for an offset or stiffness that is not
+  // positive and finite.
+  void set_self_contact(const fem::SelfContactSettings& settings);
+  bool has_self_contact() const { return self_contact_form_ != nullptr; }
+  // Collective: the self-contact pairs of the Jacobian's structure at x;
+  // `changed`: the structure differs, create the Jacobian again. Without
+  // self-contact, never changed.
+  PetscErrorCode refresh_couplings(Vec x, bool* changed);
+  // Collective: a Jacobian since the last refresh left out a pair in
+  // contact (refresh and assemble again for the exact Hessian).
+  PetscErrorCode couplings_stale(bool* stale) const;
+  // Collective: self-contact at x (zeros without it).
+  PetscErrorCode self_contact_report(Vec x, fem::SelfContactReport* report);
   // Collective: the largest gap of a seam spring at x, m (0 without seams).
   PetscErrorCode seam_gap(Vec x, double* gap);
   // The sewing stage of time stepping: at time 0 each seam spring is only
@@ -300,6 +318,10 @@ public:
   PetscInt global_dof_count() const { return global_dofs_; }
 
 private:
+  // Each vertex's index in the pin list, -1 when free.
+  std::vector<int> pin_indices() const;
+  // Collective: each free vertex's first global dof, -1 when pinned (every rank).
+  std::vector<PetscInt> first_global_dofs(const std::vector<int>& pin_index) const;
   // set_seams' work; `design`: where the springs came from, or null.
   void set_up_seams(const std::vector<SeamSpring>& springs,
                     std::unique_ptr<fem::SeamDesign> design);
@@ -367,6 +389,8 @@ private:
   std::vector<std::unique_ptr<fem::CouplingForm>> coupling_forms_;
   fem::ContactForm* contact_form_ = nullptr;
   fem::SeamForm* seam_form_ = nullptr;
+  fem::SelfContactForm* self_contact_form_ = nullptr;
+  std::vector<std::pair<int, int>> seam_links_; // sewn vertex pairs, for self-contact
   std::vector<std::string> disabled_forms_;
   // The forms of `all` that are enabled and active (fem/form.hpp).
   template <class F>

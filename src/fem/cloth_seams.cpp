@@ -26,22 +26,15 @@ void ClothProblem::set_up_seams(const std::vector<SeamSpring>& springs,
   for (std::size_t i = 0; i < pinned_.size(); ++i) {
     if (releasable(i)) throw InputError("seams and pins with a release time cannot be combined");
   }
-  // The first global dof of every free vertex: its owner knows it from the
-  // DM's local-to-global map, everybody learns it by one Allreduce.
-  std::vector<int> pin_index(mesh_.vertex_count(), -1);
-  for (std::size_t i = 0; i < pinned_.size(); ++i)
-    pin_index[std::size_t(pinned_[i])] = int(i);
-  ISLocalToGlobalMapping map = nullptr;
-  SartorPetscCall(DMGetLocalToGlobalMapping(dm_, &map));
-  std::vector<PetscInt> owned_first(mesh_.vertex_count(), -1);
-  for (std::size_t v = 0; v < mesh_.vertex_count(); ++v) {
-    if (!vertex_owned_[v] || pin_index[v] >= 0) continue;
-    SartorPetscCall(ISLocalToGlobalMappingApply(map, 1, &vertex_dof_[v], &owned_first[v]));
-  }
-  std::vector<PetscInt> first_dof(mesh_.vertex_count(), -1);
-  SartorPetscCall(MPI_Allreduce(owned_first.data(), first_dof.data(), int(first_dof.size()),
-                                MPIU_INT, MPI_MAX, comm_));
+  std::vector<int> pin_index = pin_indices();
+  std::vector<PetscInt> first_dof = first_global_dofs(pin_index);
 
+  if (self_contact_form_) throw InputError("seams must be set before self-contact");
+  seam_links_.clear();
+  for (const SeamSpring& spring : springs) {
+    for (int k = 1; k < spring.vertex_count(); ++k)
+      seam_links_.emplace_back(spring.vertices[0], spring.vertices[std::size_t(k)]);
+  }
   std::vector<SeamSpring> assigned; // each spring on the rank owning its emitting vertex
   std::vector<std::size_t> assigned_index;
   for (const SeamSpring& spring : springs) {
@@ -70,6 +63,29 @@ void ClothProblem::set_up_seams(const std::vector<SeamSpring>& springs,
                                               std::move(design));
   seam_form_ = form.get();
   coupling_forms_.push_back(std::move(form));
+}
+
+std::vector<int> ClothProblem::pin_indices() const {
+  std::vector<int> pin_index(mesh_.vertex_count(), -1);
+  for (std::size_t i = 0; i < pinned_.size(); ++i)
+    pin_index[std::size_t(pinned_[i])] = int(i);
+  return pin_index;
+}
+
+// The first global dof of every free vertex: its owner knows it from the
+// DM's local-to-global map, everybody learns it by one Allreduce.
+std::vector<PetscInt> ClothProblem::first_global_dofs(const std::vector<int>& pin_index) const {
+  ISLocalToGlobalMapping map = nullptr;
+  SartorPetscCall(DMGetLocalToGlobalMapping(dm_, &map));
+  std::vector<PetscInt> owned_first(mesh_.vertex_count(), -1);
+  for (std::size_t v = 0; v < mesh_.vertex_count(); ++v) {
+    if (!vertex_owned_[v] || pin_index[v] >= 0) continue;
+    SartorPetscCall(ISLocalToGlobalMappingApply(map, 1, &vertex_dof_[v], &owned_first[v]));
+  }
+  std::vector<PetscInt> first_dof(mesh_.vertex_count(), -1);
+  SartorPetscCall(MPI_Allreduce(owned_first.data(), first_dof.data(), int(first_dof.size()),
+                                MPIU_INT, MPI_MAX, comm_));
+  return first_dof;
 }
 
 const SeamCoupling* ClothProblem::seam_coupling() const {

@@ -184,8 +184,8 @@ public:
   virtual PetscErrorCode energy(Vec x, double* energy) = 0;
   // Collective: adds the gradient to the global vector f.
   virtual PetscErrorCode add_gradient(Vec x, Vec f) = 0;
-  // Adds the Hessian at the last gradient's state, in global indices.
-  virtual PetscErrorCode add_hessian(Mat J) = 0;
+  // Adds the Hessian at x, in global indices (projected unless `exact`).
+  virtual PetscErrorCode add_hessian(Vec x, bool exact, Mat J) = 0;
   // Records its couplings into `recording` (BlockPattern::recorder).
   virtual PetscErrorCode record_couplings(Mat recording) = 0;
   // Collective: the change of the gradient when the material coordinates

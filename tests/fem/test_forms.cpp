@@ -196,9 +196,9 @@ TEST(Forms, InertiaFormsGradientAndHessianMatchDifferences) {
         VecSet(f, 0.0);
         return form.add_gradient(y, f);
       },
-      [&](Vec, Mat A) {
+      [&](Vec y, Mat A) {
         MatZeroEntries(A);
-        return form.add_hessian(A);
+        return form.add_hessian(y, false, A);
       });
   EXPECT_GE(error, 0.0) << "assembly failed";
   EXPECT_LT(error, 1e-6);

@@ -47,7 +47,7 @@ PetscErrorCode InertiaForm::add_gradient(Vec x, Vec f) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode InertiaForm::add_hessian(Mat J) {
+PetscErrorCode InertiaForm::add_hessian(Vec, bool, Mat J) {
   PetscFunctionBeginUser;
   const double weight = inertia_weight + damping_weight;
   if (weight > 0.0) {

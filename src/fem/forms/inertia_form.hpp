@@ -34,7 +34,7 @@ public:
   EnergyPart part() const override { return EnergyPart::inertia; }
   PetscErrorCode energy(Vec x, double* energy) override;
   PetscErrorCode add_gradient(Vec x, Vec f) override;
-  PetscErrorCode add_hessian(Mat J) override;
+  PetscErrorCode add_hessian(Vec x, bool exact, Mat J) override;
   // Diagonal: within the vertices' own blocks, always preallocated.
   PetscErrorCode record_couplings(Mat) override { return 0; }
 

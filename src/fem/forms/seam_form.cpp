@@ -27,7 +27,7 @@ PetscErrorCode SeamForm::add_gradient(Vec x, Vec f) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SeamForm::add_hessian(Mat J) {
+PetscErrorCode SeamForm::add_hessian(Vec, bool, Mat J) {
   PetscFunctionBeginUser;
   coupling_->set_sewing_progress(problem_.sewing_progress()); // linear springs: no positions
   PetscCall(coupling_->add_jacobian(J));

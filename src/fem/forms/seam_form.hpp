@@ -35,7 +35,7 @@ public:
   EnergyPart part() const override { return EnergyPart::seam; }
   PetscErrorCode energy(Vec x, double* energy) override;
   PetscErrorCode add_gradient(Vec x, Vec f) override;
-  PetscErrorCode add_hessian(Mat J) override;
+  PetscErrorCode add_hessian(Vec x, bool exact, Mat J) override;
   PetscErrorCode record_couplings(Mat recording) override;
   // Exact, through seam_spring_changes, for springs built from a design and
   // sewn (their own stiffness; the sewing ramp's is not differentiated).
