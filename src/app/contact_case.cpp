@@ -28,7 +28,7 @@ const std::vector<OptionSpec>& contact_option_specs() {
           {"drape-support-radius", "M", "",
            "report the Cusick drape coefficient for a support disk of this radius, m"},
           {"self-contact", "", "",
-           "cloth self-contact: no vertex comes closer than --self-contact-offset to a triangle "
+           "cloth self-contact: no vertex comes closer than --contact-self-offset to a triangle "
            "of the cloth (docs/contact.md#cloth-self-contact)"},
           {"self-contact-offset", "M", "0.002", "the distance layers of cloth keep, m"},
           {"self-contact-stiffness", "N/M", "",
@@ -38,10 +38,10 @@ const std::vector<OptionSpec>& contact_option_specs() {
       },
       {"contact"},
       {{"drape-support-radius", "contact-support-radius"},
-       {"self-contact", "self-contact"},
-       {"self-contact-offset", "self-contact-offset"},
-       {"self-contact-stiffness", "self-contact-stiffness"},
-       {"self-contact-rings", "self-contact-rings"}});
+       {"self-contact", "contact-self"},
+       {"self-contact-offset", "contact-self-offset"},
+       {"self-contact-stiffness", "contact-self-stiffness"},
+       {"self-contact-rings", "contact-self-rings"}});
   return specs;
 }
 

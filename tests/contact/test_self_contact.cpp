@@ -172,6 +172,34 @@ TEST(SelfContact, JacobianMatchesResidualDifferences) {
   VecDestroy(&x);
 }
 
+TEST(SelfContact, TheStepBoundKeepsEveryVertexOnItsSide) {
+  // The upper sheet 3 mm over the lower one, a step moving it 1 cm down.
+  const double gap = 0.003, drop = 0.01;
+  const TwoSheets sheets = two_sheets(gap);
+  ClothProblem problem(PETSC_COMM_WORLD, sheets.mesh, fabric(), {});
+  problem.set_self_contact({true, offset, 0.0, 2});
+  Vec x = nullptr, d = nullptr;
+  ASSERT_EQ(problem.create_solution(&x), 0);
+  VecDuplicate(x, &d);
+  std::vector<Vector3d> motion(sheets.mesh.vertex_count(), Vector3d::Zero());
+  for (std::size_t v = sheets.lower_vertices; v < motion.size(); ++v)
+    motion[v] = Vector3d(0.0, 0.0, -drop);
+  ASSERT_EQ(problem.set_solution(motion, d), 0);
+  double bound = 0.0;
+  ASSERT_EQ(problem.contact_step_bound(x, d, &bound), 0);
+  // The pair may close to the smaller of half its distance and a tenth of
+  // the offset: 0.2 mm of the 3 mm, at (3 - 0.2) / 10 of the step.
+  const double allowed = (gap - 0.1 * offset) / drop;
+  EXPECT_LE(bound, allowed);
+  EXPECT_GT(bound, 0.95 * allowed);
+  // Without self-contact nothing bounds it.
+  problem.enable_form("self_contact", false);
+  ASSERT_EQ(problem.contact_step_bound(x, d, &bound), 0);
+  EXPECT_EQ(bound, 1.0);
+  VecDestroy(&d);
+  VecDestroy(&x);
+}
+
 struct Landing {
   StaticReport report;
   std::vector<Vector3d> positions;
