@@ -52,6 +52,7 @@ PetscErrorCode SnesTolerances::apply(SNES snes) const {
 IncrementalSystem::IncrementalSystem(ClothProblem& problem, Vec like) : problem_(problem) {
   SartorPetscCall(set_default_direct_solver(problem.comm()));
   SartorPetscCall(problem.create_jacobian(&jacobian_));
+  jacobian_version_ = problem.coupling_version();
   SartorPetscCall(attach_near_null_space(like, jacobian_));
   for (Vec* v : {&residual_, &work_, &switch_point_, &direction_, &trial_x_, &trial_f_})
     SartorPetscCall(VecDuplicate(like, v));
@@ -106,8 +107,9 @@ PetscErrorCode IncrementalSystem::refresh_couplings(Vec x) {
   Mat J = nullptr;
   PetscFunctionBeginUser;
   PetscCall(problem_.refresh_couplings(x, &changed));
-  if (!changed) PetscFunctionReturn(0);
+  if (problem_.coupling_version() == jacobian_version_) PetscFunctionReturn(0);
   PetscCall(problem_.create_jacobian(&J));
+  jacobian_version_ = problem_.coupling_version();
   PetscCall(attach_near_null_space(x, J));
   PetscCall(SNESSetJacobian(snes_, J, J, form_jacobian, this));
   if (snes_without_potential_)

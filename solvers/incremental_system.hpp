@@ -128,7 +128,8 @@ public:
 private:
   PetscErrorCode create_snes(bool with_objective, SNES* snes);
   // The Jacobian created anew when the problem's couplings (self-contact
-  // pairs) have changed at x (ClothProblem::refresh_couplings).
+  // pairs) have changed at x (ClothProblem::refresh_couplings), or since it
+  // was created (a certificate's refresh).
   PetscErrorCode refresh_couplings(Vec x);
   // solvers/minimiser.cpp
   PetscErrorCode minimise(Vec x, Solve* result);
@@ -159,6 +160,7 @@ private:
   bool snes_has_objective_ = false;
   SNES snes_without_potential_ = nullptr; // made when first needed
   Mat jacobian_ = nullptr;
+  long jacobian_version_ = 0; // ClothProblem::coupling_version when jacobian_ was created
   Vec residual_ = nullptr;
   std::unique_ptr<fem::InertiaForm> inertia_;
   Vec work_ = nullptr;

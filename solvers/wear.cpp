@@ -184,6 +184,7 @@ public:
         problem_(comm, mesh_, garment.materials, garment.held), creep_(problem_, garment.creep) {
     problem_.loads.gravity = garment.gravity;
     if (!garment.springs.empty()) problem_.set_seams(garment.springs);
+    if (garment.self_contact.enabled) problem_.set_self_contact(garment.self_contact);
   }
 
   // The fresh garment (no creep) hung: its positions on every rank.

@@ -138,6 +138,9 @@ struct WearGarment {
   std::vector<int> held;    // vertices held at take-off (mesh numbering)
   std::vector<int> hem;     // vertices whose mean height is the hem height
   std::vector<int> bagging; // vertices where the bagging height is measured (empty: all)
+  // Cloth self-contact of the take-off's hanging garment (as the worn one's):
+  // a trouser leg's front and back collapse onto each other there.
+  fem::SelfContactSettings self_contact;
 };
 
 struct WearOptions {

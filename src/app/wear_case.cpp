@@ -280,6 +280,10 @@ void attach_wear(const Options& options, const std::string& directory,
     settings.landings = poses->knots();
     settings.wear.follow_bodies = true;
   }
+  if (creep_case.scheme == CreepScheme::monolithic && options.flag("self-contact")) {
+    throw InputError("option --self-contact: the monolithic creep scheme has no potential, and "
+                     "self-contact needs the minimiser: give --creep-scheme staggered");
+  }
   run->scheme = creep_scheme_name(creep_case.scheme);
   run->fabrics = cloth->fabrics;
   const std::vector<CreepMaterial> creep = wear_creep_materials(creep_case, cloth->fabrics);
@@ -299,6 +303,7 @@ void attach_wear(const Options& options, const std::string& directory,
     garment.creep = creep;
     garment.springs = springs;
     garment.gravity = {gravity[0], gravity[1], gravity[2]};
+    garment.self_contact = problem.self_contact_settings();
     std::vector<Eigen::Vector3d> draped;
     SartorPetscCall(problem.gather_positions(x, &draped));
     std::vector<double> flat;

@@ -196,10 +196,17 @@ public:
   // positive and finite.
   void set_self_contact(const fem::SelfContactSettings& settings);
   bool has_self_contact() const { return self_contact_form_ != nullptr; }
+  // The settings it was set with (not enabled without it).
+  fem::SelfContactSettings self_contact_settings() const {
+    return self_contact_form_ ? self_contact_form_->settings() : fem::SelfContactSettings{};
+  }
   // Collective: the self-contact pairs of the Jacobian's structure at x;
   // `changed`: the structure differs, create the Jacobian again. Without
   // self-contact, never changed.
   PetscErrorCode refresh_couplings(Vec x, bool* changed);
+  // Counts the changes of that structure (the same on every rank): a
+  // Jacobian created at another count lacks pairs that are now assembled.
+  long coupling_version() const { return self_contact_form_ ? self_contact_form_->refreshes() : 0; }
   // Collective: a Jacobian since the last refresh left out a pair in
   // contact (refresh and assemble again for the exact Hessian).
   PetscErrorCode couplings_stale(bool* stale) const;

@@ -8,6 +8,7 @@
 #include "element/point_triangle.hpp"
 #include "fem/cloth_problem.hpp"
 #include "mesh/generators.hpp"
+#include "solvers/incremental_system.hpp"
 #include "solvers/statics.hpp"
 #include "tests/fem/jacobian_check.hpp"
 
@@ -197,6 +198,41 @@ TEST(SelfContact, TheStepBoundKeepsEveryVertexOnItsSide) {
   ASSERT_EQ(problem.contact_step_bound(x, d, &bound), 0);
   EXPECT_EQ(bound, 1.0);
   VecDestroy(&d);
+  VecDestroy(&x);
+}
+
+// A system that outlives a refresh of the pairs made elsewhere (the
+// certificate's, between a wear's steps) creates its Jacobian anew: the
+// pairs now assembled are not in the one it had.
+TEST(SelfContact, ASystemFollowsARefreshMadeElsewhere) {
+  // The upper sheet lying on the lower one (1.9 mm over it, inside the
+  // offset), pinned along one edge; the lower one pinned round its edges,
+  // so that pairs couple free vertices of both.
+  TwoSheets sheets = two_sheets(0.0019);
+  std::vector<int> pinned;
+  for (std::size_t v = 0; v < sheets.mesh.vertex_count(); ++v) {
+    const Vector3d& p = sheets.mesh.positions[v];
+    const bool rim = std::min({p.x(), p.y(), 0.4 - p.x(), 0.4 - p.y()}) < 1e-9;
+    if ((v < sheets.lower_vertices && rim) || std::abs(p.y() - 0.0471) < 1e-9)
+      pinned.push_back(int(v));
+  }
+  ClothProblem problem(PETSC_COMM_WORLD, sheets.mesh, fabric(), pinned);
+  problem.loads.gravity = Vector3d(0, 0, -gravity);
+  problem.set_self_contact({true, offset, 0.0, 2});
+  Vec x = nullptr;
+  ASSERT_EQ(problem.create_solution(&x), 0);
+  IncrementalSystem system(problem, x); // its Jacobian without pairs
+  bool changed = false;
+  ASSERT_EQ(problem.refresh_couplings(x, &changed), 0); // made elsewhere
+  ASSERT_TRUE(changed);
+  StaticOptions options;
+  options.minimise = true;
+  StaticReport report;
+  ASSERT_EQ(solve_static(system, x, options, &report), 0);
+  fem::SelfContactReport contact;
+  ASSERT_EQ(problem.self_contact_report(x, &contact), 0);
+  EXPECT_TRUE(report.converged);
+  EXPECT_GT(contact.pairs, 20);
   VecDestroy(&x);
 }
 

@@ -89,6 +89,8 @@ public:
 
   double stiffness() const { return stiffness_; }
   double offset() const { return settings_.offset; }
+  const SelfContactSettings& settings() const { return settings_; }
+  long refreshes() const { return refreshes_; }
 
 private:
   // All vertex positions at x (pinned vertices at their places), every rank.
