@@ -309,8 +309,8 @@ TriangleMesh refine(const TriangleMesh& mesh) {
   // A crease's two halves keep its rest angle.
   for (const CreaseEdge& crease : mesh.creases) {
     const int m = midpoint(crease.a, crease.b);
-    fine.creases.push_back({crease.a, m, crease.rest_angle});
-    fine.creases.push_back({m, crease.b, crease.rest_angle});
+    fine.creases.push_back({crease.a, m, crease.rest_angle, crease.stiffness_factor});
+    fine.creases.push_back({m, crease.b, crease.rest_angle, crease.stiffness_factor});
   }
   return fine;
 }

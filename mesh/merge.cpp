@@ -66,7 +66,8 @@ MergedMesh merge_vertices(const TriangleMesh& mesh, const std::vector<std::pair<
   }
   for (const CreaseEdge& crease : mesh.creases)
     merged.mesh.creases.push_back({merged.vertex_map[std::size_t(crease.a)],
-                                   merged.vertex_map[std::size_t(crease.b)], crease.rest_angle});
+                                   merged.vertex_map[std::size_t(crease.b)], crease.rest_angle,
+                                   crease.stiffness_factor});
   validate(merged.mesh, "merged mesh");
   interior_edges(merged.mesh); // throws for a merge that makes an edge non-manifold
   return merged;

@@ -20,6 +20,9 @@ namespace sartor {
 struct CreaseEdge {
   int a = 0, b = 0;
   double rest_angle = 0.0; // rad, in (-pi, pi)
+  // The hinge's bending stiffness over the fabric's: above 1 a pressed
+  // (set) crease, as an interfaced lapel's or a pressed pleat's.
+  double stiffness_factor = 1.0;
 };
 
 struct TriangleMesh {

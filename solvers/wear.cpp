@@ -118,17 +118,6 @@ PetscErrorCode broadcast(MPI_Comm comm, std::vector<double>* values) {
   PetscFunctionReturn(0);
 }
 
-// Positions of every vertex on every rank.
-PetscErrorCode positions_everywhere(ClothProblem& problem, Vec x,
-                                    std::vector<Eigen::Vector3d>* positions) {
-  PetscFunctionBeginUser;
-  PetscCall(problem.gather_positions(x, positions));
-  std::vector<double> flat = position_rows(*positions);
-  PetscCall(broadcast(problem.comm(), &flat));
-  *positions = positions_from_rows(flat);
-  PetscFunctionReturn(0);
-}
-
 // The committed creep state of every triangle on every rank.
 PetscErrorCode creep_everywhere(MPI_Comm comm, const CreepCoupling& creep,
                                 std::vector<ElementCreep>* states) {
@@ -197,7 +186,7 @@ public:
     StaticReport report;
     PetscCall(solve_static(problem_, x, solve, &report));
     *converged = report.converged;
-    PetscCall(positions_everywhere(problem_, x, fresh));
+    PetscCall(problem_.positions_everywhere(x, fresh));
     PetscCall(VecDestroy(&x));
     PetscFunctionReturn(0);
   }
@@ -227,7 +216,7 @@ public:
     CertificateOptions certify_options;
     PetscCall(certify(problem_, x, certify_options, &report->certificate));
     std::vector<Eigen::Vector3d> recovered;
-    PetscCall(positions_everywhere(problem_, x, &recovered));
+    PetscCall(problem_.positions_everywhere(x, &recovered));
     PetscCall(creep_everywhere(problem_.comm(), creep_, &report->creep));
     report->hem_height = mean_height(recovered, garment_.hem);
     report->hem_drop = mean_height(fresh, garment_.hem) - report->hem_height;
@@ -261,7 +250,7 @@ PetscErrorCode measure_step(ClothProblem& worn, Vec x, const CreepCoupling& cree
   std::vector<Eigen::Vector3d> positions;
   std::vector<element::MembraneStrain> strains;
   std::vector<ElementCreep> states;
-  PetscCall(positions_everywhere(worn, x, &positions));
+  PetscCall(worn.positions_everywhere(x, &positions));
   PetscCall(worn.gather_strains(x, &strains));
   PetscCall(creep_everywhere(worn.comm(), creep, &states));
   step->hem_height = mean_height(positions, garment.hem);
@@ -330,7 +319,7 @@ PetscErrorCode solve_wear(ClothProblem& worn, Vec x, const WearGarment& garment,
   worn.contact.friction_plane_at_vertex = true;
   PetscCall(worn.level_friction_anchors(x));
   std::vector<Eigen::Vector3d> draped;
-  PetscCall(positions_everywhere(worn, x, &draped));
+  PetscCall(worn.positions_everywhere(x, &draped));
   Hanger hanger(worn.comm(), worn.mesh(), draped, garment);
   PetscCall(hanger.hang_fresh(options.wear.equilibrium, &report->fresh_positions,
                               &report->fresh_converged));
@@ -369,7 +358,7 @@ PetscErrorCode solve_wear(ClothProblem& worn, Vec x, const WearGarment& garment,
            std::abs(step.time - options.take_off_times[next_take_off]) <= tiny) {
       std::vector<Eigen::Vector3d> positions;
       std::vector<ElementCreep> states;
-      PetscCall(positions_everywhere(worn, state, &positions));
+      PetscCall(worn.positions_everywhere(state, &positions));
       PetscCall(creep_everywhere(worn.comm(), creep, &states));
       TakeOffReport taken;
       PetscCall(

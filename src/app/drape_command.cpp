@@ -157,8 +157,9 @@ SewableGarment sewable_garment(const ConstructedGarment& constructed) {
   }
   for (const CreaseEdge& crease : garment.mesh.creases)
     if (new_index[std::size_t(crease.a)] >= 0)
-      kept.mesh.creases.push_back(
-          {new_index[std::size_t(crease.a)], new_index[std::size_t(crease.b)], crease.rest_angle});
+      kept.mesh.creases.push_back({new_index[std::size_t(crease.a)],
+                                   new_index[std::size_t(crease.b)], crease.rest_angle,
+                                   crease.stiffness_factor});
   for (Seam seam : garment.seams) {
     for (auto* line : {&seam.a, &seam.b})
       for (int& v : *line)

@@ -252,8 +252,9 @@ nlohmann::json stitches_json(const garment::Pattern& pattern) {
   return stitches;
 }
 
-// Creased fold lines: their mesh vertices (garment.obj numbering) and
-// rest angle (element/bending.hpp's sign), for postproc/pleat_shape.py.
+// Creased fold lines: their mesh vertices (garment.obj numbering), rest
+// angle (element/bending.hpp's sign) and stiffness factor, for
+// postproc/pleat_shape.py.
 nlohmann::json creases_json(const garment::Pattern& pattern, const garment::GarmentMesh& garment) {
   std::map<std::pair<int, int>, double> rest_angles;
   for (const CreaseEdge& edge : garment.mesh.creases)
@@ -268,6 +269,7 @@ nlohmann::json creases_json(const garment::Pattern& pattern, const garment::Garm
                          {"vertices", vertices},
                          {"angle_deg", line.crease->angle * 180.0 / M_PI},
                          {"toward", line.crease->outside ? "outside" : "inside"},
+                         {"pressed", line.crease->pressed},
                          {"rest_angle_deg",
                           rest_angles.at(std::minmax(vertices[0], vertices[1])) * 180.0 / M_PI}});
     }

@@ -857,6 +857,16 @@ PetscErrorCode ClothProblem::gather_positions(Vec x, std::vector<Eigen::Vector3d
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ClothProblem::positions_everywhere(Vec x, std::vector<Eigen::Vector3d>* positions) {
+  PetscFunctionBeginUser;
+  PetscCall(gather_positions(x, positions));
+  unsigned long count = positions->size();
+  PetscCallMPI(MPI_Bcast(&count, 1, MPI_UNSIGNED_LONG, 0, comm_));
+  positions->resize(count);
+  PetscCallMPI(MPI_Bcast(positions->data()->data(), int(3 * count), MPI_DOUBLE, 0, comm_));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ClothProblem::gather_vertex_triples(const PetscScalar* local,
                                                    std::vector<Eigen::Vector3d>* triples) {
   Vec natural = nullptr, root = nullptr;

@@ -286,6 +286,8 @@ public:
 
   // All vertex positions, in mesh numbering, on rank 0 (empty elsewhere).
   PetscErrorCode gather_positions(Vec x, std::vector<Eigen::Vector3d>* positions);
+  // The same on every rank. Collective.
+  PetscErrorCode positions_everywhere(Vec x, std::vector<Eigen::Vector3d>* positions);
   // Per body, in mesh numbering, on rank 0 (empty elsewhere): the normal
   // forces of its edge samples at x shared to the edges' vertices by the
   // lever rule, and the force of its own contact with each vertex (penalty

@@ -651,7 +651,7 @@ void check_interior(const Node& node, const Panel& panel, double tolerance, doub
 // pre-folding turns the warping region rigidly about its chord.
 Crease read_crease(const Node& node, const Curve& curve, double flattening) {
   node.object();
-  node.only_keys({"side", "angle_deg", "toward"});
+  node.only_keys({"side", "angle_deg", "toward", "pressed"});
   Crease crease;
   crease.json_path = node.path;
   const std::string side = node.require("side").text();
@@ -668,6 +668,13 @@ Crease read_crease(const Node& node, const Curve& curve, double flattening) {
     if (toward != "outside" && toward != "inside")
       node.child("toward").fail("unknown direction '" + toward + "' (expected outside or inside)");
     crease.outside = toward == "outside";
+  }
+  if (node.has("pressed")) {
+    crease.pressed = node.child("pressed").number();
+    if (!(crease.pressed >= 1.0 && crease.pressed <= 1e4))
+      node.child("pressed").fail(
+          "a pressed crease is 1 to 10000 times as stiff as the fabric, got " +
+          format_number(crease.pressed));
   }
   const Vector2d a = curve.start(), b = curve.end();
   for (const auto& p : curve.flatten(flattening)) {

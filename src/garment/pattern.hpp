@@ -86,6 +86,7 @@ struct Crease {
   Side side = Side::left;
   double angle = 0.0; // rad, in (0, pi)
   bool outside = true;
+  double pressed = 1.0; // the crease's bending stiffness over the fabric's
   std::string json_path;
 };
 

@@ -208,6 +208,7 @@ std::vector<InteriorLine> pleat_crease_lines(const Slashing& s, const PleatSpec&
       crease.side = Vector2d(-d.y(), d.x()).dot(s.t) > 0 ? Crease::Side::left : Crease::Side::right;
       crease.angle = creases[c].out_fold ? spec.out_fold : spec.in_fold;
       crease.outside = !creases[c].out_fold;
+      crease.pressed = spec.pressed;
       crease.json_path = spec.json_path;
       line.crease = crease;
       lines.push_back(line);
@@ -306,14 +307,14 @@ PleatSpec read_pleat(const Pattern& pattern, const nlohmann::json& entry, const 
                      double scale) {
   if (!entry.is_object()) fail(pattern, path, "expected an object");
   static const std::set<std::string> keys{
-      "id",          "panel", "side_lines",  "stationary",   "type",
-      "slash_lines", "depth", "in_fold_deg", "out_fold_deg", "sew"};
+      "id",    "panel",       "side_lines",   "stationary", "type",   "slash_lines",
+      "depth", "in_fold_deg", "out_fold_deg", "sew",        "pressed"};
   for (const auto& item : entry.items())
     if (!keys.count(item.key()))
       fail(pattern, path,
            "unknown key '" + item.key() +
                "' (expected one of: id, panel, side_lines, stationary, type, slash_lines, depth, "
-               "in_fold_deg, out_fold_deg, sew)");
+               "in_fold_deg, out_fold_deg, sew, pressed)");
   PleatSpec spec;
   spec.json_path = "pleats" + path.substr(path.find('['));
   spec.id = text_field(pattern, entry, path, "id");
@@ -340,6 +341,8 @@ PleatSpec read_pleat(const Pattern& pattern, const nlohmann::json& entry, const 
   spec.depth = scale * number_field(pattern, entry, path, "depth", 0, 1e3 / scale);
   spec.in_fold = number_field(pattern, entry, path, "in_fold_deg", 0, 180) * M_PI / 180;
   spec.out_fold = number_field(pattern, entry, path, "out_fold_deg", 0, 180) * M_PI / 180;
+  if (entry.contains("pressed"))
+    spec.pressed = number_field(pattern, entry, path, "pressed", 1.0 - 1e-12, 1e4);
   if (entry.contains("sew")) {
     const std::string sew = text_field(pattern, entry, path, "sew");
     if (sew == "first")

@@ -29,6 +29,7 @@ struct PleatSpec {
   double depth = 0.0;    // m: how far each pleat folds under
   double in_fold = 0.0;  // rad, the hidden creases' angle, (0, pi)
   double out_fold = 0.0; // rad, the visible creases' angle, (0, pi)
+  double pressed = 1.0;  // the creases' bending stiffness over the fabric's
   enum class Sew { first, both, none };
   Sew sew = Sew::first; // which side lines get the pleats' stitches
   std::string json_path;

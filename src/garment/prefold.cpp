@@ -33,6 +33,7 @@ std::vector<MeshedFold> meshed_folds(const Panel& panel, const PanelMesh& meshed
     fold.rotation = towards * (fold.left ? 1.0 : -1.0) * line.crease->angle;
     // A region turned towards the normals' side makes a valley seen from there.
     fold.rest_angle = -towards * line.crease->angle;
+    fold.stiffness_factor = line.crease->pressed;
     folds.push_back(fold);
   }
   return folds;
@@ -112,8 +113,8 @@ std::vector<CreaseEdge> crease_edges(const std::vector<MeshedFold>& folds, int f
   std::vector<CreaseEdge> edges;
   for (const MeshedFold& fold : folds)
     for (std::size_t k = 0; k + 1 < fold.vertices.size(); ++k)
-      edges.push_back(
-          {fold.vertices[k] + first_vertex, fold.vertices[k + 1] + first_vertex, fold.rest_angle});
+      edges.push_back({fold.vertices[k] + first_vertex, fold.vertices[k + 1] + first_vertex,
+                       fold.rest_angle, fold.stiffness_factor});
   return edges;
 }
 

@@ -29,6 +29,7 @@ struct MeshedFold {
   // The crease's dihedral rest angle in the convention of element/bending.hpp
   // (> 0: a ridge seen from the triangles' normal side).
   double rest_angle = 0.0;
+  double stiffness_factor = 1.0; // Crease::pressed
 };
 
 // The creased fold lines of `panel` as meshed in `meshed` (its lines in

@@ -73,11 +73,7 @@ Outcome solve(ClothProblem& problem, int steps, bool minimise = false) {
   EXPECT_EQ(solve_static(problem, x, options, &out.report), 0);
   EXPECT_EQ(problem.contact_report(x, &out.contact), 0);
   EXPECT_EQ(problem.pin_reaction(x, &out.pin_reaction), 0);
-  EXPECT_EQ(problem.gather_positions(x, &out.positions), 0);
-  std::size_t count = out.positions.size();
-  MPI_Bcast(&count, 1, MPI_UNSIGNED_LONG, 0, problem.comm());
-  out.positions.resize(count);
-  MPI_Bcast(out.positions.data(), int(3 * count), MPI_DOUBLE, 0, problem.comm());
+  EXPECT_EQ(problem.positions_everywhere(x, &out.positions), 0);
   VecDestroy(&x);
   return out;
 }

@@ -71,16 +71,6 @@ std::function<double(std::size_t, int)> rest_length(const TriangleMesh& mesh) {
   };
 }
 
-std::vector<Vector3d> everywhere(ClothProblem& problem, Vec x) {
-  std::vector<Vector3d> positions;
-  EXPECT_EQ(problem.gather_positions(x, &positions), 0);
-  std::size_t count = positions.size();
-  MPI_Bcast(&count, 1, MPI_UNSIGNED_LONG, 0, problem.comm());
-  positions.resize(count);
-  MPI_Bcast(positions.data(), int(3 * count), MPI_DOUBLE, 0, problem.comm());
-  return positions;
-}
-
 TEST(ClothPairs, FindEveryPairThatBruteForceFinds) {
   TwoSheets sheets = two_sheets(0.004);
   std::mt19937 random(3);
@@ -261,7 +251,7 @@ Landing land(bool self_contact) {
   options.load_steps = 4;
   options.minimise = true;
   EXPECT_EQ(solve_static(problem, x, options, &out.report), 0);
-  out.positions = everywhere(problem, x);
+  EXPECT_EQ(problem.positions_everywhere(x, &out.positions), 0);
   EXPECT_EQ(problem.self_contact_report(x, &out.contact), 0);
   VecDestroy(&x);
   return out;

@@ -44,14 +44,7 @@ std::vector<Eigen::Vector3d> solve(MPI_Comm comm, const TriangleMesh& mesh,
   options.load_steps = steps;
   EXPECT_EQ(solve_static(problem, x, options, report), 0);
   std::vector<Eigen::Vector3d> positions;
-  EXPECT_EQ(problem.gather_positions(x, &positions), 0);
-  PetscMPIInt size = 1;
-  MPI_Comm_size(comm, &size);
-  // gather_positions fills rank 0 only; share them for the comparisons.
-  std::size_t count = positions.size();
-  MPI_Bcast(&count, 1, MPI_UNSIGNED_LONG, 0, comm);
-  positions.resize(count);
-  MPI_Bcast(positions.data(), int(3 * count), MPI_DOUBLE, 0, comm);
+  EXPECT_EQ(problem.positions_everywhere(x, &positions), 0);
   VecDestroy(&x);
   return positions;
 }

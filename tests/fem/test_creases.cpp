@@ -99,5 +99,43 @@ TEST(Creases, PrefoldedPanelSettlesAtTheRestAngleUnderNoLoad) {
   EXPECT_GT(z, 0.05 * std::sin(rest));
 }
 
+// A pressed crease (the pattern's "pressed": F) is F times as stiff: with
+// the flap turned rigidly 20 degrees past its rest angle, only the crease's
+// hinges are bent, and the bending energy is F times the plain crease's.
+TEST(Creases, APressedCreaseIsAsManyTimesAsStiff) {
+  double energy[2] = {0.0, 0.0};
+  for (int pressed = 0; pressed < 2; ++pressed) {
+    std::string text = creased_square;
+    if (pressed) {
+      const std::string plain = R"("toward": "outside"})";
+      text.replace(text.find(plain), plain.size(), R"("toward": "outside", "pressed": 25})");
+    }
+    const garment::Pattern pattern = garment::parse_pattern(text, "square");
+    PanelMeshOptions options;
+    options.edge_length = 0.04;
+    const PanelMesh meshed = mesh_panel(pattern.panels[0], options);
+    std::vector<garment::MeshedFold> folds = meshed_folds(pattern.panels[0], meshed, true);
+    ASSERT_EQ(folds.size(), 1u);
+    EXPECT_EQ(folds[0].stiffness_factor, pressed ? 25.0 : 1.0);
+    TriangleMesh mesh = meshed.mesh;
+    mesh.creases = garment::crease_edges(folds, 0);
+    folds[0].rotation *= 120.0 / 100.0;
+    mesh.positions = garment::prefold(meshed.mesh, folds);
+    ClothMaterial cloth(
+        {TensionCurve::linear(32600, "test"), TensionCurve::linear(32600, "test"), 4000.0, 0.0});
+    cloth.bending_model = element::BendingModel::discrete_shell;
+    cloth.bending_stiffness = 1e-3;
+    ClothProblem problem(PETSC_COMM_WORLD, mesh, cloth, {});
+    Vec x = nullptr;
+    ASSERT_EQ(problem.create_solution(&x), 0);
+    ClothEnergy e;
+    ASSERT_EQ(problem.energy(x, &e), 0);
+    energy[pressed] = e.bending;
+    VecDestroy(&x);
+  }
+  ASSERT_GT(energy[0], 0.0);
+  EXPECT_NEAR(energy[1] / energy[0], 25.0, 1e-9);
+}
+
 } // namespace
 } // namespace sartor

@@ -46,11 +46,7 @@ TriangleMesh hanging_sheet(int n, std::vector<int>* pins) {
 // Positions in mesh numbering, on every rank.
 std::vector<Eigen::Vector3d> positions_everywhere(ClothProblem& problem, Vec x) {
   std::vector<Eigen::Vector3d> positions;
-  EXPECT_EQ(problem.gather_positions(x, &positions), 0);
-  std::size_t count = positions.size();
-  MPI_Bcast(&count, 1, MPI_UNSIGNED_LONG, 0, problem.comm());
-  positions.resize(count);
-  MPI_Bcast(positions.data(), int(3 * count), MPI_DOUBLE, 0, problem.comm());
+  EXPECT_EQ(problem.positions_everywhere(x, &positions), 0);
   return positions;
 }
 

@@ -240,6 +240,21 @@ TEST(Pleats, BadSpecificationsNameTheEntry) {
   std::string flat = pleated_rectangle("knife", 2, "first");
   flat.replace(flat.find("\"depth\": 0.03"), 13, "\"depth\": 0");
   EXPECT_NE(error_of(flat).find("pleats[0].depth: must lie in (0,"), std::string::npos);
+  // A pressed crease is no softer than the fabric.
+  std::string soft = pleated_rectangle("knife", 2, "first");
+  soft.replace(soft.find("\"sew\""), 5, "\"pressed\": 0.5, \"sew\"");
+  EXPECT_NE(error_of(soft).find("pleats[0].pressed: must lie in ("), std::string::npos);
+}
+
+TEST(Pleats, PressedCreasesCarryTheirStiffnessToTheMesh) {
+  std::string text = pleated_rectangle("box", 2, "first");
+  text.replace(text.find("\"sew\""), 5, "\"pressed\": 30, \"sew\"");
+  const Pattern pattern = parse_pattern(text, "sheet");
+  const PanelMesh meshed = mesh_of(pattern.panels[0], 0.03);
+  const auto folds = meshed_folds(pattern.panels[0], meshed, true);
+  ASSERT_EQ(folds.size(), 8u); // four creases a box pleat
+  for (const CreaseEdge& edge : crease_edges(folds, 0))
+    EXPECT_EQ(edge.stiffness_factor, 30.0);
 }
 
 } // namespace

@@ -8,6 +8,7 @@
 #include "fem/forms/bending_forms.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 namespace sartor::fem {
@@ -16,17 +17,20 @@ namespace {
 
 // The mesh's creases by edge (lower vertex, higher vertex). Throws
 // InputError for a crease that is not an interior edge, or one given twice.
-std::map<std::pair<int, int>, double> crease_angles(const TriangleMesh& mesh) {
+std::map<std::pair<int, int>, CreaseEdge> creases_by_edge(const TriangleMesh& mesh) {
   std::map<std::pair<int, int>, double> angles;
   for (const Hinge& hinge : interior_edges(mesh))
     angles[std::minmax(hinge.vertices[0], hinge.vertices[1])] = 0.0;
-  std::map<std::pair<int, int>, double> creases;
+  std::map<std::pair<int, int>, CreaseEdge> creases;
   for (const CreaseEdge& crease : mesh.creases) {
     const auto edge = std::minmax(crease.a, crease.b);
     if (!angles.count(edge))
       throw InputError("cloth: crease " + std::to_string(crease.a) + "-" +
                        std::to_string(crease.b) + " is not an interior edge of the mesh");
-    if (!creases.emplace(edge, crease.rest_angle).second)
+    if (!(crease.stiffness_factor > 0.0) || !std::isfinite(crease.stiffness_factor))
+      throw InputError("cloth: crease " + std::to_string(crease.a) + "-" +
+                       std::to_string(crease.b) + " has a stiffness factor that is not positive");
+    if (!creases.emplace(edge, crease).second)
       throw InputError("cloth: crease " + std::to_string(crease.a) + "-" +
                        std::to_string(crease.b) + " is given twice");
   }
@@ -36,7 +40,7 @@ std::map<std::pair<int, int>, double> crease_angles(const TriangleMesh& mesh) {
 // The hinges of the owned triangle with the lower index.
 std::unique_ptr<Form> hinge_form(const BendingSetUp& setup, element::BendingModel model) {
   const TriangleMesh& mesh = setup.mesh;
-  const std::map<std::pair<int, int>, double> creases = crease_angles(mesh);
+  const std::map<std::pair<int, int>, CreaseEdge> creases = creases_by_edge(mesh);
   std::vector<LocalHinge> hinges;
   for (const Hinge& hinge : interior_edges(mesh)) {
     const auto first = std::size_t(std::min(hinge.triangles[0], hinge.triangles[1]));
@@ -57,7 +61,9 @@ std::unique_ptr<Form> hinge_form(const BendingSetUp& setup, element::BendingMode
         local.corners[side][k] = int(hinge.corners[side][k]);
     }
     const auto crease = creases.find(std::minmax(hinge.vertices[0], hinge.vertices[1]));
-    local.rest = element::hinge_rest(uv[0], uv[1], crease == creases.end() ? 0.0 : crease->second);
+    const bool creased = crease != creases.end();
+    local.rest = element::hinge_rest(uv[0], uv[1], creased ? crease->second.rest_angle : 0.0);
+    if (creased) local.stiffness *= crease->second.stiffness_factor;
     hinges.push_back(local);
   }
   return std::make_unique<HingeBendingForm>(model, std::move(hinges), mesh.material_uv);
