@@ -111,9 +111,17 @@ PetscErrorCode IncrementalSystem::refresh_couplings(Vec x) {
   PetscCall(problem_.create_jacobian(&J));
   jacobian_version_ = problem_.coupling_version();
   PetscCall(attach_near_null_space(x, J));
-  PetscCall(SNESSetJacobian(snes_, J, J, form_jacobian, this));
-  if (snes_without_potential_)
-    PetscCall(SNESSetJacobian(snes_without_potential_, J, J, form_jacobian, this));
+  // A preconditioner set up for the old structure starts afresh: on several
+  // ranks PCTELESCOPE would reuse its gathered matrix, whose nonzeros differ.
+  for (SNES snes : {snes_, snes_without_potential_}) {
+    if (!snes) continue;
+    KSP ksp = nullptr;
+    PC pc = nullptr;
+    PetscCall(SNESSetJacobian(snes, J, J, form_jacobian, this));
+    PetscCall(SNESGetKSP(snes, &ksp));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCReset(pc));
+  }
   PetscCall(MatDestroy(&jacobian_));
   jacobian_ = J;
   PetscFunctionReturn(0);
