@@ -50,24 +50,38 @@ double fold_angle(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& 
   return std::acos(std::clamp(normals[0].dot(normals[1]), -1.0, 1.0));
 }
 
-TEST(Creases, PrefoldedPanelSettlesAtTheRestAngleUnderNoLoad) {
-  const double rest = 100.0 * M_PI / 180.0;
-  const garment::Pattern pattern = garment::parse_pattern(creased_square, "square");
+// The square of `text` meshed at 4 cm with its crease, its flap turned by
+// `turned` times the crease's angle; `flat`: the flat mesh.
+struct CreasedSquare {
+  TriangleMesh flat, mesh;
+  double stiffness_factor = 0.0;
+};
+
+CreasedSquare creased(const std::string& text, double turned) {
+  const garment::Pattern pattern = garment::parse_pattern(text, "square");
   PanelMeshOptions options;
   options.edge_length = 0.04;
   const PanelMesh meshed = mesh_panel(pattern.panels[0], options);
   std::vector<garment::MeshedFold> folds = meshed_folds(pattern.panels[0], meshed, true);
-  ASSERT_EQ(folds.size(), 1u);
-  TriangleMesh mesh = meshed.mesh;
-  mesh.creases = garment::crease_edges(folds, 0);
+  EXPECT_EQ(folds.size(), 1u);
+  CreasedSquare square{meshed.mesh, meshed.mesh, folds.at(0).stiffness_factor};
+  square.mesh.creases = garment::crease_edges(folds, 0);
+  folds[0].rotation *= turned;
+  square.mesh.positions = garment::prefold(meshed.mesh, folds);
+  return square;
+}
+
+TEST(Creases, PrefoldedPanelSettlesAtTheRestAngleUnderNoLoad) {
+  const double rest = 100.0 * M_PI / 180.0;
   // Start folded only part of the way (60 of 100 degrees): the crease's
   // rest angle must take it the rest.
-  folds[0].rotation *= 0.6;
-  mesh.positions = garment::prefold(meshed.mesh, folds);
+  const CreasedSquare square = creased(creased_square, 0.6);
+  const TriangleMesh& mesh = square.mesh;
+  const TriangleMesh& flat = square.flat;
   // The stationary half's vertices left of x = 0.05 are held.
   std::vector<int> pins;
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (meshed.mesh.positions[v].x() < 0.05) pins.push_back(int(v));
+    if (flat.positions[v].x() < 0.05) pins.push_back(int(v));
   ClothMaterial cloth(
       {TensionCurve::linear(32600, "test"), TensionCurve::linear(32600, "test"), 4000.0, 0.0});
   cloth.bending_model = element::BendingModel::discrete_shell; // the model with creases
@@ -95,7 +109,7 @@ TEST(Creases, PrefoldedPanelSettlesAtTheRestAngleUnderNoLoad) {
   // Folded towards the outside (+z, the triangles' side), not through.
   double z = 0.0;
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (meshed.mesh.positions[v].x() > 0.15) z = std::max(z, solved[v].z());
+    if (flat.positions[v].x() > 0.15) z = std::max(z, solved[v].z());
   EXPECT_GT(z, 0.05 * std::sin(rest));
 }
 
@@ -110,17 +124,9 @@ TEST(Creases, APressedCreaseIsAsManyTimesAsStiff) {
       const std::string plain = R"("toward": "outside"})";
       text.replace(text.find(plain), plain.size(), R"("toward": "outside", "pressed": 25})");
     }
-    const garment::Pattern pattern = garment::parse_pattern(text, "square");
-    PanelMeshOptions options;
-    options.edge_length = 0.04;
-    const PanelMesh meshed = mesh_panel(pattern.panels[0], options);
-    std::vector<garment::MeshedFold> folds = meshed_folds(pattern.panels[0], meshed, true);
-    ASSERT_EQ(folds.size(), 1u);
-    EXPECT_EQ(folds[0].stiffness_factor, pressed ? 25.0 : 1.0);
-    TriangleMesh mesh = meshed.mesh;
-    mesh.creases = garment::crease_edges(folds, 0);
-    folds[0].rotation *= 120.0 / 100.0;
-    mesh.positions = garment::prefold(meshed.mesh, folds);
+    const CreasedSquare square = creased(text, 120.0 / 100.0);
+    EXPECT_EQ(square.stiffness_factor, pressed ? 25.0 : 1.0);
+    const TriangleMesh& mesh = square.mesh;
     ClothMaterial cloth(
         {TensionCurve::linear(32600, "test"), TensionCurve::linear(32600, "test"), 4000.0, 0.0});
     cloth.bending_model = element::BendingModel::discrete_shell;
