@@ -53,27 +53,24 @@ std::vector<OptionSpec> wrap_option_specs() {
 // of 0.3 N), or with --analysis dynamic its dynamics (a fall with kinetic
 // damping, then the static settle; converged, but with 50 edges through
 // the arm, no edge samples).
-const std::map<std::string, std::string>& wrap_drape_defaults(bool dynamic) {
-  static const std::map<std::string, std::string> statics{{"density", "0.25"},
-                                                          {"bending-stiffness", "1.5e-5"},
-                                                          {"bending-model", "discrete_shell"},
-                                                          {"contact-stiffness-factor", "5"},
-                                                          {"membrane-psd", "true"},
-                                                          {"bending-psd", "true"},
-                                                          {"contact-edge-spacing", "0.015"}};
-  static const std::map<std::string, std::string> dynamics{{"density", "0.25"},
-                                                           {"bending-stiffness", "1.5e-5"},
-                                                           {"bending-model", "discrete_shell"},
-                                                           {"contact-stiffness-factor", "5"},
-                                                           {"membrane-psd", "true"},
-                                                           {"bending-psd", "true"},
-                                                           {"analysis", "dynamic"},
-                                                           {"time-end", "0.5"},
-                                                           {"time-step", "0.01"},
-                                                           {"output-interval", "0.1"},
-                                                           {"kinetic-damping", "true"},
-                                                           {"settle", "true"}};
-  return dynamic ? dynamics : statics;
+std::map<std::string, std::string> wrap_drape_defaults(bool dynamic) {
+  std::map<std::string, std::string> defaults{{"density", "0.25"},
+                                              {"bending-stiffness", "1.5e-5"},
+                                              {"bending-model", "discrete_shell"},
+                                              {"contact-stiffness-factor", "5"},
+                                              {"membrane-psd", "true"},
+                                              {"bending-psd", "true"}};
+  if (dynamic) {
+    defaults.insert({{"analysis", "dynamic"},
+                     {"time-end", "0.5"},
+                     {"time-step", "0.01"},
+                     {"output-interval", "0.1"},
+                     {"kinetic-damping", "true"},
+                     {"settle", "true"}});
+  } else {
+    defaults.insert({"contact-edge-spacing", "0.015"});
+  }
+  return defaults;
 }
 
 // Options of `sartor run` that wrapping answers itself: the mesh and its

@@ -39,10 +39,7 @@ PetscErrorCode ClothProblem::contact_step_bound(Vec x, Vec direction, double* bo
   PetscCall(VecRestoreArrayRead(local_x_, &values));
   PetscCall(DMRestoreLocalVector(dm_, &local_direction));
   PetscCallMPI(MPIU_Allreduce(&smallest, bound, 1, MPI_DOUBLE, MPI_MIN, comm_));
-  const bool self_contact_on =
-      self_contact_form_ && std::find(disabled_forms_.begin(), disabled_forms_.end(),
-                                      self_contact_form_->name()) == disabled_forms_.end();
-  if (self_contact_on) {
+  if (self_contact_form_ && !disabled(self_contact_form_->name())) {
     double self_bound = 1.0;
     PetscCall(self_contact_form_->step_bound(x, direction, &self_bound));
     *bound = std::min(*bound, self_bound);

@@ -268,9 +268,7 @@ template <class F>
 std::vector<F*> ClothProblem::enabled(const std::vector<std::unique_ptr<F>>& all) const {
   std::vector<F*> forms;
   for (const auto& form : all) {
-    if (form->active() && std::find(disabled_forms_.begin(), disabled_forms_.end(), form->name()) ==
-                              disabled_forms_.end())
-      forms.push_back(form.get());
+    if (form->active() && !disabled(form->name())) forms.push_back(form.get());
   }
   return forms;
 }

@@ -34,6 +34,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -401,6 +402,10 @@ private:
   fem::SelfContactForm* self_contact_form_ = nullptr;
   std::vector<std::pair<int, int>> seam_links_; // sewn vertex pairs, for self-contact
   std::vector<std::string> disabled_forms_;
+  // Whether enable_form left out the form of that name.
+  bool disabled(const char* name) const {
+    return std::find(disabled_forms_.begin(), disabled_forms_.end(), name) != disabled_forms_.end();
+  }
   // The forms of `all` that are enabled and active (fem/form.hpp).
   template <class F>
   std::vector<F*> enabled(const std::vector<std::unique_ptr<F>>& all) const;
