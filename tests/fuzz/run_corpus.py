@@ -16,9 +16,10 @@ overflows and huge or negative counts, keys given twice, cuts, garbage and
 non-UTF-8 bytes. The mutations are chosen to make every input invalid.
 
 Each input runs with a time limit and an address-space limit (an unbounded
-allocation fails instead of exhausting the machine), two at a time. The
-script prints one line per failure and a count per outcome, and exits 1
-when any input was not answered cleanly.
+allocation fails instead of exhausting the machine), four at a time (a
+run mostly waits on the start of Open MPI). The script prints one line per
+failure and a count per outcome, and exits 1 when any input was not
+answered cleanly.
 """
 import concurrent.futures
 import os
@@ -391,7 +392,7 @@ def main():
             print(case.name, " ".join(case.argv))
         return
     counts = {}
-    with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
+    with concurrent.futures.ThreadPoolExecutor(max_workers=4) as pool:
         results = list(pool.map(lambda c: run(sartor, c), cases))
     for case, (outcome, detail) in zip(cases, results):
         counts[outcome] = counts.get(outcome, 0) + 1

@@ -1,13 +1,18 @@
 #!/usr/bin/env bash
-# kill -9 at pseudo-random moments and resume (docs/reliability.md#checkpoints-and-restart):
-# a static run in 40 load steps (the slit annular plate), a dynamic run (the
-# swinging sheet), a static drape (the skirt: sewing
-# stages and contact rounds), the same on two refinement levels (killed at
-# random moments, and once within the second level; a dynamic drape on two
-# levels too), a
-# dynamic drape (the skirt sewn in time), and a static drape worn for 40 s
-# on 2 ranks (killed once within the wear after its first take-off) are
-# each run once uninterrupted, then again with checkpoints, killed with
+# kill -9 at pseudo-random moments and resume (docs/reliability.md#checkpoints-and-restart),
+# one SCENARIO at a time (each its own ctest test, so that only the wear's
+# holds two cores):
+#   plate_sheet    a static run in 40 load steps (the slit annular plate)
+#                  and a dynamic run (the swinging sheet);
+#   skirt          a static drape (the skirt: sewing stages and contact
+#                  rounds), the same on two refinement levels (killed at
+#                  random moments, and once within the second level), and
+#                  checkpoints resumed by the wrong kind of run refused;
+#   skirt_dynamic  a dynamic drape (the skirt sewn in time), on one level
+#                  and killed within the second of two;
+#   wear           a static drape worn for 40 s on 2 ranks (killed once
+#                  within the wear after its first take-off).
+# Each is run once uninterrupted, then again with checkpoints, killed with
 # SIGKILL a few times, shortly after checkpoints drawn from a fixed seed (the
 # first after its first checkpoint), resumed with --restart into the same output
 # folder each time, and finally let finish. The final positions, and the
@@ -16,10 +21,14 @@
 # force; the displacements are 0.05 to 1 m), and the static run's load steps
 # (load factors, Newton iterations) and the wear's tables must be the
 # uninterrupted run's. The differences are printed.
-#   kill_resume.sh SARTOR PROJECT_DIR WORKDIR MPIEXEC
+#   kill_resume.sh SARTOR PROJECT_DIR WORKDIR MPIEXEC SCENARIO
 set -euo pipefail
-[ $# -eq 4 ] || { echo "usage: $0 SARTOR PROJECT_DIR WORKDIR MPIEXEC" >&2; exit 2; }
-sartor=$1 project=$2 work=$3
+[ $# -eq 5 ] || { echo "usage: $0 SARTOR PROJECT_DIR WORKDIR MPIEXEC SCENARIO" >&2; exit 2; }
+sartor=$1 project=$2 work=$3 scenario=$5
+case "$scenario" in
+  plate_sheet | skirt | skirt_dynamic | wear) ;;
+  *) echo "$0: unknown scenario '$scenario' (plate_sheet, skirt, skirt_dynamic or wear)" >&2; exit 2 ;;
+esac
 on_two_ranks=("$4" --oversubscribe -n 2)
 [ "$(id -u)" = 0 ] && on_two_ranks+=(--allow-run-as-root)
 python=/usr/bin/python3
@@ -115,15 +124,8 @@ sheet=("$project/cases/fe/hanging_sheet_dynamic.yaml" --mesh-nx 12 --mesh-ny 12 
 skirt=("$project/cases/patterns/skirt.json" --edge-length 0.08 --no-plot)
 skirt_levels=("${skirt[@]}" --levels 2)
 skirt_dynamic=("${skirt[@]}" --analysis dynamic --time-end 0.2 --sewing-time 0.1 -settle false)
+skirt_dynamic_levels=("${skirt_levels[@]}" --analysis dynamic --time-end 0.2 --sewing-time 0.1 -settle false)
 
-"$sartor" run "${plate[@]}" --output "$work/plate_whole" > "$work/plate_whole.log"
-interrupted plate 3 run "${plate[@]}" --checkpoint-interval 1
-"$sartor" run "${sheet[@]}" --output "$work/sheet_whole" > "$work/sheet_whole.log"
-interrupted sheet 3 run "${sheet[@]}" --checkpoint-interval 0.05
-"$sartor" drape "${skirt[@]}" --output "$work/skirt_whole" > "$work/skirt_whole.log"
-interrupted skirt 3 drape "${skirt[@]}" --checkpoint-interval 1
-"$sartor" drape "${skirt_levels[@]}" --output "$work/skirt_levels_whole" > "$work/skirt_levels_whole.log"
-interrupted skirt_levels 2 drape "${skirt_levels[@]}" --checkpoint-interval 1
 # Within the finer level of a drape on two levels: killed once the first
 # checkpoint within level 2 is written (/state's drape_level), resumed from
 # there (static: after a sewing stage; dynamic: at a multiple of 0.02 s).
@@ -141,71 +143,100 @@ killed_in_level2() {
   grep -q "resuming from .* within level 2 of 2" "$out.log" ||
     { cat "$out.log" >&2; echo "$name: did not resume within level 2" >&2; exit 1; }
 }
-skirt_dynamic_levels=("${skirt_levels[@]}" --analysis dynamic --time-end 0.2 --sewing-time 0.1 -settle false)
-killed_in_level2 skirt_level2 "${skirt_levels[@]}" --checkpoint-interval 1
-"$sartor" drape "${skirt_dynamic_levels[@]}" --output "$work/skirt_dynamic_levels_whole" \
-  > "$work/skirt_dynamic_levels_whole.log"
-killed_in_level2 skirt_dynamic_level2 "${skirt_dynamic_levels[@]}" --checkpoint-interval 0.02
-# A checkpoint within a level resumes only a drape with the same levels.
-if "$sartor" drape "${skirt[@]}" --levels 1 --restart "$work/skirt_level2/checkpoint.h5" \
-  --output "$work/wrong_levels" > "$work/wrong_levels.log" 2>&1; then
-  echo "a checkpoint within level 2 resumed a drape on one level" >&2
-  exit 1
-fi
-grep -q "within a level of a drape on several levels; resume it with the same --levels" \
-  "$work/wrong_levels.log" || { cat "$work/wrong_levels.log" >&2; exit 1; }
 
-"$sartor" drape "${skirt_dynamic[@]}" --output "$work/skirt_dynamic_whole" \
-  > "$work/skirt_dynamic_whole.log"
-interrupted skirt_dynamic 2 drape "${skirt_dynamic[@]}" --checkpoint-interval 0.02
+# refused NAME MESSAGE ARGS...: sartor ARGS must fail, its log holding MESSAGE.
+refused() {
+  local name=$1 message=$2
+  shift 2
+  if "$sartor" "$@" --output "$work/$name" > "$work/$name.log" 2>&1; then
+    echo "$name: sartor $* was not refused" >&2
+    exit 1
+  fi
+  grep -q -- "$message" "$work/$name.log" || { cat "$work/$name.log" >&2; exit 1; }
+}
+
+# The plate in load steps and the sheet's swing.
+run_plate_sheet() {
+  "$sartor" run "${plate[@]}" --output "$work/plate_whole" > "$work/plate_whole.log"
+  interrupted plate 3 run "${plate[@]}" --checkpoint-interval 1
+  "$sartor" run "${sheet[@]}" --output "$work/sheet_whole" > "$work/sheet_whole.log"
+  interrupted sheet 3 run "${sheet[@]}" --checkpoint-interval 0.05
+}
+
+# The static drape on one and on two levels, and killed within level 2.
+run_skirt() {
+  "$sartor" drape "${skirt[@]}" --output "$work/skirt_whole" > "$work/skirt_whole.log"
+  interrupted skirt 3 drape "${skirt[@]}" --checkpoint-interval 1
+  "$sartor" drape "${skirt_levels[@]}" --output "$work/skirt_levels_whole" > "$work/skirt_levels_whole.log"
+  interrupted skirt_levels 2 drape "${skirt_levels[@]}" --checkpoint-interval 1
+  killed_in_level2 skirt_level2 "${skirt_levels[@]}" --checkpoint-interval 1
+  # A checkpoint within a level resumes only a drape with the same levels;
+  # one of another kind of run is refused, with its file named.
+  refused wrong_levels "within a level of a drape on several levels; resume it with the same --levels" \
+    drape "${skirt[@]}" --levels 1 --restart "$work/skirt_level2/checkpoint.h5"
+  refused wrong "skirt/checkpoint.h5: the checkpoint is not of an --analysis dynamic run" \
+    run "${sheet[@]}" --restart "$work/skirt/checkpoint.h5"
+}
+
+# The dynamic drape on one level, and killed within level 2 of two.
+run_skirt_dynamic() {
+  "$sartor" drape "${skirt_dynamic_levels[@]}" --output "$work/skirt_dynamic_levels_whole" \
+    > "$work/skirt_dynamic_levels_whole.log"
+  killed_in_level2 skirt_dynamic_level2 "${skirt_dynamic_levels[@]}" --checkpoint-interval 0.02
+  "$sartor" drape "${skirt_dynamic[@]}" --output "$work/skirt_dynamic_whole" \
+    > "$work/skirt_dynamic_whole.log"
+  interrupted skirt_dynamic 2 drape "${skirt_dynamic[@]}" --checkpoint-interval 0.02
+}
 
 # Within the wear after the drape, on 2 ranks: killed (every rank) once a
 # checkpoint within the wear holds its first take-off (/state: kind "wear",
 # one take-off), resumed from there on 2 ranks: the drape from the
 # checkpoint's /before, the wear from its state. 40 s of wear in 15 steps,
 # taken off at 8 s and at 40 s (about 35 s of wall time).
-skirt_wear=("${skirt[@]}" --wear-time 40 --take-off-times 8,40 --recovery-time 30
-  --wear-first-step 2 --creep-tolerance 1e-2 -snes_max_it 2000)
-"${on_two_ranks[@]}" "$sartor" drape "${skirt_wear[@]}" --output "$work/skirt_wear_whole" \
-  > "$work/skirt_wear_whole.log"
-out="$work/skirt_wear"
-"${on_two_ranks[@]}" "$sartor" drape "${skirt_wear[@]}" --checkpoint-interval 1 --output "$out" \
-  > "$out.log" 2>&1 &
-pid=$!
-await_checkpoint "$out" "$pid" state 'state.get("kind") == "wear" and len(state["take_offs"]) >= 1' ||
-  { cat "$out.log" >&2; echo "skirt_wear: no checkpoint within the wear" >&2; exit 1; }
-pkill -9 -f -- "--output $out\$" || true # the ranks, as a node failure would
-kill -9 "$pid" 2> /dev/null || true
-wait "$pid" 2> /dev/null || true
-"${on_two_ranks[@]}" "$sartor" drape "${skirt_wear[@]}" --checkpoint-interval 1 \
-  --restart "$out/checkpoint.h5" --output "$out" >> "$out.log" 2>&1 ||
-  { cat "$out.log" >&2; echo "skirt_wear: the resumed run failed" >&2; exit 1; }
-grep -q "resuming the wear from .* at t = " "$out.log" ||
-  { cat "$out.log" >&2; echo "skirt_wear: did not resume within the wear" >&2; exit 1; }
-# A checkpoint within the wear resumes only a drape with the wear.
-if "$sartor" drape "${skirt[@]}" --restart "$out/checkpoint.h5" --output "$work/wrong_wear" \
-  > "$work/wrong_wear.log" 2>&1; then
-  echo "a checkpoint within the wear resumed a drape without --wear-time" >&2
-  exit 1
-fi
-grep -q "was taken within a wear; resume it with the same --wear-time" "$work/wrong_wear.log" ||
-  { cat "$work/wrong_wear.log" >&2; exit 1; }
+run_wear() {
+  local skirt_wear=("${skirt[@]}" --wear-time 40 --take-off-times 8,40 --recovery-time 30
+    --wear-first-step 2 --creep-tolerance 1e-2 -snes_max_it 2000)
+  "${on_two_ranks[@]}" "$sartor" drape "${skirt_wear[@]}" --output "$work/skirt_wear_whole" \
+    > "$work/skirt_wear_whole.log"
+  local out="$work/skirt_wear"
+  "${on_two_ranks[@]}" "$sartor" drape "${skirt_wear[@]}" --checkpoint-interval 1 --output "$out" \
+    > "$out.log" 2>&1 &
+  local pid=$!
+  await_checkpoint "$out" "$pid" state 'state.get("kind") == "wear" and len(state["take_offs"]) >= 1' ||
+    { cat "$out.log" >&2; echo "skirt_wear: no checkpoint within the wear" >&2; exit 1; }
+  pkill -9 -f -- "--output $out\$" || true # the ranks, as a node failure would
+  kill -9 "$pid" 2> /dev/null || true
+  wait "$pid" 2> /dev/null || true
+  "${on_two_ranks[@]}" "$sartor" drape "${skirt_wear[@]}" --checkpoint-interval 1 \
+    --restart "$out/checkpoint.h5" --output "$out" >> "$out.log" 2>&1 ||
+    { cat "$out.log" >&2; echo "skirt_wear: the resumed run failed" >&2; exit 1; }
+  grep -q "resuming the wear from .* at t = " "$out.log" ||
+    { cat "$out.log" >&2; echo "skirt_wear: did not resume within the wear" >&2; exit 1; }
+  # A checkpoint within the wear resumes only a drape with the wear.
+  refused wrong_wear "was taken within a wear; resume it with the same --wear-time" \
+    drape "${skirt[@]}" --restart "$out/checkpoint.h5"
+}
 
-# A checkpoint of another kind of run is refused, with its file named.
-if "$sartor" run "${sheet[@]}" --restart "$work/skirt/checkpoint.h5" --output "$work/wrong" \
-  > "$work/wrong.log" 2>&1; then
-  echo "a static drape's checkpoint resumed a dynamic run" >&2
-  exit 1
-fi
-grep -q "skirt/checkpoint.h5: the checkpoint is not of an --analysis dynamic run" "$work/wrong.log" ||
-  { cat "$work/wrong.log" >&2; exit 1; }
+case "$scenario" in
+  plate_sheet) run_plate_sheet ;;
+  skirt) run_skirt ;;
+  skirt_dynamic) run_skirt_dynamic ;;
+  wear) run_wear ;;
+esac
 
-"$python" - "$work" <<'PY'
+"$python" - "$work" "$scenario" <<'PY'
 import csv, json, sys
 import h5py, numpy as np
-work = sys.argv[1]
+work, scenario = sys.argv[1:3]
 tolerance = 1e-6  # m
 failures = []
+# The resumed runs of the scenario and the uninterrupted runs they must equal.
+resumed = {"plate_sheet": (("plate", "plate"), ("sheet", "sheet")),
+           "skirt": (("skirt", "skirt"), ("skirt_levels", "skirt_levels"),
+                     ("skirt_level2", "skirt_levels")),
+           "skirt_dynamic": (("skirt_dynamic_level2", "skirt_dynamic_levels"),
+                             ("skirt_dynamic", "skirt_dynamic")),
+           "wear": ()}[scenario]
 
 def largest_difference(name, whole):
     with h5py.File(f"{work}/{whole}_whole/result.h5") as a, h5py.File(f"{work}/{name}/result.h5") as b:
@@ -213,23 +244,22 @@ def largest_difference(name, whole):
         moved = np.abs(x - a["mesh/initial_position"][()]).max() if "mesh/initial_position" in a else None
         return np.abs(x - y).max(), moved
 
-for name, whole in (("plate", "plate"), ("sheet", "sheet"), ("skirt", "skirt"),
-                    ("skirt_levels", "skirt_levels"), ("skirt_level2", "skirt_levels"),
-                    ("skirt_dynamic_level2", "skirt_dynamic_levels"),
-                    ("skirt_dynamic", "skirt_dynamic")):
+for name, whole in resumed:
     diff, moved = largest_difference(name, whole)
     print(f"{name}: resumed final positions differ by {diff:.3g} m from the uninterrupted run's"
           + (f" (largest displacement {moved:.3g} m)" if moved is not None else ""))
     if not diff <= tolerance:
         failures.append(f"{name}: final positions differ by {diff:.3g} m")
 
-steps = [[(s["load_factor"], s["newton_iterations"]) for s in json.load(open(f"{work}/{n}/summary.json"))["load_steps"]]
-         for n in ("plate_whole", "plate")]
-print(f"plate: {len(steps[1])} load steps resumed, {len(steps[0])} uninterrupted")
-if steps[0] != steps[1]:
-    failures.append(f"plate: load steps {steps[1]} differ from the uninterrupted run's {steps[0]}")
+if scenario == "plate_sheet":
+    steps = [[(s["load_factor"], s["newton_iterations"])
+              for s in json.load(open(f"{work}/{n}/summary.json"))["load_steps"]]
+             for n in ("plate_whole", "plate")]
+    print(f"plate: {len(steps[1])} load steps resumed, {len(steps[0])} uninterrupted")
+    if steps[0] != steps[1]:
+        failures.append(f"plate: load steps {steps[1]} differ from the uninterrupted run's {steps[0]}")
 
-for name in ("sheet", "skirt_dynamic"):
+for name in {"plate_sheet": ("sheet",), "skirt_dynamic": ("skirt_dynamic",)}.get(scenario, ()):
     with h5py.File(f"{work}/{name}_whole/series.h5") as a, h5py.File(f"{work}/{name}/series.h5") as b:
         steps = sorted(a["steps"])
         if sorted(b["steps"]) != steps:
@@ -249,7 +279,7 @@ for name in ("sheet", "skirt_dynamic"):
 
 # The wear: every row of wear.csv and takeoff.csv, and every state of
 # wear/series.h5 and takeoff/series.h5.
-for table in ("wear.csv", "takeoff.csv"):
+for table in ("wear.csv", "takeoff.csv") if scenario == "wear" else ():
     rows = [list(csv.reader(open(f"{work}/{n}/{table}"))) for n in ("skirt_wear_whole", "skirt_wear")]
     def difference(p, q):  # numbers, or the certificate's verdict
         try:
@@ -262,7 +292,7 @@ for table in ("wear.csv", "takeoff.csv"):
           f"values differ by at most {worst:.3g} (relative, of those above 1)")
     if len(rows[0]) != len(rows[1]) or not worst <= 1e-9:
         failures.append(f"skirt_wear: {table} differs from the uninterrupted run's")
-for series in ("wear", "takeoff"):
+for series in ("wear", "takeoff") if scenario == "wear" else ():
     with h5py.File(f"{work}/skirt_wear_whole/{series}/series.h5") as a, \
          h5py.File(f"{work}/skirt_wear/{series}/series.h5") as b:
         steps = sorted(a["steps"])
