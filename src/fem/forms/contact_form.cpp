@@ -6,6 +6,7 @@
 #include "fem/forms/contact_form.hpp"
 
 #include "common/error.hpp"
+#include "contact/conservative_advance.hpp"
 #include "element/membrane.hpp"
 #include "fem/cloth_problem.hpp"
 #include "fem/forms/local_arrays.hpp"
@@ -244,29 +245,12 @@ double ContactForm::vertex_step_bound(std::size_t body, const Eigen::Vector3d& p
   const double length = motion.norm();
   const double slope = b.shape().slope_bound();
   if (length == 0.0) return 1.0;
-  double distance = b.distance(p, clock());
+  const double distance = b.distance(p, clock());
   if (distance <= 0.0) return 1.0; // inside: the penalty pushes it out
-  // Never closer than a tenth of the offset in one step (nor than half its
-  // distance when it is closer already): the penalty, which acts within the
-  // offset, has the room to hold it.
-  const double level = std::min(0.5 * distance, 0.1 * settings().offset);
-  // Conservative advancement: the distance falls by at most slope * |motion|
-  // per unit of t, so t may advance by (distance - level) / (slope |motion|)
-  // at a time without crossing the level. The advances shrink towards the
-  // first time the level is reached; stopping only once they are below
-  // round-off, or after a fixed count, keeps t a continuous function of the
-  // position and the motion (a coarser stopping rule would make the step
-  // jump where a vertex needs one advance more, and so the iterates of two
-  // machines part at round-off).
-  double t = 0.0;
-  for (int k = 0; k < 50; ++k) {
-    const double room = std::max(0.0, distance - level) / (slope * length);
-    if (t + room >= 1.0) return 1.0;
-    t += room;
-    if (room <= 1e-14) break;
-    distance = b.distance(p + t * motion, clock());
-  }
-  return t;
+  // The distance falls by at most slope * |motion| per unit of t.
+  return contact::conservative_advance(
+      [&](double t) { return t == 0.0 ? distance : b.distance(p + t * motion, clock()); },
+      contact::closest_allowed(distance, settings().offset), slope * length, 1.0);
 }
 
 double ContactForm::step_bound(const PetscScalar* values, const PetscScalar* motions) const {

@@ -1,5 +1,6 @@
 #include "fem/forms/self_contact_form.hpp"
 
+#include "contact/conservative_advance.hpp"
 #include "fem/cloth_problem.hpp"
 #include "fem/petsc_call.hpp"
 
@@ -19,31 +20,6 @@ double mean_edge_length(const TriangleMesh& mesh) {
                  .norm();
   }
   return mesh.triangles.empty() ? 0.0 : sum / double(3 * mesh.triangles.size());
-}
-
-// A pair may come no closer within a step than this (the bodies' rule,
-// fem/cloth_contact.cpp).
-double closest_allowed(double distance, double offset) {
-  return std::min(0.5 * distance, 0.1 * offset);
-}
-
-// The largest t in [0, limit] that keeps the distance of a pair moving by at
-// most `motion` per unit t above closest_allowed(d(0)): conservative
-// advancement, each advance no longer than the distance left can shrink.
-template <class Distance>
-double advance(const Distance& distance, double motion, double offset, double limit) {
-  const double start = distance(0.0);
-  if (!(motion > 0.0) || !(start > 0.0)) return limit;
-  const double floor = closest_allowed(start, offset);
-  double t = 0.0;
-  for (int k = 0; k < 200 && t < limit; ++k) {
-    const double d = distance(t);
-    // Advancing by 0.9 of the room left never reaches the floor.
-    const double room = d - floor;
-    if (room <= 1e-3 * floor) return t;
-    t = std::min(limit, t + 0.9 * room / motion);
-  }
-  return t;
 }
 
 } // namespace
@@ -254,7 +230,10 @@ PetscErrorCode SelfContactForm::step_bound(Vec x, Vec direction, double* bound) 
       return element::closest_point_on_triangle(at(pair.vertex), at(t[0]), at(t[1]), at(t[2]))
           .distance;
     };
-    smallest = std::min(smallest, advance(distance, motion, settings_.offset, smallest));
+    const double start = distance(0.0);
+    if (start > 0.0) // touching: the penalty pushes it apart
+      smallest = contact::conservative_advance(
+          distance, contact::closest_allowed(start, settings_.offset), motion, smallest);
   }
   PetscCallMPI(MPIU_Allreduce(&smallest, bound, 1, MPI_DOUBLE, MPI_MIN, problem_.comm()));
   PetscFunctionReturn(0);
