@@ -87,8 +87,13 @@ PetscErrorCode IncrementalSystem::newton_direction(Vec x, Vec gradient, double m
   PetscCall(KSPSetOperators(ksp, jacobian_, jacobian_));
   PetscCall(KSPSetErrorIfNotConverged(ksp, PETSC_FALSE));
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
-  const PetscErrorCode failed = KSPSolve(ksp, gradient, direction);
+  int failed = KSPSolve(ksp, gradient, direction) != 0;
   PetscCall(PetscPopErrorHandler());
+  // An error raised on some ranks only (after the solve's collective parts)
+  // must end the step on every rank, or the others wait in the next
+  // collective call for ever.
+  PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX,
+                              PetscObjectComm(reinterpret_cast<PetscObject>(x))));
   *solved = false;
   if (failed) PetscFunctionReturn(0);
   PetscCall(KSPGetConvergedReason(ksp, &reason));
