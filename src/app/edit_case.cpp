@@ -196,27 +196,6 @@ std::vector<DragRequest> read_drags(const std::string& path, const YAML::Node& n
   return drags;
 }
 
-// The points a move moves, as (panel, i, 0) for corner i (the start of
-// line i), or (panel, i, c) for line i's control point c.
-std::vector<std::tuple<std::size_t, std::size_t, int>> moved_points(const garment::Pattern& pattern,
-                                                                    const CornerMove& move) {
-  std::vector<std::tuple<std::size_t, std::size_t, int>> points;
-  for (std::size_t panel = 0; panel < pattern.panels.size(); ++panel) {
-    const auto& outline = pattern.panels[panel].outline;
-    for (std::size_t i = 0; i < outline.size(); ++i) {
-      if (outline[i].id != move.line) continue;
-      if (move.control > 0) {
-        points.emplace_back(panel, i, move.control);
-        continue;
-      }
-      if (move.which != CornerMove::Which::end) points.emplace_back(panel, i, 0);
-      if (move.which != CornerMove::Which::start)
-        points.emplace_back(panel, (i + 1) % outline.size(), 0);
-    }
-  }
-  return points;
-}
-
 // A non-empty list of moves; a corner two moves name (the shared end of two
 // lines moved together) moves once, and two different moves of it (or of a
 // control point) are an error.
@@ -227,19 +206,21 @@ std::vector<CornerMove> read_moves(const std::string& path, const YAML::Node& mo
   if (!moves.IsSequence() || moves.size() == 0)
     edit_error(path, moves, key, "must be a non-empty list of moves");
   std::vector<CornerMove> result;
-  std::map<std::tuple<std::size_t, std::size_t, int>, CornerMove> points;
+  std::map<garment::OutlinePoint, CornerMove> points;
   for (std::size_t m = 0; m < moves.size(); ++m) {
     const std::string move_key = key + "[" + std::to_string(m) + "]";
-    result.push_back(read_move(path, moves[m], move_key, outline_lines, pointer));
-    for (const auto& point : moved_points(pattern, result.back())) {
-      const auto [entry, fresh] = points.emplace(point, result.back());
-      if (fresh || entry->second.by == result.back().by) continue;
-      if (std::get<2>(point) > 0)
+    const CornerMove& move =
+        result.emplace_back(read_move(path, moves[m], move_key, outline_lines, pointer));
+    for (const auto& point :
+         garment::moved_outline_points(pattern, move.line, move.which, move.control)) {
+      const auto [entry, fresh] = points.emplace(point, move);
+      if (fresh || entry->second.by == move.by) continue;
+      if (point.control > 0)
         edit_error(path, moves[m], move_key,
-                   "moves control point " + std::to_string(std::get<2>(point)) + " of line '" +
-                       result.back().line + "' a second time, differently");
+                   "moves control point " + std::to_string(point.control) + " of line '" +
+                       move.line + "' a second time, differently");
       edit_error(path, moves[m], move_key,
-                 "the moves of lines '" + entry->second.line + "' and '" + result.back().line +
+                 "the moves of lines '" + entry->second.line + "' and '" + move.line +
                      "' move their shared corner differently");
     }
   }

@@ -31,7 +31,8 @@ namespace sartor {
 // `control` 1 or 2, that inner control point of a Bezier line (a curve edit).
 struct CornerMove {
   std::string line;
-  enum class Which { both, start, end } which = Which::both;
+  using Which = garment::LineCorners;
+  Which which = Which::both;
   Eigen::Vector2d by = Eigen::Vector2d::Zero();
   int control = 0;
 };

@@ -110,20 +110,12 @@ EditDesign::EditDesign(const garment::Pattern& pattern, const TriangleMesh& mesh
 
 std::vector<int> EditDesign::moved_slots(const CornerMove& move) const {
   std::vector<int> slots;
-  for (std::size_t panel = 0; panel < pattern_.panels.size(); ++panel) {
-    const auto& outline = pattern_.panels[panel].outline;
-    for (std::size_t i = 0; i < outline.size(); ++i) {
-      if (outline[i].id != move.line) continue;
-      if (move.control > 0) {
-        // read_edit_file lets control moves name Bezier lines only.
-        slots.push_back(first_control_.at({panel, i}) + move.control - 1);
-        continue;
-      }
-      const int first = first_corner_of_panel_[panel];
-      if (move.which != CornerMove::Which::end) slots.push_back(first + int(i));
-      if (move.which != CornerMove::Which::start)
-        slots.push_back(first + int((i + 1) % outline.size()));
-    }
+  for (const garment::OutlinePoint& point :
+       garment::moved_outline_points(pattern_, move.line, move.which, move.control)) {
+    // read_edit_file lets control moves name Bezier lines only.
+    slots.push_back(point.control > 0
+                        ? first_control_.at({point.panel, point.index}) + point.control - 1
+                        : first_corner_of_panel_[point.panel] + int(point.index));
   }
   return slots;
 }

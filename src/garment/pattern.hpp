@@ -11,6 +11,7 @@
 
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace sartor::garment {
@@ -169,6 +170,20 @@ struct Stitch {
   std::string origin; // what made it, for messages and summaries
 };
 
+// Which corners of an outline line a move of the line moves.
+enum class LineCorners { both, start, end };
+
+// A point of a panel's outline: corner `index` (the start of outline line
+// `index`) where `control` is 0, else Bezier control point `control` (1 or
+// 2) of line `index`.
+struct OutlinePoint {
+  std::size_t panel = 0, index = 0;
+  int control = 0;
+  bool operator<(const OutlinePoint& other) const {
+    return std::tie(panel, index, control) < std::tie(other.panel, other.index, other.control);
+  }
+};
+
 // A sloper parameter (Sensitive Couture §3): a named dimension of the
 // pattern (a skirt's length, a waist's width) that outline corners follow
 // linearly. A change g of it moves each move's corners by g * per_unit
@@ -176,7 +191,8 @@ struct Stitch {
 // (an edit step's `change`) or by a drag of the drape.
 struct ParameterMove {
   std::string line; // an outline line
-  enum class Corner { both, start, end } corner = Corner::both;
+  using Corner = LineCorners;
+  Corner corner = Corner::both;
   Eigen::Vector2d per_unit = Eigen::Vector2d::Zero(); // m per m of the parameter
 };
 struct SloperParameter {
@@ -234,6 +250,13 @@ std::vector<SloperParameter> read_sloper_parameters(const nlohmann::json& parame
                                                     const std::string& path,
                                                     const std::string& source,
                                                     const Pattern& pattern);
+
+// The points a move of outline line `line` moves, in every panel that has
+// the line: its start and/or end corner, or, where `control` > 0, that
+// control point of it. Empty when no panel has the line. Sloper parameters
+// and `sartor edit` move corners by it. pattern_parameters.cpp.
+std::vector<OutlinePoint> moved_outline_points(const Pattern& pattern, const std::string& line,
+                                               LineCorners corners, int control = 0);
 
 // Each panel's placement on the flat sheet where the pattern is drawn: packs
 // as the file places them, packs side by side left to right in file order,

@@ -40,23 +40,6 @@ void only_keys(const nlohmann::json& item, const std::string& where,
   }
 }
 
-// The (panel, outline index) of the corners a move of `line` moves: corner
-// i is the start of line i.
-std::vector<std::pair<std::size_t, std::size_t>> corners_of(const Pattern& pattern,
-                                                            const ParameterMove& move) {
-  std::vector<std::pair<std::size_t, std::size_t>> corners;
-  for (std::size_t panel = 0; panel < pattern.panels.size(); ++panel) {
-    const auto& outline = pattern.panels[panel].outline;
-    for (std::size_t i = 0; i < outline.size(); ++i) {
-      if (outline[i].id != move.line) continue;
-      if (move.corner != ParameterMove::Corner::end) corners.emplace_back(panel, i);
-      if (move.corner != ParameterMove::Corner::start)
-        corners.emplace_back(panel, (i + 1) % outline.size());
-    }
-  }
-  return corners;
-}
-
 ParameterMove read_move(const nlohmann::json& item, const std::string& where,
                         const Pattern& pattern, const Fail& fail) {
   if (!item.is_object()) fail(where, "expected an object {\"line\": ..., \"per_unit\": [dx, dy]}");
@@ -65,7 +48,7 @@ ParameterMove read_move(const nlohmann::json& item, const std::string& where,
   if (!item.contains("line") || !item["line"].is_string())
     fail(where, "a move needs the string 'line' (an outline line of the pattern)");
   move.line = item["line"].get<std::string>();
-  if (corners_of(pattern, move).empty())
+  if (moved_outline_points(pattern, move.line, LineCorners::both).empty())
     fail(where + ".line", "'" + move.line + "' is not an outline line of the pattern");
   if (item.contains("corner")) {
     const std::string corner = item["corner"].is_string() ? item["corner"].get<std::string>() : "";
@@ -104,13 +87,14 @@ SloperParameter read_parameter(const nlohmann::json& item, const std::string& wh
   const auto moves = item.find("moves");
   if (moves == item.end() || !moves->is_array() || moves->empty())
     fail(where + ".moves", "expected a non-empty array of moves");
-  std::map<std::pair<std::size_t, std::size_t>, Eigen::Vector2d> moved;
+  std::map<OutlinePoint, Eigen::Vector2d> moved;
   for (std::size_t m = 0; m < moves->size(); ++m) {
     const std::string move_where = where + ".moves[" + std::to_string(m) + "]";
-    parameter.moves.push_back(read_move((*moves)[m], move_where, pattern, fail));
-    for (const auto& corner : corners_of(pattern, parameter.moves.back())) {
-      const auto [entry, fresh] = moved.emplace(corner, parameter.moves.back().per_unit);
-      if (!fresh && entry->second != parameter.moves.back().per_unit)
+    const ParameterMove& move =
+        parameter.moves.emplace_back(read_move((*moves)[m], move_where, pattern, fail));
+    for (const auto& corner : moved_outline_points(pattern, move.line, move.corner)) {
+      const auto [entry, fresh] = moved.emplace(corner, move.per_unit);
+      if (!fresh && entry->second != move.per_unit)
         fail(move_where, "moves the corner it shares with an earlier move of this parameter "
                          "differently");
     }
@@ -119,6 +103,24 @@ SloperParameter read_parameter(const nlohmann::json& item, const std::string& wh
 }
 
 } // namespace
+
+std::vector<OutlinePoint> moved_outline_points(const Pattern& pattern, const std::string& line,
+                                               LineCorners corners, int control) {
+  std::vector<OutlinePoint> points;
+  for (std::size_t panel = 0; panel < pattern.panels.size(); ++panel) {
+    const auto& outline = pattern.panels[panel].outline;
+    for (std::size_t i = 0; i < outline.size(); ++i) {
+      if (outline[i].id != line) continue;
+      if (control > 0) {
+        points.push_back({panel, i, control});
+        continue;
+      }
+      if (corners != LineCorners::end) points.push_back({panel, i, 0});
+      if (corners != LineCorners::start) points.push_back({panel, (i + 1) % outline.size(), 0});
+    }
+  }
+  return points;
+}
 
 std::vector<SloperParameter> read_sloper_parameters(const nlohmann::json& parameters,
                                                     const std::string& path,

@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -347,6 +348,26 @@ TEST(PatternUnits, CentimetresBecomeMetres) {
   const Pattern pattern = parse(document);
   EXPECT_NEAR(pattern.panels[0].area(1e-9), 0.16, 1e-14);
   EXPECT_NEAR(pattern.panels[0].outline[1].curve.length(), 0.4, 1e-15);
+}
+
+// The corners (and control points) a move of a line moves, by outline
+// index: corner i starts line i, so line 3 of 4 ends at corner 0.
+TEST(PatternOutline, MovedOutlinePointsAreTheLinesCornersOrItsControlPoint) {
+  const Pattern pattern =
+      parse(pattern_of({square_panel("a", "a_"), square_panel("b", "b_", 0.4, 0.5)}));
+  const auto indices = [&](const std::string& line, LineCorners corners, int control = 0) {
+    std::vector<std::array<std::size_t, 3>> found;
+    for (const OutlinePoint& p : moved_outline_points(pattern, line, corners, control))
+      found.push_back({p.panel, p.index, std::size_t(p.control)});
+    return found;
+  };
+  using Points = std::vector<std::array<std::size_t, 3>>;
+  EXPECT_EQ(indices("a_right", LineCorners::both), (Points{{0, 1, 0}, {0, 2, 0}}));
+  EXPECT_EQ(indices("a_right", LineCorners::start), (Points{{0, 1, 0}}));
+  EXPECT_EQ(indices("a_right", LineCorners::end), (Points{{0, 2, 0}}));
+  EXPECT_EQ(indices("b_left", LineCorners::both), (Points{{1, 3, 0}, {1, 0, 0}}));
+  EXPECT_EQ(indices("b_top", LineCorners::both, 2), (Points{{1, 2, 2}}));
+  EXPECT_TRUE(indices("no_such_line", LineCorners::both).empty());
 }
 
 TEST(PatternOutline, SmallGapIsClosedExactly) {
