@@ -13,8 +13,8 @@ inline double closest_allowed(double distance, double offset) {
 }
 
 // Conservative advancement: the largest t in [0, limit] at which
-// distance(t), which falls by at most `rate` per unit of t, has not yet
-// reached `level` (limit where it never does). Each advance is the room
+// distance(t), which is `start` at t = 0 and falls by at most `rate` per
+// unit of t, has not yet reached `level` (limit where it never does). Each advance is the room
 // left, (distance - level) / rate, so the advances shrink towards the
 // first time the level is reached. Stopping only once they are below
 // round-off, or after a fixed count, keeps t a continuous function of the
@@ -22,9 +22,10 @@ inline double closest_allowed(double distance, double offset) {
 // needs one advance more, and the iterates of two machines would part at
 // round-off.
 template <class Distance>
-double conservative_advance(const Distance& distance, double level, double rate, double limit) {
+double conservative_advance(const Distance& distance, double start, double level, double rate,
+                            double limit) {
   if (!(rate > 0.0)) return limit;
-  double t = 0.0, d = distance(0.0);
+  double t = 0.0, d = start;
   for (int k = 0; k < 50; ++k) {
     const double room = std::max(0.0, d - level) / rate;
     if (t + room >= limit) return limit;

@@ -25,10 +25,6 @@
 set -euo pipefail
 [ $# -eq 5 ] || { echo "usage: $0 SARTOR PROJECT_DIR WORKDIR MPIEXEC SCENARIO" >&2; exit 2; }
 sartor=$1 project=$2 work=$3 scenario=$5
-case "$scenario" in
-  plate_sheet | skirt | skirt_dynamic | wear) ;;
-  *) echo "$0: unknown scenario '$scenario' (plate_sheet, skirt, skirt_dynamic or wear)" >&2; exit 2 ;;
-esac
 on_two_ranks=("$4" --oversubscribe -n 2)
 [ "$(id -u)" = 0 ] && on_two_ranks+=(--allow-run-as-root)
 python=/usr/bin/python3
@@ -222,6 +218,7 @@ case "$scenario" in
   skirt) run_skirt ;;
   skirt_dynamic) run_skirt_dynamic ;;
   wear) run_wear ;;
+  *) echo "$0: unknown scenario '$scenario' (plate_sheet, skirt, skirt_dynamic or wear)" >&2; exit 2 ;;
 esac
 
 "$python" - "$work" "$scenario" <<'PY'

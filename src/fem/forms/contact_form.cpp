@@ -249,7 +249,7 @@ double ContactForm::vertex_step_bound(std::size_t body, const Eigen::Vector3d& p
   if (distance <= 0.0) return 1.0; // inside: the penalty pushes it out
   // The distance falls by at most slope * |motion| per unit of t.
   return contact::conservative_advance(
-      [&](double t) { return t == 0.0 ? distance : b.distance(p + t * motion, clock()); },
+      [&](double t) { return b.distance(p + t * motion, clock()); }, distance,
       contact::closest_allowed(distance, settings().offset), slope * length, 1.0);
 }
 

@@ -233,7 +233,7 @@ PetscErrorCode SelfContactForm::step_bound(Vec x, Vec direction, double* bound) 
     const double start = distance(0.0);
     if (start > 0.0) // touching: the penalty pushes it apart
       smallest = contact::conservative_advance(
-          distance, contact::closest_allowed(start, settings_.offset), motion, smallest);
+          distance, start, contact::closest_allowed(start, settings_.offset), motion, smallest);
   }
   PetscCallMPI(MPIU_Allreduce(&smallest, bound, 1, MPI_DOUBLE, MPI_MIN, problem_.comm()));
   PetscFunctionReturn(0);
