@@ -8,12 +8,14 @@
 #include "contact/body_spec.hpp"
 #include "fem/petsc_call.hpp"
 #include "garment/surface_drag.hpp"
+#include "garment/wrap.hpp"
 #include "mesh/obj.hpp"
 
 #include <nlohmann/json.hpp>
 #include <petscsys.h>
 
 #include <algorithm>
+#include <optional>
 
 namespace sartor {
 
@@ -24,21 +26,28 @@ nlohmann::json point_json(const Eigen::Vector3d& p) {
 }
 
 // One scripted drag on the cloth, and what it did.
+// With `subdivision`, edges split and merge after every drag step; the
+// dependency graph follows the garment's own (base) edges.
 nlohmann::json run_drag(garment::ClothOnBody& cloth, const garment::ScriptedDrag& scripted,
-                        const garment::DragOptions& options) {
+                        const garment::DragOptions& options,
+                        garment::AdaptiveSubdivision* subdivision,
+                        const garment::RestEdges* base_edges) {
   const std::vector<Eigen::Vector3d> start = cloth.positions();
-  garment::SurfaceDrag drag(cloth, scripted.vertex, scripted.pins, options);
+  garment::SurfaceDrag drag(cloth, scripted.vertex, scripted.pins, options, base_edges);
   Eigen::Vector3d requested = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& step : scripted.steps) {
     requested += step;
     drag.step(step);
+    if (subdivision) subdivision->update(cloth);
   }
   drag.release();
   const auto& x = cloth.positions();
   double pin_motion = 0.0, largest_motion = 0.0;
   for (int pin : scripted.pins)
     pin_motion = std::max(pin_motion, (x[std::size_t(pin)] - start[std::size_t(pin)]).norm());
-  for (std::size_t v = 0; v < x.size(); ++v)
+  // Over the garment's own vertices (the first ones when it is subdivided).
+  const std::size_t own = base_edges ? base_edges->neighbours.size() : x.size();
+  for (std::size_t v = 0; v < own; ++v)
     largest_motion = std::max(largest_motion, (x[v] - start[v]).norm());
   const std::size_t grabbed = std::size_t(scripted.vertex);
   std::size_t attenuated = 0;
@@ -63,7 +72,8 @@ const CommandSpec& drag_command() {
   static const CommandSpec spec{
       "drag",
       "drag a garment on a body along its surface, with pushpins (Igarashi & Hughes 2002)",
-      "sartor drag GARMENT.obj DRAGS.yaml [--output DIR] [--offset M] [--no-plot]",
+      "sartor drag GARMENT.obj DRAGS.yaml [--output DIR] [--offset M] [--subdivide] [--no-bones] "
+      "[--no-plot]",
       "Reads a garment placed on a body (the wrapped.obj of `sartor wrap`, or the\n"
       "final.obj of a drape: an OBJ with vt = material (u, v)) and a drag script\n"
       "(the body, then drags: a vertex, a list of displacements, pushpins). Each\n"
@@ -82,6 +92,9 @@ const CommandSpec& drag_command() {
       [] {
         std::vector<OptionSpec> options{
             {"output", "DIR", "out/drag", "output folder (created; files in it are replaced)"},
+            {"subdivide", "", "",
+             "split the edges that cut into the body after every drag step, merge them back "
+             "when they no longer do (one level of sqrt(3) subdivision)"},
             {"no-plot", "", "", "write data only, no PNG"}};
         for (const OptionSpec& option : relax_option_specs())
           options.push_back(option);
@@ -100,11 +113,19 @@ int run_drag(const Invocation& invocation) {
   const contact::Body body = contact::parse_body(script.body, script_path + ": body", "body");
   const garment::BodyAtRest shape(body);
   garment::ClothOnBody cloth(garment, shape, relax_parameters(options));
+  cloth.bones = relaxation_bones(options, script.body, body, script_path + ": body");
 
   const double cpu_started = process_cpu_seconds();
   nlohmann::json drags = nlohmann::json::array();
+  std::optional<garment::AdaptiveSubdivision> subdivision;
+  garment::RestEdges base_edges;
+  if (options.flag("subdivide")) {
+    subdivision.emplace(cloth.mesh());
+    base_edges = cloth.edges();
+  }
   for (const garment::ScriptedDrag& scripted : script.drags)
-    drags.push_back(run_drag(cloth, scripted, script.options));
+    drags.push_back(run_drag(cloth, scripted, script.options, subdivision ? &*subdivision : nullptr,
+                             subdivision ? &base_edges : nullptr));
   const double drag_cpu = process_cpu_seconds() - cpu_started;
 
   const garment::EdgeRatios ratios = garment::edge_length_ratios(cloth.edges(), cloth.positions());
@@ -120,6 +141,11 @@ int run_drag(const Invocation& invocation) {
     summary["script"] = script_path;
     summary["body"] = body.describe();
     summary["drags"] = drags;
+    summary["bones"] = bones_summary(cloth.bones, cloth.bone_holds());
+    if (subdivision)
+      summary["subdivision"] = {{"split_edges", subdivision->split_edges()},
+                                {"splits", subdivision->splits()},
+                                {"merges", subdivision->merges()}};
     summary["min_body_distance_m"] = closest;
     summary["edge_length_ratio"] = {
         {"min", ratios.min}, {"max", ratios.max}, {"mean", ratios.mean}};

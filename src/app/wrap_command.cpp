@@ -34,7 +34,8 @@ std::vector<OptionSpec> wrap_option_specs() {
       {"growth-relax-steps", "N", "1", "relaxation steps after each vertex the growth maps"},
       {"relax-steps", "N", "100", "relaxation steps of the whole garment after the growth"},
       {"subdivide", "", "",
-       "then split the edges that cut into the body once (sqrt(3) subdivision) and relax again"},
+       "split the edges that cut into the body during the final relaxation, merge them back "
+       "when they no longer do (one level of sqrt(3) subdivision)"},
       {"drape", "", "", "then drape the wrapped garment as `sartor run` would (into DIR/drape)"},
       {"rewrap", "GARMENT.obj", "",
        "rewrap this garment (wrapped from the same pattern, seams and --edge-length): "
@@ -135,6 +136,7 @@ nlohmann::json wrap_summary(const Invocation& invocation, const garment::WrapRes
                      {"obj", "wrapped.obj"}};
   summary["root_vertices"] = result.root_vertices;
   summary["split_edges"] = result.split_edges;
+  summary["subdivision"] = {{"splits", result.splits}, {"merges", result.merges}};
   summary["mark_mismatch_m"] = {{"max", result.mismatch.max},
                                 {"rms", result.mismatch.rms},
                                 {"crossings", result.mismatch.crossings}};
@@ -257,6 +259,7 @@ int run_wrap(const Invocation& invocation) {
   wrap_options.growth_relax_steps = int(options.integer_in("growth-relax-steps", 0, 1000));
   wrap_options.final_relax_steps = int(options.integer_in("relax-steps", 0, 1000000));
   wrap_options.subdivide = options.flag("subdivide");
+  wrap_options.bones = relaxation_bones(options, marks.body, body, marks_path + ": body");
 
   std::optional<garment::Rewrap> rewrap;
   if (options.is_set("rewrap")) {
@@ -285,6 +288,7 @@ int run_wrap(const Invocation& invocation) {
               "Sartor wrap: " + pattern_path + " on " + body.describe() + " by " + marks_path);
     nlohmann::json summary =
         wrap_summary(invocation, result, marks.pairs, shape, wrap_cpu, wrap_wall);
+    summary["bones"] = bones_summary(wrap_options.bones, result.bone_holds);
     if (rewrap) {
       double pin_motion = 0.0;
       for (int pin : rewrap->pins)
@@ -304,11 +308,12 @@ int run_wrap(const Invocation& invocation) {
       PETSC_COMM_WORLD,
       "sartor wrap: %zu vertices, %zu triangles, %d root vertices; wrapped in %.3f s CPU; "
       "mark mismatch max %.2e m (rms %.2e m, %d crossings); closest vertex %.2e m above the "
-      "body (offset %.2e m); edge length / rest in [%.3f, %.3f], mean %.3f; wrote %s\n",
+      "body (offset %.2e m); edge length / rest in [%.3f, %.3f], mean %.3f; %zu bones, %ld "
+      "moves held back at them; wrote %s\n",
       result.mesh.vertex_count(), result.mesh.triangle_count(), result.root_vertices, wrap_cpu,
       result.mismatch.max, result.mismatch.rms, result.mismatch.crossings, result.min_distance,
       wrap_options.relax.offset, result.edge_ratios.min, result.edge_ratios.max,
-      result.edge_ratios.mean, directory.c_str()));
+      result.edge_ratios.mean, wrap_options.bones.size(), result.bone_holds, directory.c_str()));
   if (!options.flag("no-plot")) make_plot("plot_wrap.py", directory);
   if (drape) drape_wrapped(invocation, result, pattern, marks.body, directory);
   return 0;

@@ -4,6 +4,7 @@
 
 #include "common/error.hpp"
 #include "common/output.hpp"
+#include "contact/body_spec.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -25,6 +26,9 @@ std::vector<OptionSpec> relax_option_specs() {
        "m: a shorter downhill move of a vertex touching the body is held by friction"},
       {"max-step", "M", text(defaults.max_step),
        "m: the longest move of a vertex in one relaxation step"},
+      {"no-bones", "", "",
+       "let cloth edges sweep across the body's bones (its axis or skeleton; "
+       "docs/wrapping.md#bones)"},
   };
 }
 
@@ -37,6 +41,24 @@ garment::RelaxParameters relax_parameters(const Options& options) {
   parameters.near_body = std::max(parameters.near_body, parameters.offset);
   if (parameters.far_body <= parameters.near_body) parameters.far_body = 2.0 * parameters.near_body;
   return parameters;
+}
+
+std::vector<Bone> relaxation_bones(const Options& options, const std::string& spec,
+                                   const contact::Body& body, const std::string& where) {
+  if (options.flag("no-bones")) return {};
+  std::vector<Bone> bones = contact::body_bones(spec, where);
+  for (Bone& bone : bones) {
+    bone.start = body.to_world(bone.start, 0.0);
+    bone.end = body.to_world(bone.end, 0.0);
+  }
+  return bones;
+}
+
+nlohmann::json bones_summary(const std::vector<Bone>& bones, long held_moves) {
+  nlohmann::json names = nlohmann::json::array();
+  for (const Bone& bone : bones)
+    names.push_back(bone.name);
+  return {{"count", bones.size()}, {"names", names}, {"held_moves", held_moves}};
 }
 
 void write_body_samples(const std::string& path, const contact::Shape& body,

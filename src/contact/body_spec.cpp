@@ -309,6 +309,27 @@ std::optional<MannequinModel> spec_mannequin(const std::string& spec, const std:
   }
 }
 
+std::vector<Bone> body_bones(const std::string& spec, const std::string& where) {
+  if (const std::optional<MannequinModel> model = spec_mannequin(spec, where))
+    return model->skeleton();
+  Fields fields(spec, where);
+  const auto axis = [](const Vector3d& start, const Vector3d& end, double radius) {
+    return std::vector<Bone>{{"axis", "", start, end, radius, radius}};
+  };
+  if (fields.kind() == "capsule")
+    return axis(fields.vector("a"), fields.vector("b"), fields.positive("radius"));
+  if (fields.kind() == "cylinder") {
+    const Vector3d center = fields.vector("center", Vector3d::Zero());
+    const Vector3d direction = fields.vector("direction", Vector3d::UnitZ());
+    if (!(direction.norm() > 0.0)) fields.fail("direction must be a non-zero vector");
+    const Vector3d half = 0.5 * fields.positive("height") * direction.normalized();
+    return axis(center - half, center + half, fields.positive("radius"));
+  }
+  if (fields.kind() == "mesh" && fields.has("skeleton"))
+    return read_skeleton_file(fields.text("skeleton"), read_body_obj(fields.text("file")));
+  return {};
+}
+
 GarmentBody garment_body(const std::string& spec, const std::string& where) {
   if (spec == "default") return garment_body("mannequin", where);
   Fields fields(spec, where);

@@ -51,6 +51,14 @@ struct GarmentBody {
 };
 GarmentBody garment_body(const std::string& spec, const std::string& where);
 
+// The bones inside the body `spec` names, in the body's own frame (before
+// its motion): a capsule's and a cylinder's axis (named "axis"), the
+// mannequin's skeleton (posed), a mesh body's skeleton file; none for the
+// other shapes. Wrapping and surface dragging hold back cloth edges that
+// would sweep across one (garment/wrap_relax.hpp). Throws InputError naming
+// `where` for a bad specification.
+std::vector<Bone> body_bones(const std::string& spec, const std::string& where);
+
 // The mannequin `spec` names ("default" or "mannequin [measurements=...]
 // [pose=...] ..."), sized and posed; nullopt for any other body. Throws
 // InputError naming `where` for a bad measurement file or pose.

@@ -81,9 +81,10 @@ std::vector<double> attenuation(const RestEdges& edges, int grabbed, const std::
 }
 
 SurfaceDrag::SurfaceDrag(ClothOnBody& cloth, int grabbed, std::vector<int> pins,
-                         const DragOptions& options)
+                         const DragOptions& options, const RestEdges* graph_edges)
     : cloth_(cloth), grabbed_(grabbed), pins_(std::move(pins)), options_(options) {
-  const int n = int(cloth.positions().size());
+  const RestEdges& edges = graph_edges ? *graph_edges : cloth.edges();
+  const int n = int(edges.neighbours.size());
   if (grabbed < 0 || grabbed >= n)
     throw InputError("drag: vertex " + std::to_string(grabbed) + " is not in the garment (0.." +
                      std::to_string(n - 1) + ")");
@@ -93,8 +94,8 @@ SurfaceDrag::SurfaceDrag(ClothOnBody& cloth, int grabbed, std::vector<int> pins,
     if (pin == grabbed)
       throw InputError("drag: vertex " + std::to_string(pin) + " is both grabbed and pinned");
   }
-  graph_ = dependency_graph(cloth.edges(), grabbed);
-  ratios_ = attenuation(cloth.edges(), grabbed, pins_);
+  graph_ = dependency_graph(edges, grabbed);
+  ratios_ = attenuation(edges, grabbed, pins_);
   motion_.assign(std::size_t(n), Eigen::Vector3d::Zero());
   cloth_.fixed[std::size_t(grabbed)] = true;
   for (int pin : pins_)
@@ -134,6 +135,7 @@ void SurfaceDrag::step(const Eigen::Vector3d& displacement) {
   const contact::Shape& body = cloth_.body();
   const double offset = cloth_.parameters().offset;
   const BodyPoint at_root = nearest_body_point(body, x[std::size_t(grabbed_)]);
+  const std::vector<Eigen::Vector3d> before = x;
   propagate(displacement - displacement.dot(at_root.normal) * at_root.normal);
   for (int v : graph_.order) {
     const bool pinned = std::count(pins_.begin(), pins_.end(), v) > 0;
@@ -144,6 +146,7 @@ void SurfaceDrag::step(const Eigen::Vector3d& displacement) {
       p = near.closest + (offset + 0.5 * (near.distance - offset)) * near.normal;
     x[std::size_t(v)] = keep_above(body, p, offset);
   }
+  cloth_.hold_back_at_bones(before);
   cloth_.relax(options_.relax_steps);
 }
 

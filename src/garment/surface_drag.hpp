@@ -50,10 +50,14 @@ struct DragOptions {
 
 class SurfaceDrag {
 public:
-  // Builds the graph and the attenuation; holds the grabbed vertex and the
-  // pins fixed in `cloth` (released by release()). Throws InputError for a
-  // vertex outside the mesh or a pin on the grabbed vertex.
-  SurfaceDrag(ClothOnBody& cloth, int grabbed, std::vector<int> pins, const DragOptions& options);
+  // Builds the graph and the attenuation over `graph_edges` (the cloth's
+  // edges when null; the base mesh's when the cloth is subdivided
+  // adaptively, so that the graph's vertices keep their numbers while
+  // edges split and merge); holds the grabbed vertex and the pins fixed in
+  // `cloth` (released by release()). Throws InputError for a vertex outside
+  // the graph or a pin on the grabbed vertex.
+  SurfaceDrag(ClothOnBody& cloth, int grabbed, std::vector<int> pins, const DragOptions& options,
+              const RestEdges* graph_edges = nullptr);
 
   // One drag step: `displacement` is projected onto the body's tangent plane
   // at the grabbed vertex, propagated, attenuated and applied; then the

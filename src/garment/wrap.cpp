@@ -341,6 +341,7 @@ WrapResult wrap(const TriangleMesh& sewn, const Pattern& pattern,
                 const std::vector<MarkPair>& pairs, const contact::Shape& body,
                 const WrapOptions& options, const Rewrap* rewrap) {
   ClothOnBody cloth(sewn, body, options.relax);
+  cloth.bones = options.bones;
   const std::size_t n = sewn.vertex_count();
   std::vector<Eigen::Vector3d> sum(n, Eigen::Vector3d::Zero());
   std::vector<int> count(n, 0);
@@ -371,18 +372,17 @@ WrapResult wrap(const TriangleMesh& sewn, const Pattern& pattern,
   for (int v : growth.grow())
     result.growth_order.push_back(v);
   check_all_mapped(cloth, pattern);
-  cloth.relax(options.final_relax_steps);
-  result.mesh = cloth.mesh();
   if (options.subdivide) {
-    result.split_edges = subdivide_cutting_edges(result.mesh, body, options.relax.offset);
-    // The new vertices settle among the old, which are held where the
-    // relaxation above left them (the pins of a rewrap stay held).
-    ClothOnBody refined(result.mesh, body, options.relax);
-    for (std::size_t v = 0; v < n; ++v)
-      refined.fixed[v] = true;
-    refined.relax(options.final_relax_steps);
-    result.mesh = refined.mesh();
+    AdaptiveSubdivision subdivision(cloth.mesh());
+    relax_adaptively(cloth, subdivision, options.final_relax_steps);
+    result.split_edges = subdivision.split_edges();
+    result.splits = subdivision.splits();
+    result.merges = subdivision.merges();
+  } else {
+    cloth.relax(options.final_relax_steps);
   }
+  result.mesh = cloth.mesh();
+  result.bone_holds = cloth.bone_holds();
   result.mismatch = mark_mismatch(result.crossings, result.mesh.positions, body);
   result.edge_ratios = edge_length_ratios(rest_edges(result.mesh), result.mesh.positions);
   result.min_distance = min_body_distance(body, result.mesh.positions);

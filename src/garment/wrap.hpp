@@ -102,7 +102,8 @@ struct WrapOptions {
   RelaxParameters relax;
   int growth_relax_steps = 1; // after each mapped vertex
   int final_relax_steps = 100;
-  bool subdivide = false; // subdivide_cutting_edges after the relaxation, then relax again
+  bool subdivide = false;  // adaptive subdivision during the final relaxation
+  std::vector<Bone> bones; // no relaxation step sweeps a cloth edge across one (wrap_relax.hpp)
 };
 
 // Where a root edge crosses a cloth mark, and where that point belongs.
@@ -123,7 +124,9 @@ struct WrapResult {
   std::vector<MarkCrossing> crossings;
   int root_vertices = 0;
   int kept_vertices = 0;         // rewrap: vertices beyond the pins, kept in place
-  int split_edges = 0;           // by subdivide_cutting_edges (WrapOptions::subdivide)
+  int split_edges = 0;           // at the end (WrapOptions::subdivide)
+  long splits = 0, merges = 0;   // during the final relaxation
+  long bone_holds = 0;           // vertex moves held back at the bones
   std::vector<int> growth_order; // the vertices in the order they were mapped (roots first)
   MarkMismatch mismatch;
   EdgeRatios edge_ratios;
@@ -147,16 +150,39 @@ WrapResult wrap(const TriangleMesh& sewn, const Pattern& pattern,
                 const std::vector<MarkPair>& pairs, const contact::Shape& body,
                 const WrapOptions& options, const Rewrap* rewrap = nullptr);
 
-// One level of sqrt(3) subdivision (Kobbelt; the paper's adaptive
-// subdivision) of the edges that cut into the body: an edge AB cuts when it
-// passes through the sphere of radius |AB| that touches the body at A's (or
-// B's) nearest body point from inside (the body's least radius of concern).
-// Its two triangles get a vertex at their centroids (`offset` above the body
-// at least) and the edge is flipped to join them: six triangles for two.
-// Edges on seams (two rest frames) and edges next to a triangle already
-// split are left. Vertices are appended; triangles are renumbered (split ones
-// first). Returns the number of edges split.
-int subdivide_cutting_edges(TriangleMesh& mesh, const contact::Shape& body, double offset);
+// One level of adaptive sqrt(3) subdivision (Kobbelt; the paper's) kept
+// over a base mesh while the cloth relaxes. A base edge AB cuts into the
+// body when it passes through the sphere of radius |AB| that touches the
+// body at A's (or B's) nearest body point from inside (the body's least
+// radius of concern). A cutting edge's two triangles get a vertex at their
+// centroids (`offset` above the body at least) and the edge is flipped to
+// join them: six triangles for two. A split edge is merged back (the two
+// base triangles return) once it clears the sphere by 10 % of |AB|: the
+// margin keeps an edge at the threshold from splitting and merging in turn.
+// Edges on seams (two rest frames), creases, and edges next to a triangle
+// already split are left. The base vertices stay the refined meshes' first
+// ones; the centres follow, two per split edge.
+class AdaptiveSubdivision {
+public:
+  explicit AdaptiveSubdivision(const TriangleMesh& base);
+  // Splits and merges by `cloth`'s positions (its mesh the base or the last
+  // refinement of this object) and gives `cloth` the new refined mesh when
+  // the split edges change. Returns whether they did.
+  bool update(ClothOnBody& cloth);
+  const TriangleMesh& base() const { return base_; }
+  int split_edges() const { return int(split_.size()); } // now
+  long splits() const { return splits_; }                // so far
+  long merges() const { return merges_; }
+
+private:
+  TriangleMesh base_;
+  std::vector<Hinge> hinges_; // those that may be split
+  std::vector<int> split_;    // into hinges_, in the order of their centres
+  long splits_ = 0, merges_ = 0;
+};
+
+// `steps` relaxation steps, each followed by subdivision.update(cloth).
+void relax_adaptively(ClothOnBody& cloth, AdaptiveSubdivision& subdivision, int steps);
 
 // The mark mismatch of positions: for every crossing, the distance from the
 // body point nearest the cloth's mark point to the body mark's point.

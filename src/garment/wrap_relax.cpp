@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <map>
 #include <utility>
@@ -27,7 +28,50 @@ Eigen::Vector3d any_perpendicular(const Eigen::Vector3d& n) {
   return n.cross(helper).normalized();
 }
 
+// Whether the segment s0-s1 meets the triangle p0 p1 p2 (Moller and
+// Trumbore). A segment parallel to the triangle's plane is taken not to.
+bool segment_meets_triangle(const Eigen::Vector3d& s0, const Eigen::Vector3d& s1,
+                            const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                            const Eigen::Vector3d& p2) {
+  const Eigen::Vector3d direction = s1 - s0, e1 = p1 - p0, e2 = p2 - p0;
+  const Eigen::Vector3d h = direction.cross(e2);
+  const double determinant = e1.dot(h);
+  if (determinant == 0.0) return false;
+  const Eigen::Vector3d from_corner = s0 - p0;
+  const double u = from_corner.dot(h) / determinant;
+  if (u < 0.0 || u > 1.0) return false;
+  const Eigen::Vector3d q = from_corner.cross(e1);
+  const double v = direction.dot(q) / determinant;
+  if (v < 0.0 || u + v > 1.0) return false;
+  const double along = e2.dot(q) / determinant;
+  return along >= 0.0 && along <= 1.0;
+}
+
+struct Box3 {
+  Eigen::Vector3d lower, upper;
+  bool overlaps(const Box3& other) const {
+    return (lower.array() <= other.upper.array()).all() &&
+           (other.lower.array() <= upper.array()).all();
+  }
+};
+
+Box3 box_of(std::initializer_list<Eigen::Vector3d> points) {
+  Box3 box{*points.begin(), *points.begin()};
+  for (const Eigen::Vector3d& p : points) {
+    box.lower = box.lower.cwiseMin(p);
+    box.upper = box.upper.cwiseMax(p);
+  }
+  return box;
+}
+
 } // namespace
+
+bool edge_sweep_meets_segment(const Eigen::Vector3d& a0, const Eigen::Vector3d& b0,
+                              const Eigen::Vector3d& a1, const Eigen::Vector3d& b1,
+                              const Eigen::Vector3d& start, const Eigen::Vector3d& end) {
+  return segment_meets_triangle(start, end, a0, b0, b1) ||
+         segment_meets_triangle(start, end, a0, b1, a1);
+}
 
 BodyPoint nearest_body_point(const contact::Shape& body, const Eigen::Vector3d& p) {
   const contact::SurfaceQuery query = body.query(p);
@@ -82,6 +126,18 @@ ClothOnBody::ClothOnBody(TriangleMesh mesh, const contact::Shape& body,
   validate(mesh_, "cloth on body");
   edges_ = rest_edges(mesh_);
   hinges_ = interior_edges(mesh_);
+}
+
+void ClothOnBody::replace_mesh(TriangleMesh mesh) {
+  validate(mesh, "cloth on body");
+  mesh_ = std::move(mesh);
+  edges_ = rest_edges(mesh_);
+  hinges_ = interior_edges(mesh_);
+  const std::size_t kept = std::min(active.size(), mesh_.vertex_count());
+  active.resize(kept);
+  fixed.resize(kept);
+  active.resize(mesh_.vertex_count(), true);
+  fixed.resize(mesh_.vertex_count(), false);
 }
 
 void ClothOnBody::add_reference_triangle_pull(std::vector<Eigen::Vector3d>& pull,
@@ -182,10 +238,45 @@ bool ClothOnBody::held_by_friction(const Eigen::Vector3d& move, const BodyPoint&
   return tangential.dot(parameters_.down) > 0.0 && move.norm() < parameters_.friction_limit;
 }
 
+int ClothOnBody::hold_back_at_bones(const std::vector<Eigen::Vector3d>& before) {
+  if (bones.empty()) return 0;
+  auto& x = mesh_.positions;
+  std::vector<Box3> bone_boxes;
+  for (const Bone& bone : bones)
+    bone_boxes.push_back(box_of({bone.start, bone.end}));
+  const auto sweeps_a_bone = [&](std::size_t a, std::size_t b) {
+    const Box3 sweep = box_of({before[a], before[b], x[a], x[b]});
+    for (std::size_t k = 0; k < bones.size(); ++k)
+      if (sweep.overlaps(bone_boxes[k]) &&
+          edge_sweep_meets_segment(before[a], before[b], x[a], x[b], bones[k].start, bones[k].end))
+        return true;
+    return false;
+  };
+  // Each pass puts back at least one vertex for good, so the passes end.
+  int held = 0;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const auto& [a_index, b_index] : edges_.edges) {
+      const std::size_t a = std::size_t(a_index), b = std::size_t(b_index);
+      if (!active[a] || !active[b] || (x[a] == before[a] && x[b] == before[b])) continue;
+      if (!sweeps_a_bone(a, b)) continue;
+      for (std::size_t v : {a, b}) {
+        if (x[v] == before[v]) continue;
+        x[v] = before[v];
+        ++held;
+      }
+      changed = true;
+    }
+  }
+  bone_holds_ += held;
+  return held;
+}
+
 void ClothOnBody::relax(int steps) {
   auto& x = mesh_.positions;
   const std::size_t n = x.size();
   for (int step = 0; step < steps; ++step) {
+    const std::vector<Eigen::Vector3d> before = bones.empty() ? std::vector<Eigen::Vector3d>{} : x;
     std::vector<BodyPoint> near(n);
     for (std::size_t i = 0; i < n; ++i)
       if (active[i]) near[i] = nearest_body_point(body_, x[i]);
@@ -202,6 +293,7 @@ void ClothOnBody::relax(int steps) {
       if (move[i].norm() > parameters_.max_step) move[i] *= parameters_.max_step / move[i].norm();
       x[i] = keep_above(body_, x[i] + move[i], parameters_.offset);
     }
+    hold_back_at_bones(before);
   }
 }
 

@@ -19,12 +19,18 @@
 // except that friction holds a vertex in contact with the body when its
 // move heads down the body's surface and is shorter than a threshold. The
 // moved vertex is then pushed back out to `offset` above the body.
+// Bones (the paper's "collision detection with bones"): only vertices are
+// kept out of the body, so a long step can carry a cloth edge through a thin
+// limb, and the cloth cannot recover from that. A step that would sweep an
+// edge across a bone (a segment inside the limb) is held back: both ends of
+// such an edge keep their place, until no moved edge sweeps across one.
 //
 // "Front" of a panel: the side from which its material (u, v) axes appear
 // counter-clockwise (u right, v up). Wrapping puts the front away from the
 // body.
 
 #include "contact/body.hpp"
+#include "contact/mannequin.hpp"
 #include "contact/shape.hpp"
 #include "mesh/triangle_mesh.hpp"
 
@@ -88,6 +94,13 @@ struct RestEdges {
 };
 RestEdges rest_edges(const TriangleMesh& mesh);
 
+// Whether the surface swept by an edge moving from (a0, b0) to (a1, b1)
+// (the bilinear patch, as its two triangles a0 b0 b1 and a0 b1 a1) meets the
+// segment from `start` to `end`.
+bool edge_sweep_meets_segment(const Eigen::Vector3d& a0, const Eigen::Vector3d& b0,
+                              const Eigen::Vector3d& a1, const Eigen::Vector3d& b1,
+                              const Eigen::Vector3d& start, const Eigen::Vector3d& end);
+
 class ClothOnBody {
 public:
   // `mesh`'s positions are the cloth's start; throws InputError when the
@@ -105,9 +118,22 @@ public:
   std::vector<bool> active;
   // Vertices relaxation leaves where they are (pushpins, a grabbed vertex).
   std::vector<bool> fixed;
+  // Segments inside the body (contact::body_bones, in world coordinates)
+  // that no cloth edge may sweep across; none by default.
+  std::vector<Bone> bones;
 
   // `steps` relaxation steps over the active part.
   void relax(int steps);
+  // The same cloth on another mesh (a refinement of this one: its first
+  // vertices are this mesh's, which keep `active` and `fixed`; the others
+  // are active and free). Throws InputError for a mesh that is not valid.
+  void replace_mesh(TriangleMesh mesh);
+  // Puts back at `before` both ends of every edge between active vertices
+  // whose move from `before` to positions() sweeps across a bone, until no
+  // moved edge does. Returns the number of vertices put back.
+  int hold_back_at_bones(const std::vector<Eigen::Vector3d>& before);
+  // Vertices put back so far, by relax() and hold_back_at_bones().
+  long bone_holds() const { return bone_holds_; }
 
 private:
   void add_reference_triangle_pull(std::vector<Eigen::Vector3d>& pull, std::vector<int>& count,
@@ -120,6 +146,7 @@ private:
   RelaxParameters parameters_;
   RestEdges edges_;
   std::vector<Hinge> hinges_;
+  long bone_holds_ = 0;
 };
 
 // Each edge's current length over its rest length: min, max and mean.

@@ -5,6 +5,7 @@
 #include "common/error.hpp"
 #include "contact/analytic_shapes.hpp"
 #include "contact/body.hpp"
+#include "contact/body_spec.hpp"
 #include "tests/element/finite_difference.hpp"
 
 #include <gtest/gtest.h>
@@ -145,6 +146,32 @@ TEST(Bodies, WorldQueryOfAMovingBody) {
   EXPECT_NEAR(grown.query(center + Vector3d(0.45, 0, 0), 10.0).distance, 0.0, 1e-14);
   EXPECT_NEAR(grown.query(center + Vector3d(0.45, 0, 0), 0.0).distance, 0.15, 1e-14);
   EXPECT_NEAR(grown.query(center + Vector3d(0.9, 0, 0), 10.0).hessian(2, 2), 1.0 / 0.9, 1e-13);
+}
+
+TEST(Bodies, BonesAreTheAxesOrTheSkeleton) {
+  const std::vector<Bone> capsule = body_bones("capsule a=0,0,1.2 b=0.6,0,1.2 radius=0.05", "test");
+  ASSERT_EQ(capsule.size(), 1u);
+  EXPECT_EQ(capsule[0].start, Vector3d(0.0, 0.0, 1.2));
+  EXPECT_EQ(capsule[0].end, Vector3d(0.6, 0.0, 1.2));
+  // A cylinder's axis runs from cap to cap: centre -/+ height/2 along it.
+  const std::vector<Bone> cylinder =
+      body_bones("cylinder center=1,0,0 direction=0,0,2 radius=0.1 height=0.4", "test");
+  ASSERT_EQ(cylinder.size(), 1u);
+  EXPECT_NEAR((cylinder[0].start - Vector3d(1.0, 0.0, -0.2)).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((cylinder[0].end - Vector3d(1.0, 0.0, 0.2)).norm(), 0.0, 1e-15);
+  EXPECT_TRUE(body_bones("sphere center=0,0,0 radius=0.3", "test").empty());
+  // The mannequin's skeleton: its 20 bones, the knee moved by the pose.
+  const std::vector<Bone> standing = body_bones("mannequin", "test");
+  const std::vector<Bone> kneeling = body_bones("mannequin pose=knee_l:90", "test");
+  ASSERT_EQ(standing.size(), 20u);
+  ASSERT_EQ(kneeling.size(), 20u);
+  for (std::size_t k = 0; k < standing.size(); ++k) {
+    if (standing[k].name != "shin_l") continue;
+    const Vector3d before = standing[k].end - standing[k].start;
+    const Vector3d after = kneeling[k].end - kneeling[k].start;
+    EXPECT_NEAR(std::acos(before.dot(after) / (before.norm() * after.norm())), M_PI / 2, 1e-9);
+  }
+  EXPECT_THROW(body_bones("capsule a=0,0,0 radius=0.1", "test"), InputError);
 }
 
 } // namespace

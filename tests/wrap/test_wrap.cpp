@@ -28,6 +28,10 @@ Eigen::Vector3d on_axis(const Eigen::Vector3d& p) {
   return arm_a + t * axis;
 }
 
+double cross2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
 double arm_distance(const Eigen::Vector3d& p) {
   return (p - on_axis(p)).norm() - arm_radius;
 }
@@ -192,58 +196,160 @@ TEST(Wrap, RewrapKeepsTheClothBeyondThePin) {
 // A finger (radius 15 mm) in a coarse tube (6 cm edges): the chords between
 // vertices 12 mm above it cut into it until the sqrt(3) subdivision splits
 // them. Edges are judged here by their midpoints' distance to the finger.
-TEST(Wrap, SubdivisionSplitsEdgesThatCutIntoAFinger) {
-  const Eigen::Vector3d tip(0.0, 0.0, 1.0), knuckle(0.3, 0.0, 1.0);
-  const double radius = 0.015;
-  const contact::Capsule finger(tip, knuckle, radius);
-  const auto finger_distance = [&](const Eigen::Vector3d& p) {
+TEST(EdgeSweep, MeetsTheSegmentsItSweepsAcrossOnly) {
+  // The edge from (-1, 0, 1) to (1, 0, 1) moved straight down to z = z1
+  // sweeps the rectangle |x| <= 1, y = 0, z1 <= z <= 1.
+  const Eigen::Vector3d a0(-1.0, 0.0, 1.0), b0(1.0, 0.0, 1.0), down(0.0, 0.0, 1.0);
+  const Eigen::Vector3d across_start(0.5, -1.0, 0.0), across_end(0.5, 1.0, 0.0);
+  EXPECT_TRUE(
+      edge_sweep_meets_segment(a0, b0, a0 - 2.0 * down, b0 - 2.0 * down, across_start, across_end));
+  EXPECT_FALSE(
+      edge_sweep_meets_segment(a0, b0, a0 - 0.5 * down, b0 - 0.5 * down, across_start, across_end));
+  // Beyond the edge's ends, and a segment ending before the swept plane.
+  const Eigen::Vector3d beyond(1.5, 0.0, 0.0);
+  EXPECT_FALSE(edge_sweep_meets_segment(a0, b0, a0 - 2.0 * down, b0 - 2.0 * down,
+                                        beyond - Eigen::Vector3d::UnitY(),
+                                        beyond + Eigen::Vector3d::UnitY()));
+  EXPECT_FALSE(edge_sweep_meets_segment(a0, b0, a0 - 2.0 * down, b0 - 2.0 * down, across_start,
+                                        Eigen::Vector3d(0.5, -0.1, 0.0)));
+  // One end held: the triangle a0, b0, a1 is swept; (-0.5, 0, 0.5) is in it,
+  // (0.5, 0, 0.5) is not.
+  for (const double x : {-0.5, 0.5}) {
+    const Eigen::Vector3d through(x, 0.0, 0.5);
+    EXPECT_EQ(edge_sweep_meets_segment(a0, b0, a0 - down, b0, through - Eigen::Vector3d::UnitY(),
+                                       through + Eigen::Vector3d::UnitY()),
+              x < 0.0);
+  }
+}
+
+// How many times the sleeve's ring at panel height `along` winds around
+// the arm's axis (seen along the axis).
+int sleeve_winding(const TriangleMesh& mesh, double along) {
+  double turned = 0.0;
+  constexpr int samples = 80;
+  Eigen::Vector2d previous;
+  for (int k = 0; k <= samples; ++k) {
+    // Panel x = 0 and 0.4 are sewn together: the ring closes.
+    const Eigen::Vector3d p = cloth_point(mesh, {0.4 * k / samples, along});
+    const Eigen::Vector2d around(p.y() - arm_a.y(), p.z() - arm_a.z());
+    if (k > 0) turned += std::atan2(cross2d(previous, around), previous.dot(around));
+    previous = around;
+  }
+  return int(std::lround(turned / (2.0 * M_PI)));
+}
+
+TEST(Bones, HoldTheSleeveOnTheArmThroughLongFalls) {
+  const WrappedSleeve& sleeve = wrapped_sleeve();
+  ASSERT_EQ(std::abs(sleeve_winding(sleeve.result.mesh, 0.18)), 1);
+  // Falls of 0.15 m a step carry the sleeve's top past the 0.1 m thick arm:
+  // kept above the arm, its vertices land below it.
+  RelaxParameters falls;
+  falls.gravity_step = 0.15;
+  falls.max_step = 0.15;
+  const contact::Capsule arm(arm_a, arm_b, arm_radius);
+  ClothOnBody loose(sleeve.result.mesh, arm, falls), held(sleeve.result.mesh, arm, falls);
+  held.bones = {{"axis", "", arm_a, arm_b, arm_radius, arm_radius}};
+  loose.relax(10);
+  held.relax(10);
+  EXPECT_EQ(loose.bone_holds(), 0);
+  EXPECT_EQ(sleeve_winding(loose.mesh(), 0.18), 0);
+  EXPECT_GT(held.bone_holds(), 0);
+  for (const double along : {0.06, 0.18, 0.3})
+    EXPECT_EQ(std::abs(sleeve_winding(held.mesh(), along)), 1) << "ring at " << along;
+}
+
+// A tube of one panel wrapped on a finger of 15 mm radius: its 6 cm edges
+// cut into it.
+struct FingerTube {
+  Eigen::Vector3d tip{0.0, 0.0, 1.0}, knuckle{0.3, 0.0, 1.0};
+  double radius = 0.015;
+  contact::Capsule finger{tip, knuckle, radius};
+  Pattern pattern;
+  TriangleMesh sewn;
+  std::vector<MarkPair> pairs;
+
+  FingerTube() {
+    pattern = parse_pattern(R"({"format": "sartor-pattern", "version": 1,
+      "name": "finger tube", "units": "m", "panels": [{"id": "tube", "fabric": "cotton_twill",
+      "tag": {"cylinder": "arm_l", "side": "front", "layer": 0}, "grain": {"angle_deg": 90},
+      "outline": [
+        {"id": "t_end", "type": "straight", "points": [[0.0, 0.0], [0.17, 0.0]]},
+        {"id": "t_right", "type": "straight", "points": [[0.17, 0.0], [0.17, 0.2]]},
+        {"id": "t_top", "type": "straight", "points": [[0.17, 0.2], [0.0, 0.2]]},
+        {"id": "t_left", "type": "straight", "points": [[0.0, 0.2], [0.0, 0.0]]}]}]})",
+                            "finger tube");
+    sewn = sew_panels(pattern, {{"t_right", "t_left", true, "test seam"}}, 0.06, 25.0);
+    pairs.resize(2);
+    for (std::size_t k = 0; k < 2; ++k) {
+      const double panel_x = k == 0 ? 0.1275 : 0.0425, side = k == 0 ? -radius : radius;
+      pairs[k].id = k == 0 ? "front" : "back";
+      pairs[k].cloth.points = {{panel_x, 0.02}, {panel_x, 0.18}};
+      pairs[k].body = body_surface_path(finger, {{0.07, side, 1.0}, {0.23, side, 1.0}}, 0.005);
+    }
+  }
+  double distance(const Eigen::Vector3d& p) const {
     const double t =
         std::clamp((p - tip).dot(knuckle - tip) / (knuckle - tip).squaredNorm(), 0.0, 1.0);
     return (p - tip - t * (knuckle - tip)).norm() - radius;
-  };
-  const Pattern pattern = parse_pattern(R"({"format": "sartor-pattern", "version": 1,
-    "name": "finger tube", "units": "m", "panels": [{"id": "tube", "fabric": "cotton_twill",
-    "tag": {"cylinder": "arm_l", "side": "front", "layer": 0}, "grain": {"angle_deg": 90},
-    "outline": [
-      {"id": "t_end", "type": "straight", "points": [[0.0, 0.0], [0.17, 0.0]]},
-      {"id": "t_right", "type": "straight", "points": [[0.17, 0.0], [0.17, 0.2]]},
-      {"id": "t_top", "type": "straight", "points": [[0.17, 0.2], [0.0, 0.2]]},
-      {"id": "t_left", "type": "straight", "points": [[0.0, 0.2], [0.0, 0.0]]}]}]})",
-                                        "finger tube");
-  const TriangleMesh sewn =
-      sew_panels(pattern, {{"t_right", "t_left", true, "test seam"}}, 0.06, 25.0);
-  std::vector<MarkPair> pairs(2);
-  for (std::size_t k = 0; k < 2; ++k) {
-    const double panel_x = k == 0 ? 0.1275 : 0.0425, side = k == 0 ? -radius : radius;
-    pairs[k].id = k == 0 ? "front" : "back";
-    pairs[k].cloth.points = {{panel_x, 0.02}, {panel_x, 0.18}};
-    pairs[k].body = body_surface_path(finger, {{0.07, side, 1.0}, {0.23, side, 1.0}}, 0.005);
   }
-  const auto cutting_edges = [&](const TriangleMesh& mesh) {
+  // Edges whose midpoints lie inside the finger.
+  int cutting_edges(const TriangleMesh& mesh) const {
     int cutting = 0;
     for (const auto& edge : rest_edges(mesh).edges)
-      cutting += finger_distance(0.5 * (mesh.positions[std::size_t(edge[0])] +
-                                        mesh.positions[std::size_t(edge[1])])) < 0.0;
+      cutting += distance(0.5 * (mesh.positions[std::size_t(edge[0])] +
+                                 mesh.positions[std::size_t(edge[1])])) < 0.0;
     return cutting;
-  };
+  }
+};
+
+TEST(Wrap, SubdivisionSplitsEdgesThatCutIntoAFinger) {
+  const FingerTube tube;
   WrapOptions options;
-  const WrapResult plain = wrap(sewn, pattern, pairs, finger, options);
+  const WrapResult plain = wrap(tube.sewn, tube.pattern, tube.pairs, tube.finger, options);
   options.subdivide = true;
-  const WrapResult refined = wrap(sewn, pattern, pairs, finger, options);
-  const int before = cutting_edges(plain.mesh), after = cutting_edges(refined.mesh);
+  const WrapResult refined = wrap(tube.sewn, tube.pattern, tube.pairs, tube.finger, options);
+  const int before = tube.cutting_edges(plain.mesh), after = tube.cutting_edges(refined.mesh);
   EXPECT_GT(before, 0);
   EXPECT_GT(refined.split_edges, 0);
   EXPECT_LT(after, before);
   EXPECT_EQ(refined.mesh.vertex_count(),
-            sewn.vertex_count() + 2 * std::size_t(refined.split_edges));
+            tube.sewn.vertex_count() + 2 * std::size_t(refined.split_edges));
   EXPECT_EQ(refined.mesh.triangle_count(),
-            sewn.triangle_count() + 4 * std::size_t(refined.split_edges));
+            tube.sewn.triangle_count() + 4 * std::size_t(refined.split_edges));
   double closest = std::numeric_limits<double>::infinity();
   for (const Eigen::Vector3d& p : refined.mesh.positions)
-    closest = std::min(closest, finger_distance(p));
+    closest = std::min(closest, tube.distance(p));
   EXPECT_GE(closest, 0.0);
   RecordProperty("cutting_edges_before", before);
   RecordProperty("cutting_edges_after", after);
+  RecordProperty("splits", std::to_string(refined.splits));
+  RecordProperty("merges", std::to_string(refined.merges));
+}
+
+TEST(Wrap, SplitEdgesMergeBackWhenTheClothLeavesTheFinger) {
+  const FingerTube tube;
+  const WrapResult plain = wrap(tube.sewn, tube.pattern, tube.pairs, tube.finger, WrapOptions{});
+  ClothOnBody cloth(plain.mesh, tube.finger, RelaxParameters{});
+  AdaptiveSubdivision subdivision(plain.mesh);
+  ASSERT_TRUE(subdivision.update(cloth));
+  const int split = subdivision.split_edges();
+  EXPECT_GT(split, 0);
+  EXPECT_EQ(cloth.mesh().vertex_count(), plain.mesh.vertex_count() + 2 * std::size_t(split));
+  EXPECT_LT(tube.cutting_edges(cloth.mesh()), tube.cutting_edges(plain.mesh));
+  // Unchanged positions: nothing more to split or merge.
+  EXPECT_FALSE(subdivision.update(cloth));
+  // Lifted 0.3 m off the finger, no edge comes near cutting: all merge back
+  // and the base mesh returns, its vertices where they were lifted to.
+  const Eigen::Vector3d lift(0.0, 0.0, 0.3);
+  for (Eigen::Vector3d& p : cloth.positions())
+    p += lift;
+  ASSERT_TRUE(subdivision.update(cloth));
+  EXPECT_EQ(subdivision.split_edges(), 0);
+  EXPECT_EQ(subdivision.merges(), split);
+  ASSERT_EQ(cloth.mesh().vertex_count(), plain.mesh.vertex_count());
+  EXPECT_EQ(cloth.mesh().triangles, plain.mesh.triangles);
+  for (std::size_t v = 0; v < plain.mesh.vertex_count(); ++v)
+    EXPECT_EQ(cloth.mesh().positions[v], plain.mesh.positions[v] + lift);
 }
 
 } // namespace

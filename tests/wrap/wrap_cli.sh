@@ -2,7 +2,8 @@
 # `sartor wrap` and `sartor drag` end to end on the samples of cases/wrap:
 # the sleeve on its capsule arm, the tube skirt on the mannequin (coarse, for
 # speed), the sleeve rewrapped by its cuff with two pushpins, then the
-# sleeve's drag script. The numbers in wrap.json and
+# sleeve's drag script; the sleeve at 8 cm edges (too long for the arm)
+# wrapped and dragged with adaptive subdivision. The numbers in wrap.json and
 # drag.json are checked against stated bounds (docs/wrapping.md).
 #
 #   wrap_cli.sh SARTOR CASES_DIR WORKDIR
@@ -19,6 +20,10 @@ rm -rf "$work" && mkdir -p "$work"
   --output "$work/rewrap" --no-plot > "$work/rewrap.log"
 "$sartor" drag "$work/sleeve/wrapped.obj" "$cases/sleeve_drags.yaml" --output "$work/drag" \
   --no-plot > "$work/drag.log"
+"$sartor" wrap "$cases/sleeve.json" "$cases/sleeve_marks.json" --edge-length 0.08 --subdivide \
+  --output "$work/coarse" --no-plot > "$work/coarse.log"
+"$sartor" drag "$work/coarse/wrapped.obj" "$cases/sleeve_drags.yaml" --subdivide \
+  --output "$work/coarse_drag" --no-plot > "$work/coarse_drag.log"
 
 /usr/bin/python3 - "$work" <<'PYTHON'
 import json, sys
@@ -36,6 +41,22 @@ for name, mismatch_bound in (("sleeve", 0.015), ("tube", 0.03)):
     ratio = w["edge_length_ratio"]
     check(0.5 < ratio["min"] and ratio["max"] < 2.0,
           "%s: edge length ratios %g..%g outside 0.5..2" % (name, ratio["min"], ratio["max"]))
+# The bones: the capsule's axis; the mannequin's skeleton.
+for name, bones in (("sleeve", 1), ("tube", 20)):
+    b = json.load(open("%s/%s/wrap.json" % (work, name)))["bones"]
+    check(b["count"] == bones and len(b["names"]) == bones,
+          "%s: %d bones, not %d" % (name, b["count"], bones))
+c = json.load(open("%s/coarse/wrap.json" % work))
+split = c["split_edges"]
+check(split > 0, "coarse sleeve: no edge split")
+check(c["subdivision"]["splits"] - c["subdivision"]["merges"] == split,
+      "coarse sleeve: splits - merges != split edges")
+check(c["min_body_distance_m"] >= 0.0, "coarse sleeve: a vertex inside the body")
+check(c["mark_mismatch_m"]["max"] < 0.02, "coarse sleeve: mark mismatch %g m" % c["mark_mismatch_m"]["max"])
+cd = json.load(open("%s/coarse_drag/drag.json" % work))
+check(cd["subdivision"]["split_edges"] > 0, "coarse drag: no edge split")
+check(cd["min_body_distance_m"] >= 0.0, "coarse drag: a vertex inside the body")
+check(abs(cd["drags"][0]["vertex_displacement_m"][0] - 0.05) < 1e-6, "coarse drag: the slide fell short")
 r = json.load(open("%s/rewrap/wrap.json" % work))
 check(r["rewrap"]["pin_motion_max_m"] < 1e-12, "rewrap: a pin moved %g m" % r["rewrap"]["pin_motion_max_m"])
 check(r["rewrap"]["kept_vertices"] > 0, "rewrap: the pins kept nothing")
@@ -51,5 +72,5 @@ check(0.025 < rise < 0.031, "turn: the grabbed vertex rose %g m, not about 0.03"
 check(d["min_body_distance_m"] >= 0.0, "drag: a vertex inside the body")
 if failures:
     sys.exit("wrap_cli: " + "; ".join(failures))
-print("wrap_cli: sleeve, tube, rewrap and drags within their bounds")
+print("wrap_cli: sleeve, tube, rewrap, drags and the subdivided coarse sleeve within their bounds")
 PYTHON
