@@ -38,6 +38,18 @@ PetscErrorCode attach_near_null_space(Vec x, Mat J) {
   PetscFunctionReturn(0);
 }
 
+// A Jacobian without a potential is not symmetric: a Cholesky factorisation
+// (the default for a symmetric problem on one rank) becomes LU.
+PetscErrorCode factorise_unsymmetric(KSP ksp) {
+  PC pc = nullptr;
+  PetscBool cholesky = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCCHOLESKY, &cholesky));
+  if (cholesky) PetscCall(PCSetType(pc, PCLU));
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode SnesTolerances::of(SNES snes, SnesTolerances* t) {
@@ -50,7 +62,7 @@ PetscErrorCode SnesTolerances::apply(SNES snes) const {
 }
 
 IncrementalSystem::IncrementalSystem(ClothProblem& problem, Vec like) : problem_(problem) {
-  SartorPetscCall(set_default_direct_solver(problem.comm()));
+  SartorPetscCall(set_default_direct_solver(problem.comm(), "", problem.symmetric_jacobian()));
   SartorPetscCall(problem.create_jacobian(&jacobian_));
   jacobian_version_ = problem.coupling_version();
   SartorPetscCall(attach_near_null_space(like, jacobian_));
@@ -79,6 +91,7 @@ PetscErrorCode IncrementalSystem::create_snes(bool with_objective, SNES* snes) {
   KSP ksp = nullptr;
   PetscCall(SNESGetKSP(*snes, &ksp));
   PetscCall(gather_telescope_onto_one_rank(ksp));
+  if (!with_objective || !problem_.symmetric_jacobian()) PetscCall(factorise_unsymmetric(ksp));
   PetscCall(SNESSetConvergenceTest(*snes, sartor::converged, this, nullptr));
   PetscCall(SNESSetConvergenceHistory(*snes, norms_.data(), nullptr, PetscInt(norms_.size()),
                                       PETSC_TRUE));

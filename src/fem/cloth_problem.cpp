@@ -296,6 +296,10 @@ bool ClothProblem::has_potential() const {
          std::all_of(forms_.begin(), forms_.end(), potential);
 }
 
+bool ClothProblem::symmetric_jacobian() const {
+  return has_potential() && releasable_rows_.empty();
+}
+
 bool ClothProblem::projects_hessians() const {
   for (const ClothMaterial& m : materials_) {
     if (m.project_bending) return true; // the bending forms' elements

@@ -284,6 +284,11 @@ public:
   // The residual is the gradient of energy(): no pressure on a surface with
   // a free edge, no position-dependent unloaded lengths.
   bool has_potential() const;
+  // The Jacobian is symmetric: the Hessian of a potential, on the free dofs
+  // (pinned vertices are section constraints), with no releasable pin's
+  // rows replaced (replace_held_rows). Only its upper triangle need be
+  // factorised.
+  bool symmetric_jacobian() const;
 
   // All vertex positions, in mesh numbering, on rank 0 (empty elsewhere).
   PetscErrorCode gather_positions(Vec x, std::vector<Eigen::Vector3d>* positions);

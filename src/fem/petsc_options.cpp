@@ -14,17 +14,17 @@ PetscErrorCode set_default_option(const char* name, const char* value) {
 
 namespace {
 
-PetscErrorCode set_default_lu(const std::string& option) {
+PetscErrorCode set_default_lu(const std::string& option, bool symmetric = false) {
   PetscFunctionBeginUser;
   PetscCall(set_default_option((option + "ksp_type").c_str(), "preonly"));
-  PetscCall(set_default_option((option + "pc_type").c_str(), "lu"));
+  PetscCall(set_default_option((option + "pc_type").c_str(), symmetric ? "cholesky" : "lu"));
   PetscCall(set_default_option((option + "pc_factor_mat_solver_type").c_str(), "mumps"));
   PetscFunctionReturn(0);
 }
 
 } // namespace
 
-PetscErrorCode set_default_direct_solver(MPI_Comm comm, const std::string& prefix) {
+PetscErrorCode set_default_direct_solver(MPI_Comm comm, const std::string& prefix, bool symmetric) {
   PetscMPIInt size = 1;
   PetscBool chosen = PETSC_FALSE;
   PetscFunctionBeginUser;
@@ -32,7 +32,7 @@ PetscErrorCode set_default_direct_solver(MPI_Comm comm, const std::string& prefi
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(PetscOptionsHasName(nullptr, nullptr, (option + "pc_type").c_str(), &chosen));
   if (size == 1 || chosen) {
-    PetscCall(set_default_lu(option));
+    PetscCall(set_default_lu(option, size == 1 && symmetric));
     PetscFunctionReturn(0);
   }
   PetscCall(set_default_option((option + "ksp_type").c_str(), "preonly"));

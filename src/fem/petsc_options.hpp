@@ -17,7 +17,10 @@ PetscErrorCode set_default_option(const char* name, const char* value);
 // would differ at round-off, and any path that turns on round-off with them.
 // `-PREFIXpc_type lu` chooses the parallel factorisation
 // (docs/reliability.md#mpi-determinism).
-PetscErrorCode set_default_direct_solver(MPI_Comm comm, const std::string& prefix = "");
+// With `symmetric` (the system's matrices are), on one rank MUMPS's LDL^T
+// (PCCHOLESKY, its symmetric mode) instead: about half the work.
+PetscErrorCode set_default_direct_solver(MPI_Comm comm, const std::string& prefix = "",
+                                         bool symmetric = false);
 
 // Collective; after KSPSetFromOptions. A PCTELESCOPE whose reduction factor
 // the options do not give gathers onto one rank, whatever the rank count (a
