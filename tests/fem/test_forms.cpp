@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <random>
 #include <string>
@@ -284,6 +285,25 @@ TEST(Forms, PressureOnAHeldBoundaryIsMinusPTimesTheVolume) {
                      std::vector<int>(boundary.begin() + 1, boundary.end()));
   loose.loads.pressure = pressure;
   EXPECT_FALSE(loose.has_potential());
+}
+
+// Newton systems go to MUMPS's LDL^T (its upper triangle only) exactly when
+// the Jacobian is symmetric: a potential, and no releasable pin whose rows
+// are replaced (they are not symmetric).
+TEST(Forms, TheJacobianIsSymmetricForAPotentialWithoutReleasablePins) {
+  const TriangleMesh flat = mesh::rectangle(0.4, 0.3, 4, 3, mesh::RectanglePattern::perturbed);
+  const ClothMaterial material = cotton(element::BendingModel::discrete_shell);
+  ClothProblem fixed(PETSC_COMM_WORLD, flat, material, {0, 1});
+  EXPECT_TRUE(fixed.symmetric_jacobian());
+  fixed.loads.pressure = 5.0; // on a free edge: no potential
+  EXPECT_FALSE(fixed.symmetric_jacobian());
+  const double never = std::numeric_limits<double>::infinity();
+  const std::vector<ClothMaterial> materials{material};
+  ClothProblem kept(PETSC_COMM_WORLD, flat, materials, {0, 1}, {never, never});
+  EXPECT_TRUE(kept.symmetric_jacobian());
+  ClothProblem released(PETSC_COMM_WORLD, flat, materials, {0, 1}, {0.5, never});
+  EXPECT_TRUE(released.has_potential());
+  EXPECT_FALSE(released.symmetric_jacobian());
 }
 
 TEST(Forms, TheProblemsResidualIsTheSumOfItsForms) {

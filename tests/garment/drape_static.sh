@@ -25,6 +25,9 @@ for f in final.obj result.h5 summary.json; do
   [ -s "$dir/$f" ] || { echo "drape_static: $dir/$f missing" >&2; exit 1; }
 done
 [ ! -e "$dir/dynamics.csv" ] || { echo "drape_static: time stepping ran" >&2; exit 1; }
+# The drape's Hessians are symmetric: on one rank MUMPS's LDL^T factorises them.
+grep -qx -- "-pc_type cholesky" "$dir/petsc_options.txt" ||
+  { echo "drape_static: the symmetric Newton systems were not factorised by LDL^T" >&2; exit 1; }
 "$python" - "$dir" "$seams" <<'PY'
 import json, math, os, sys
 d, seams = sys.argv[1], int(sys.argv[2])
