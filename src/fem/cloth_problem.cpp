@@ -297,7 +297,11 @@ bool ClothProblem::has_potential() const {
 }
 
 bool ClothProblem::symmetric_jacobian() const {
-  return has_potential() && releasable_rows_.empty();
+  // From the pins' release times, the same on every rank (the rows are
+  // each rank's own), so that every rank chooses the same factorisation.
+  for (std::size_t pin = 0; pin < pinned_.size(); ++pin)
+    if (releasable(pin)) return false;
+  return has_potential();
 }
 
 bool ClothProblem::projects_hessians() const {

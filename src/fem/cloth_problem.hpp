@@ -285,9 +285,9 @@ public:
   // a free edge, no position-dependent unloaded lengths.
   bool has_potential() const;
   // The Jacobian is symmetric: the Hessian of a potential, on the free dofs
-  // (pinned vertices are section constraints), with no releasable pin's
-  // rows replaced (replace_held_rows). Only its upper triangle need be
-  // factorised.
+  // (pinned vertices are section constraints), with no releasable pin
+  // (whose rows replace_held_rows replaces). Only its upper triangle need
+  // be factorised. The same on every rank.
   bool symmetric_jacobian() const;
 
   // All vertex positions, in mesh numbering, on rank 0 (empty elsewhere).
