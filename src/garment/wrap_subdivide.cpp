@@ -16,21 +16,16 @@ namespace {
 constexpr double merge_margin = 1.1;
 
 // The paper's test from one end: the body is approximated by the sphere of
-// radius L = |AB| touching it at A's nearest body point; the edge cuts into
-// the body when it passes through that sphere (tested exactly here). Returns
-// the edge's least distance from the sphere's centre over L (< 1: it cuts).
-double sphere_clearance(const contact::Shape& body, const Eigen::Vector3d& a,
+// radius L = |AB| touching it at A's nearest body point (`near_a`); the
+// edge cuts into the body when it passes through that sphere (tested
+// exactly here). Returns the edge's least distance from the sphere's
+// centre over L (< 1: it cuts).
+double sphere_clearance(const BodyPoint& near_a, const Eigen::Vector3d& a,
                         const Eigen::Vector3d& b) {
-  const BodyPoint near = nearest_body_point(body, a);
   const double length = (b - a).norm();
-  const Eigen::Vector3d centre = near.closest - length * near.normal;
+  const Eigen::Vector3d centre = near_a.closest - length * near_a.normal;
   const double t = std::clamp((centre - a).dot(b - a) / (length * length), 0.0, 1.0);
   return (a + t * (b - a) - centre).norm() / length;
-}
-
-double edge_clearance(const contact::Shape& body, const Eigen::Vector3d& a,
-                      const Eigen::Vector3d& b) {
-  return std::min(sphere_clearance(body, a, b), sphere_clearance(body, b, a));
 }
 
 // Whether the hinge's two triangles share the edge's rest coordinates (one
@@ -108,9 +103,13 @@ bool AdaptiveSubdivision::update(ClothOnBody& cloth) {
   const std::vector<Eigen::Vector3d>& x = cloth.positions();
   const contact::Shape& body = cloth.body();
   const std::size_t n = base_.vertex_count();
+  // Each base vertex's nearest body point once (a vertex has about six edges).
+  std::vector<BodyPoint> near(n);
+  for (std::size_t v = 0; v < n; ++v)
+    near[v] = nearest_body_point(body, x[v]);
   const auto clearance = [&](const Hinge& hinge) {
-    return edge_clearance(body, x[std::size_t(hinge.vertices[0])],
-                          x[std::size_t(hinge.vertices[1])]);
+    const std::size_t a = std::size_t(hinge.vertices[0]), b = std::size_t(hinge.vertices[1]);
+    return std::min(sphere_clearance(near[a], x[a], x[b]), sphere_clearance(near[b], x[b], x[a]));
   };
   // Split edges that stay (with their centres), then edges newly split.
   std::vector<int> split;
