@@ -30,9 +30,9 @@ nlohmann::json point_json(const Eigen::Vector3d& p) {
 // dependency graph follows the garment's own (base) edges.
 nlohmann::json run_drag(garment::ClothOnBody& cloth, const garment::ScriptedDrag& scripted,
                         const garment::DragOptions& options,
-                        garment::AdaptiveSubdivision* subdivision,
-                        const garment::RestEdges* base_edges) {
+                        garment::AdaptiveSubdivision* subdivision) {
   const std::vector<Eigen::Vector3d> start = cloth.positions();
+  const garment::RestEdges* base_edges = subdivision ? &subdivision->base_edges() : nullptr;
   garment::SurfaceDrag drag(cloth, scripted.vertex, scripted.pins, options, base_edges);
   Eigen::Vector3d requested = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& step : scripted.steps) {
@@ -118,14 +118,10 @@ int run_drag(const Invocation& invocation) {
   const double cpu_started = process_cpu_seconds();
   nlohmann::json drags = nlohmann::json::array();
   std::optional<garment::AdaptiveSubdivision> subdivision;
-  garment::RestEdges base_edges;
-  if (options.flag("subdivide")) {
-    subdivision.emplace(cloth.mesh());
-    base_edges = cloth.edges();
-  }
+  if (options.flag("subdivide")) subdivision.emplace(cloth.mesh());
   for (const garment::ScriptedDrag& scripted : script.drags)
-    drags.push_back(run_drag(cloth, scripted, script.options, subdivision ? &*subdivision : nullptr,
-                             subdivision ? &base_edges : nullptr));
+    drags.push_back(
+        run_drag(cloth, scripted, script.options, subdivision ? &*subdivision : nullptr));
   const double drag_cpu = process_cpu_seconds() - cpu_started;
 
   const garment::EdgeRatios ratios = garment::edge_length_ratios(cloth.edges(), cloth.positions());

@@ -169,13 +169,16 @@ public:
   // refinement of this object) and gives `cloth` the new refined mesh when
   // the split edges change. Returns whether they did.
   bool update(ClothOnBody& cloth);
-  const TriangleMesh& base() const { return base_; }
+  // The base mesh's edges: a drag's dependency graph follows them, so that
+  // its vertices keep their numbers while edges split and merge.
+  const RestEdges& base_edges() const { return base_edges_; }
   int split_edges() const { return int(split_.size()); } // now
   long splits() const { return splits_; }                // so far
   long merges() const { return merges_; }
 
 private:
   TriangleMesh base_;
+  RestEdges base_edges_;
   std::vector<Hinge> hinges_; // those that may be split
   std::vector<int> split_;    // into hinges_, in the order of their centres
   long splits_ = 0, merges_ = 0;

@@ -90,6 +90,7 @@ void append_split(const TriangleMesh& base, const Hinge& hinge, std::array<int, 
 
 AdaptiveSubdivision::AdaptiveSubdivision(const TriangleMesh& base) : base_(base) {
   if (base_.material_ids.empty()) base_.material_ids.assign(base_.triangle_count(), 0);
+  base_edges_ = rest_edges(base_);
   const auto is_crease = [&](const Hinge& hinge) {
     return std::any_of(base_.creases.begin(), base_.creases.end(), [&](const CreaseEdge& c) {
       return std::minmax(c.a, c.b) == std::minmax(hinge.vertices[0], hinge.vertices[1]);
