@@ -190,13 +190,12 @@ PetscErrorCode start_with_the_bodies(ClothProblem& problem, Vec x, double t1, do
   PetscFunctionBeginUser;
   if (problem.bodies.empty()) PetscFunctionReturn(0); // a take-off's recovery
   PetscCall(problem.carry_with_bodies(x, t1, reach));
-  long pushed = 0;
-  double deepest = 0.0;
-  PetscCall(problem.push_out_of_bodies(x, &pushed, &deepest));
+  ClothProblem::PushOut pushed;
+  PetscCall(problem.push_out_of_bodies(x, &pushed));
   PetscCall(PetscInfo(nullptr,
                       "creep step to %g s: %ld vertices pushed out of the bodies, the deepest "
                       "from %g m\n",
-                      t1, pushed, deepest));
+                      t1, pushed.pushed, pushed.deepest));
   PetscFunctionReturn(0);
 }
 

@@ -1,5 +1,7 @@
 #include "app/contact_case.hpp"
 
+#include "app/commands.hpp"
+
 #include "common/error.hpp"
 #include "contact/body_spec.hpp"
 #include "fem/petsc_call.hpp"
@@ -90,6 +92,32 @@ ContactCase read_contact_case(const Options& options) {
                      " is not between 1 and 10");
   contact.self_contact.rings = int(rings);
   return contact;
+}
+
+nlohmann::json attach_bone_intervals(const Options& options, double interval,
+                                     ClothProblem& problem) {
+  nlohmann::json report = nlohmann::json::array();
+  const auto specs = options.indexed("body");
+  if (problem.bodies.size() < specs.size())
+    throw std::logic_error("attach_bone_intervals: the problem lacks the options' bodies");
+  // set_up_contact put the options' bodies last, in this order.
+  std::size_t b = problem.bodies.size() - specs.size();
+  for (const auto& [option, spec] : specs) {
+    contact::Body& body = problem.bodies[b++];
+    const double started = process_cpu_seconds();
+    body.bone_intervals = contact::body_bone_intervals(spec, "option --" + option, interval);
+    if (!body.bone_intervals) continue;
+    const contact::BoneIntervals& index = *body.bone_intervals;
+    report.push_back({{"body", body.name()},
+                      {"bones", index.bones()},
+                      {"interval_m", interval},
+                      {"intervals", index.intervals()},
+                      {"triangles", index.triangles()},
+                      {"largest_interval", index.largest_interval()},
+                      {"intervals_outside", index.intervals_outside()},
+                      {"build_cpu_s", process_cpu_seconds() - started}});
+  }
+  return report;
 }
 
 void set_up_self_contact(const ContactCase& contact, ClothProblem& problem) {

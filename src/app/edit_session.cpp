@@ -4,6 +4,7 @@
 
 #include "app/certificate_case.hpp"
 #include "app/commands.hpp"
+#include "app/contact_case.hpp"
 #include "app/edit_case.hpp"
 #include "app/edit_design.hpp"
 #include "app/material_case.hpp"
@@ -39,6 +40,12 @@ namespace {
 
 // A drag's point farther than this from every cloth vertex is warned of, m.
 constexpr double far_drag_point = 0.02;
+
+// The bone intervals' length, m: 1 cm found vertices inside the mannequin
+// exported as a mesh faster than 2 cm (fewer triangles per ray) with the
+// same answers; at 5 mm the intervals beside the point's no longer hold
+// every triangle its ray meets (docs/sensitivity.md#penetration-handling).
+constexpr double bone_interval_length = 0.01;
 
 // A solved design: its parameters, problem, equilibrium and, once needed,
 // its sensitivity.
@@ -96,13 +103,11 @@ double lowest_point(ClothProblem& problem, Vec x) {
 // The thesis' penetration handling before a solve (ClothProblem::
 // push_out_of_bodies): a prediction is linear and may run through the body
 // where the drape wraps round it; the minimiser's steps are bounded by the
-// distances, so it cannot leave the body's inside by itself. Returns the
-// vertices pushed and the deepest, m (every rank).
-std::pair<long, double> push_out_of_bodies(ClothProblem& problem, Vec x) {
-  long pushed = 0;
-  double deepest = 0.0;
-  SartorPetscCall(problem.push_out_of_bodies(x, &pushed, &deepest));
-  return {pushed, deepest};
+// distances, so it cannot leave the body's inside by itself.
+ClothProblem::PushOut push_out_of_bodies(ClothProblem& problem, Vec x) {
+  ClothProblem::PushOut report;
+  SartorPetscCall(problem.push_out_of_bodies(x, &report));
+  return report;
 }
 
 double residual_norm(ClothProblem& problem, Vec x) {
@@ -169,8 +174,7 @@ struct Attempt {
   std::string start;
   StaticReport report;
   CertifiedState certified;
-  long pushed = 0;      // vertices of the start pushed out of the body
-  double deepest = 0.0; // m, the deepest of them
+  ClothProblem::PushOut pushed; // the start's vertices pushed out of the body
   double start_residual = 0.0;
   double cpu = 0.0;
   Vec x = nullptr;
@@ -357,7 +361,7 @@ std::unique_ptr<Attempt> EditSession::resolve_from(Design& last, ClothProblem& p
   const double started = process_cpu_seconds();
   SartorPetscCall(VecDuplicate(candidate, &attempt->x));
   SartorPetscCall(VecCopy(candidate, attempt->x));
-  std::tie(attempt->pushed, attempt->deepest) = push_out_of_bodies(problem, attempt->x);
+  attempt->pushed = push_out_of_bodies(problem, attempt->x);
   attempt->start_residual = residual_norm(problem, attempt->x);
   const StaticOptions solve = static_options();
   IncrementalSystem system(problem, attempt->x);
@@ -565,41 +569,43 @@ nlohmann::json EditSession::solve_step(std::size_t k, const Eigen::VectorXd& p,
     write_state(folder + "/resolved", *next, next->x);
   }
   const double edit_cpu = slope_cpu + predict_cpu + solve_cpu;
-  nlohmann::json step = {
-      {"name", steps_[k].name},
-      {"folder", name},
-      {"largest_corner_move_m", design.largest_move(p - last.p)},
-      {"rest_mesh", next->rest_mesh},
-      {"seam_rest_lengths", seam_rest_lengths(*next->mesh, garment_.seams)},
-      {"error_against_resolved",
-       {{"unchanged", distance_json(distance(problem, unchanged, next->x))},
-        {"linear", distance_json(distance(problem, linear, next->x))},
-        {"gmls", distance_json(distance(problem, gmls, next->x))},
-        {"geometric", distance_json(distance(problem, geometric, next->x))}}},
-      {"gmls", {{"designs", designs_.size()}, {"degree", used.degree}}},
-      {"lowest_point_z_m",
-       {{"before", lowest_point(problem, unchanged)},
-        {"linear", lowest_point(problem, linear)},
-        {"gmls", lowest_point(problem, gmls)},
-        {"geometric", lowest_point(problem, geometric)},
-        {"resolved", lowest_point(problem, next->x)}}},
-      {"start", chosen.start},
-      {"start_energy_J", start_energy},
-      {"start_pushed_out", {{"vertices", chosen.pushed}, {"deepest_m", chosen.deepest}}},
-      {"start_residual_N", chosen.start_residual},
-      {"attempts", tried},
-      {"resolve", resolve_json(chosen.report, chosen.certified)},
-      {"sensitivity_stabilised", last.slope->stabilised()},
-      {"cpu_s",
-       {{"sensitivity_factorisation", slope_cpu},
-        {"prediction", predict_cpu},
-        {"geometric_prediction", geometric_cpu},
-        {"resolve", solve_cpu},
-        {"edit_total", edit_cpu},
-        {"drape_from_scratch", scratch_cpu_}}},
-      {"speedup",
-       {{"resolve", solve_cpu > 0.0 ? scratch_cpu_ / solve_cpu : 0.0},
-        {"edit_total", edit_cpu > 0.0 ? scratch_cpu_ / edit_cpu : 0.0}}}};
+  nlohmann::json step = {{"name", steps_[k].name},
+                         {"folder", name},
+                         {"largest_corner_move_m", design.largest_move(p - last.p)},
+                         {"rest_mesh", next->rest_mesh},
+                         {"seam_rest_lengths", seam_rest_lengths(*next->mesh, garment_.seams)},
+                         {"error_against_resolved",
+                          {{"unchanged", distance_json(distance(problem, unchanged, next->x))},
+                           {"linear", distance_json(distance(problem, linear, next->x))},
+                           {"gmls", distance_json(distance(problem, gmls, next->x))},
+                           {"geometric", distance_json(distance(problem, geometric, next->x))}}},
+                         {"gmls", {{"designs", designs_.size()}, {"degree", used.degree}}},
+                         {"lowest_point_z_m",
+                          {{"before", lowest_point(problem, unchanged)},
+                           {"linear", lowest_point(problem, linear)},
+                           {"gmls", lowest_point(problem, gmls)},
+                           {"geometric", lowest_point(problem, geometric)},
+                           {"resolved", lowest_point(problem, next->x)}}},
+                         {"start", chosen.start},
+                         {"start_energy_J", start_energy},
+                         {"start_pushed_out",
+                          {{"vertices", chosen.pushed.pushed},
+                           {"deepest_m", chosen.pushed.deepest},
+                           {"body_queries", chosen.pushed.queries}}},
+                         {"start_residual_N", chosen.start_residual},
+                         {"attempts", tried},
+                         {"resolve", resolve_json(chosen.report, chosen.certified)},
+                         {"sensitivity_stabilised", last.slope->stabilised()},
+                         {"cpu_s",
+                          {{"sensitivity_factorisation", slope_cpu},
+                           {"prediction", predict_cpu},
+                           {"geometric_prediction", geometric_cpu},
+                           {"resolve", solve_cpu},
+                           {"edit_total", edit_cpu},
+                           {"drape_from_scratch", scratch_cpu_}}},
+                         {"speedup",
+                          {{"resolve", solve_cpu > 0.0 ? scratch_cpu_ / solve_cpu : 0.0},
+                           {"edit_total", edit_cpu > 0.0 ? scratch_cpu_ / edit_cpu : 0.0}}}};
   for (Vec* v : {&unchanged, &linear, &gmls, &geometric})
     SartorPetscCall(VecDestroy(v));
   designs_.push_back(std::move(next));
@@ -755,6 +761,7 @@ void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& mat
   if (garment_.panel_of_triangle.size() != base.mesh().triangle_count())
     throw std::logic_error("sartor edit: the drape's mesh is not the constructed garment's");
   factory_ = factory(base, materials);
+  const nlohmann::json bone_intervals = attach_bone_intervals(options_, bone_interval_length, base);
   const EditDesign design(garment_.pattern, base.mesh(), garment_.panel_of_triangle,
                           interior_coordinates_option(options_));
   design_ = &design;
@@ -819,7 +826,8 @@ void EditSession::edit(ClothProblem& base, const std::vector<ClothMaterial>& mat
                    {"drape_resumed_from", drape_.directory},
                    {"start", options_.text("edit-start")},
                    {"gmls_degree", int(options_.positive_real("gmls-degree"))},
-                   {"interior", options_.text("edit-interior")}};
+                   {"interior", options_.text("edit-interior")},
+                   {"bone_intervals", bone_intervals}};
 }
 
 } // namespace

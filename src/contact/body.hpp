@@ -23,6 +23,8 @@
 
 namespace sartor::contact {
 
+class BoneIntervals; // contact/bone_intervals.hpp
+
 // Samples (time, value), times strictly increasing; empty = always `fallback`.
 template <typename Value>
 class PiecewiseLinear {
@@ -67,6 +69,10 @@ public:
   const Eigen::Vector3d& pivot() const { return pivot_; }
   Motion motion;
   Friction friction;
+  // The thesis' spatial index of the body's mesh by bones and intervals, in
+  // the body's frame, where one was built for finding points inside before a
+  // solve (ClothProblem::push_out_of_bodies); null elsewhere.
+  std::shared_ptr<const BoneIntervals> bone_intervals;
 
   // The shape's query at world point x and time t, in world terms.
   SurfaceQuery query(const Eigen::Vector3d& x, double time) const;

@@ -330,6 +330,20 @@ std::vector<Bone> body_bones(const std::string& spec, const std::string& where) 
   return {};
 }
 
+std::shared_ptr<const BoneIntervals>
+body_bone_intervals(const std::string& spec, const std::string& where, double interval) {
+  if (spec == "default") return nullptr;
+  Fields fields(spec, where);
+  if (fields.kind() != "mesh" || !fields.has("skeleton")) return nullptr;
+  try {
+    const BodyMesh mesh = read_body_obj(fields.text("file"));
+    return std::make_shared<const BoneIntervals>(
+        mesh, read_skeleton_file(fields.text("skeleton"), mesh), interval);
+  } catch (const InputError& error) {
+    fields.fail(error.what());
+  }
+}
+
 GarmentBody garment_body(const std::string& spec, const std::string& where) {
   if (spec == "default") return garment_body("mannequin", where);
   Fields fields(spec, where);

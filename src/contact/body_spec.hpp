@@ -23,6 +23,7 @@
 //   scale=T:S;...  (piecewise-linear motions; no spaces inside a value)
 
 #include "contact/body.hpp"
+#include "contact/bone_intervals.hpp"
 #include "contact/mannequin.hpp"
 
 #include <memory>
@@ -58,6 +59,16 @@ GarmentBody garment_body(const std::string& spec, const std::string& where);
 // would sweep across one (garment/wrap_relax.hpp). Throws InputError naming
 // `where` for a bad specification.
 std::vector<Bone> body_bones(const std::string& spec, const std::string& where);
+
+// The thesis' spatial index (contact/bone_intervals.hpp) of the body `spec`
+// names, for finding cloth vertices inside it before a solve: a mesh body
+// with a skeleton file, its triangles filed under its bones in intervals of
+// `interval` m. Null for any other body: an analytic shape, the mannequin's
+// implicit surface included, answers a point faster than the index would
+// (docs/sensitivity.md#penetration-handling). Throws InputError naming
+// `where` for a bad specification.
+std::shared_ptr<const BoneIntervals> body_bone_intervals(const std::string& spec,
+                                                         const std::string& where, double interval);
 
 // The mannequin `spec` names ("default" or "mannequin [measurements=...]
 // [pose=...] ..."), sized and posed; nullopt for any other body. Throws

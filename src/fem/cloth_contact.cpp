@@ -2,6 +2,8 @@
 // (fem/forms/contact_form.hpp) at the problem's state.
 
 #include "fem/cloth_problem.hpp"
+
+#include "contact/bone_intervals.hpp"
 #include "fem/forms/contact_form.hpp"
 
 #include <algorithm>
@@ -47,15 +49,19 @@ PetscErrorCode ClothProblem::contact_step_bound(Vec x, Vec direction, double* bo
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ClothProblem::push_out_of_bodies(Vec x, long* pushed, double* deepest) {
+PetscErrorCode ClothProblem::push_out_of_bodies(Vec x, PushOut* report) {
   std::vector<Eigen::Vector3d> positions;
   PetscFunctionBeginUser;
   PetscCall(gather_positions(x, &positions));
-  double counts[2] = {0.0, 0.0};
+  double counts[3] = {0.0, 0.0, 0.0}; // pushed, deepest, queries
   for (Eigen::Vector3d& p : positions) {
     bool moved = false;
     for (const contact::Body& body : bodies) {
-      const contact::SurfaceQuery q = body.query(p, contact_clock());
+      if (body.bone_intervals &&
+          !body.bone_intervals->may_be_inside(body.to_body(p, contact_clock()), contact.offset))
+        continue;
+      counts[2] += 1.0;
+      const contact::SurfaceQuery q = body.query(p, contact_clock(), contact::QueryNeeds::normal);
       if (q.distance >= 0.0 || q.normal.norm() == 0.0) continue;
       counts[1] = std::max(counts[1], -q.distance);
       p += (0.5 * contact.offset - q.distance) * q.normal.normalized();
@@ -63,10 +69,11 @@ PetscErrorCode ClothProblem::push_out_of_bodies(Vec x, long* pushed, double* dee
     }
     counts[0] += moved ? 1.0 : 0.0;
   }
-  PetscCallMPI(MPI_Bcast(counts, 2, MPI_DOUBLE, 0, comm_));
+  PetscCallMPI(MPI_Bcast(counts, 3, MPI_DOUBLE, 0, comm_));
   PetscCall(set_gathered_positions(comm_, *this, &positions, x));
-  *pushed = long(counts[0]);
-  *deepest = counts[1];
+  report->pushed = long(counts[0]);
+  report->deepest = counts[1];
+  report->queries = long(counts[2]);
   PetscFunctionReturn(0);
 }
 

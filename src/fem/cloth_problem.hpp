@@ -166,14 +166,24 @@ public:
   // self-contact, no vertex-triangle pair comes closer than the same
   // fraction of its distance (SelfContactForm::step_bound) either.
   PetscErrorCode contact_step_bound(Vec x, Vec direction, double* bound);
+  // What push_out_of_bodies did (every rank): the vertices pushed, the
+  // deepest (m), and the body queries asked (one per vertex and body, less
+  // those the body's bone intervals place outside).
+  struct PushOut {
+    long pushed = 0;
+    double deepest = 0.0;
+    long queries = 0;
+  };
   // Collective. The thesis' penetration handling before a solve (ch. 4,
   // Alg. 1): every vertex inside a body at the contact clock is moved out
-  // along the body's normal to the middle of the contact offset layer;
-  // `pushed`, `deepest` (m): how many, and the deepest (every rank). For a
-  // start the bodies have moved into (a limb bending into its trouser leg, a
-  // linear prediction through the body): from inside, the penalty's force
-  // is its stiffness times the depth, far more than the cloth can carry.
-  PetscErrorCode push_out_of_bodies(Vec x, long* pushed, double* deepest);
+  // along the body's normal to the middle of the contact offset layer. A
+  // body with bone intervals (contact/bone_intervals.hpp) is asked only
+  // about the vertices its index does not place outside by more than the
+  // contact offset. For a start the bodies have moved into (a limb bending
+  // into its trouser leg, a linear prediction through the body): from
+  // inside, the penalty's force is its stiffness times the depth, far more
+  // than the cloth can carry.
+  PetscErrorCode push_out_of_bodies(Vec x, PushOut* report);
   // Collective. Sets `time` to `to`, and carries the cloth near the bodies
   // along with them: a vertex at distance d from a body moves by 1 - d /
   // `reach` (none beyond it, all of it on the surface) of the body's motion

@@ -3,7 +3,8 @@
 # measurement set, and the same body exported by `sartor body` as OBJ +
 # skeleton and read back; TAGCON's torso cylinder follows the waist. Bodies
 # without a skeleton are refused with a message naming the option. A drape
-# on an exported OBJ body with its skeleton is certified.
+# on an exported OBJ body with its skeleton is certified, and so is its edit
+# (the body's bone intervals in the push-out).
 # Usage: body_skeleton_construct.sh SARTOR DATA_DIR PATTERN_DIR OUT
 set -euo pipefail
 sartor=$1 data=$2 patterns=$3 out=$4
@@ -53,6 +54,23 @@ assert "distance smoothed over 0.0001 m" in body and "mu_s=0.3" in body, body
 assert s["certificate"]["certified"], s["certificate"]["verdict"]
 assert s["drape"]["outcome"]["end"] == "on_body", s["drape"]["outcome"]
 print("skirt on the OBJ body: certified, %s" % body)
+PY
+# Its edit: the thesis' bone intervals index the body's triangles, and the
+# start's vertices they place outside are not asked of the body.
+"$sartor" edit "$out/drape_obj" "$patterns/../edit/skirt_hem.yaml" --no-plot --no-edit-outputs \
+  --output "$out/edit_obj" > "$out/edit_obj.log" 2>&1 ||
+  fail "edit on the OBJ body: $(tail -n 2 "$out/edit_obj.log")"
+/usr/bin/python3 - "$out/edit_obj/summary.json" <<'PY' || fail "edit on the OBJ body: see above"
+import json, sys
+s = json.load(open(sys.argv[1]))
+index = s["edit"]["bone_intervals"]
+assert len(index) == 1 and index[0]["bones"] == 20 and index[0]["intervals_outside"] == 0, index
+assert index[0]["triangles"] == 36364 and index[0]["intervals"] == 475, index
+step = s["edit"]["steps"][0]
+asked = step["start_pushed_out"]["body_queries"]
+assert asked < s["mesh"]["vertices"] / 10, (asked, s["mesh"]["vertices"])
+assert step["resolve"]["certified"], step["resolve"]
+print("edit on the OBJ body: %d of %d vertices asked of the body, certified" % (asked, s["mesh"]["vertices"]))
 PY
 if "$sartor" drape "$patterns/skirt.json" --body "$obj smoothing=-1" --output "$out/bad" \
   > "$out/bad.log" 2>&1; then fail "smoothing=-1 was accepted"; fi

@@ -5,11 +5,14 @@
 // skipped body queries that change nothing.
 
 #include "contact/analytic_shapes.hpp"
+#include "contact/bone_intervals.hpp"
 #include "contact/edge_penalty.hpp"
+#include "contact/mesh_shape.hpp"
 #include "fem/cloth_problem.hpp"
 #include "mesh/generators.hpp"
 #include "solvers/dynamics.hpp"
 #include "solvers/statics.hpp"
+#include "tests/contact/capsule_mesh.hpp"
 #include "tests/fem/jacobian_check.hpp"
 
 #include <gtest/gtest.h>
@@ -168,6 +171,47 @@ TEST(ContactProblem, SkippedQueriesChangeNothing) {
   EXPECT_EQ(difference, 0.0);
   for (Vec* v : {&x, &moved, &f_queried, &f_fresh})
     VecDestroy(v);
+}
+
+// The thesis' bone intervals spare the body queries of vertices they place
+// outside, and push out the same vertices to the same places.
+TEST(ContactProblem, BoneIntervalsPushOutWhatTheBodyWouldAlone) {
+  const double capsule_radius = 0.05, capsule_length = 0.3;
+  const BodyMesh capsule = test::capsule_mesh(capsule_radius, capsule_length);
+  const std::shared_ptr<const contact::Shape> shape =
+      contact::make_mesh_shape(capsule.vertices, capsule.faces, "capsule");
+  // A sheet across the capsule's middle, its centre 3 cm inside.
+  const TriangleMesh mesh = placed(mesh::rectangle(0.4, 0.4, 16, 16),
+                                   Eigen::AngleAxisd(0.5 * M_PI, Vector3d::UnitX()).matrix(),
+                                   Vector3d(-0.2, 0.02, 0.15 - 0.2));
+  std::vector<std::vector<Vector3d>> pushed_positions;
+  std::vector<ClothProblem::PushOut> reports;
+  for (const bool indexed : {false, true}) {
+    ClothProblem problem(PETSC_COMM_WORLD, mesh, fabric(1e-4), {});
+    problem.contact.offset = 2e-3;
+    problem.bodies = {contact::Body("capsule", shape, Vector3d::Zero())};
+    if (indexed)
+      problem.bodies[0].bone_intervals = std::make_shared<const contact::BoneIntervals>(
+          capsule,
+          std::vector<Bone>{{"axis", "", Vector3d::Zero(), Vector3d(0, 0, capsule_length),
+                             capsule_radius, capsule_radius}},
+          0.02);
+    Vec x = nullptr;
+    ASSERT_EQ(problem.create_solution(&x), 0);
+    ClothProblem::PushOut report;
+    ASSERT_EQ(problem.push_out_of_bodies(x, &report), 0);
+    reports.push_back(report);
+    pushed_positions.emplace_back();
+    ASSERT_EQ(problem.positions_everywhere(x, &pushed_positions.back()), 0);
+    VecDestroy(&x);
+  }
+  EXPECT_EQ(pushed_positions[1], pushed_positions[0]);
+  EXPECT_EQ(reports[1].pushed, reports[0].pushed);
+  EXPECT_GT(reports[0].pushed, 10);
+  EXPECT_EQ(reports[1].deepest, reports[0].deepest);
+  EXPECT_NEAR(reports[0].deepest, 0.03, 1e-3);
+  EXPECT_EQ(reports[0].queries, long(mesh.positions.size()));
+  EXPECT_LT(reports[1].queries, 2 * reports[0].pushed);
 }
 
 TEST(ContactProblem, SheetOnAPlaneIsCarriedByTheContactReaction) {

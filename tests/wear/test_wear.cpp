@@ -384,9 +384,8 @@ TEST(FollowBodies, ClothNearAMovingBodyIsCarriedAlongByLessTheFurtherItIs) {
 
 TEST(FollowBodies, VerticesInsideABodyArePushedOutToTheMiddleOfTheOffset) {
   SheetOverBall sheet(0.01); // the ball's top 1 cm above the sheet
-  long pushed = 0;
-  double deepest = 0.0;
-  EXPECT_EQ(sheet.problem.push_out_of_bodies(sheet.x, &pushed, &deepest), 0);
+  ClothProblem::PushOut pushed;
+  EXPECT_EQ(sheet.problem.push_out_of_bodies(sheet.x, &pushed), 0);
   const std::vector<Eigen::Vector3d> out = sheet.positions();
   long inside = 0;
   for (std::size_t v = 0; v < out.size(); ++v) {
@@ -401,9 +400,10 @@ TEST(FollowBodies, VerticesInsideABodyArePushedOutToTheMiddleOfTheOffset) {
     const double wanted = SheetOverBall::radius + 0.5 * sheet.problem.contact.offset;
     EXPECT_NEAR((out[v] - (sheet.centre + wanted * radial)).norm(), 0.0, 1e-12) << "vertex " << v;
   }
-  EXPECT_EQ(pushed, inside);
+  EXPECT_EQ(pushed.pushed, inside);
   EXPECT_GT(inside, 0);
-  EXPECT_NEAR(deepest, 0.01, 1e-12); // the middle vertex, on the ball's axis
+  EXPECT_NEAR(pushed.deepest, 0.01, 1e-12);    // the middle vertex, on the ball's axis
+  EXPECT_EQ(pushed.queries, long(out.size())); // the ball has no bone intervals
 }
 
 TEST(FollowBodies, TheKneeSheetBagsAsMuchWhenEachStepStartsCarried) {
