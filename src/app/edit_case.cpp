@@ -455,6 +455,11 @@ const std::vector<OptionSpec>& edit_option_specs() {
       {"edit-anchors", "KIND", "fresh",
        "the friction anchors of each re-solve: fresh (set where the start touches the body) "
        "or kept (the last drape's)"},
+      {"edit-friction", "KIND", "staged",
+       "how each re-solve meets the bodies' friction: staged (as the drape's sewing stages: "
+       "the stage before the last again without friction, then the last with anchors set "
+       "afresh where it left the cloth; when the drape was sewn in stages and the anchors are "
+       "fresh) or held (friction from the re-solve's start, anchored where it starts)"},
       {"sensitivity-tangent", "KIND", "exact",
        "the sensitivity's tangent: exact (the derivative) or projected (the minimiser's, "
        "PSD-projected element Hessians: damps the wrinkles' negative curvature)"},

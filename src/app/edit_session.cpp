@@ -31,6 +31,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
 #include <tuple>
 #include <vector>
 
@@ -176,6 +177,10 @@ struct Attempt {
   CertifiedState certified;
   ClothProblem::PushOut pushed; // the start's vertices pushed out of the body
   double start_residual = 0.0;
+  // The solve without friction before the last stage (--edit-friction
+  // staged): its Newton iterations (counted in report's too), whether it ran.
+  PetscInt frictionless_newton = 0;
+  bool frictionless = false;
   double cpu = 0.0;
   Vec x = nullptr;
   std::vector<AnchorRow> anchors;
@@ -192,6 +197,8 @@ nlohmann::json attempt_json(const Attempt& a) {
           {"converged", a.report.converged},
           {"reason", a.report.reason},
           {"newton_iterations", a.report.newton_iterations},
+          {"frictionless_newton_iterations",
+           a.frictionless ? nlohmann::json(a.frictionless_newton) : nlohmann::json()},
           {"certificate", a.certified.certificate.verdict()},
           {"certified", a.certified.certificate.certified()},
           {"cpu_s", a.cpu}};
@@ -225,6 +232,9 @@ private:
   std::unique_ptr<Design> next_design(Design& last, const Eigen::VectorXd& p,
                                       const EditDesign& design);
   StaticOptions static_options() const;
+  std::optional<double> released_load() const;
+  void solve_frictionless(ClothProblem& problem, IncrementalSystem& system, double load,
+                          Attempt* attempt) const;
   void reset_state(Design& last, ClothProblem& problem);
   std::unique_ptr<Attempt> resolve_from(Design& last, ClothProblem& problem,
                                         const std::string& start, Vec candidate);
@@ -342,6 +352,44 @@ StaticOptions EditSession::static_options() const {
   return solve;
 }
 
+// The fraction of the load at which the re-solve first solves without
+// friction (--edit-friction staged): that of the drape's stage before the
+// last (solvers/statics.cpp: stage k of n at k / (n - 1) of the load), so
+// that the last stage sets its anchors afresh where a frictionless solve
+// left the cloth, as the drape did. None for a drape not sewn in stages,
+// with --edit-anchors kept, or --edit-friction held.
+std::optional<double> EditSession::released_load() const {
+  const std::string kind = options_.text("edit-friction");
+  if (kind != "staged" && kind != "held")
+    throw InputError("option --edit-friction: unknown kind '" + kind + "' (staged, held)");
+  const int stages = read_static_case(options_).sewing_stages;
+  if (kind == "held" || stages < 2 || options_.text("edit-anchors") != "fresh") return std::nullopt;
+  return double(stages - 2) / double(stages - 1);
+}
+
+// The drape's stage before the last again, at `load` of the re-solve's load
+// and without friction, from attempt->x; the iterate is kept, converged or
+// not, as the drape's stages keep theirs.
+void EditSession::solve_frictionless(ClothProblem& problem, IncrementalSystem& system, double load,
+                                     Attempt* attempt) const {
+  std::vector<contact::Friction> friction;
+  for (contact::Body& body : problem.bodies) {
+    friction.push_back(body.friction);
+    body.friction = contact::Friction{};
+  }
+  const double full = problem.load_factor;
+  problem.load_factor = load * full;
+  StaticOptions frictionless = static_options();
+  frictionless.start_load_factor = problem.load_factor;
+  StaticReport report;
+  SartorPetscCall(solve_static(system, attempt->x, frictionless, &report));
+  problem.load_factor = full;
+  for (std::size_t b = 0; b < friction.size(); ++b)
+    problem.bodies[b].friction = friction[b];
+  attempt->frictionless = true;
+  attempt->frictionless_newton = report.newton_iterations;
+}
+
 // `problem` in the last design's state (loads, sewing, contact), with its
 // friction anchors afresh unless --edit-anchors kept: statics anchor what
 // touches a body at their start, and the last drape's anchors would hold the
@@ -371,7 +419,10 @@ std::unique_ptr<Attempt> EditSession::resolve_from(Design& last, ClothProblem& p
     capped.max_iterations = PetscInt(cap);
     SartorPetscCall(capped.apply(system.snes()));
   }
+  if (const std::optional<double> load = released_load())
+    solve_frictionless(problem, system, *load, attempt.get());
   SartorPetscCall(solve_static(system, attempt->x, solve, &attempt->report));
+  attempt->report.newton_iterations += attempt->frictionless_newton;
   attempt->certified =
       certify_case(read_certificate_case(options_), problem, attempt->x, &solve, &attempt->report);
   attempt->cpu = process_cpu_seconds() - started;
