@@ -4,8 +4,8 @@
     plot_wear.py DIR [DIR ...] [--output wear.png] [--pictures PREFIX] [--dpi N]
 
 Each DIR is a drape with wear: its takeoff.csv (one row per take-off) and
-summary.json (the fabrics). Draws the hem drop and the bagging height
-against the wear time, one line per DIR labelled by its fabric, into
+summary.json (the fabrics). Draws the hem drop, the bagging height and the
+permanent dome height against the wear time, one line per DIR labelled by its fabric, into
 --output; with --pictures, for each DIR the garment after its last take-off
 (DIR/takeoff/series.h5) from the front and the side, coloured by the
 permanent strain (the larger of warp and weft, %), into PREFIX_FABRIC.png.
@@ -33,12 +33,16 @@ def plot_curves(directories, output, dpi):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, (hem, bag) = plt.subplots(1, 2, figsize=(10, 4))
+    fig, (hem, bag, dome) = plt.subplots(1, 3, figsize=(15, 4))
     span = 0.0
     tables = []
     for directory in directories:
-        columns = read_csv_columns(os.path.join(directory, "takeoff.csv"),
-                                   ["wear_time_s", "hem_drop_m", "bagging_height_m"])
+        path = os.path.join(directory, "takeoff.csv")
+        columns = read_csv_columns(path, ["wear_time_s", "hem_drop_m", "bagging_height_m"])
+        try:  # tables written before the dome height lack it
+            columns.update(read_csv_columns(path, ["dome_height_m"]))
+        except PlotError:
+            pass
         tables.append((label_of(directory), columns))
         span = max(span, columns["wear_time_s"].max())
     scale, unit = time_unit(span)
@@ -46,9 +50,12 @@ def plot_curves(directories, output, dpi):
         t = columns["wear_time_s"] / scale
         hem.plot(t, 1e3 * columns["hem_drop_m"], marker="o", label=label)
         bag.plot(t, 1e3 * columns["bagging_height_m"], marker="o", label=label)
+        if "dome_height_m" in columns:
+            dome.plot(t, 1e3 * columns["dome_height_m"], marker="o", label=label)
     hem.set_ylabel("hem drop after recovery (mm)")
     bag.set_ylabel("bagging height after recovery (mm)")
-    for axes in (hem, bag):
+    dome.set_ylabel("permanent dome height (mm)")
+    for axes in (hem, bag, dome):
         axes.set_xlabel("wear time (%s)" % unit)
         axes.grid(True, alpha=0.3)
     bag.legend(fontsize=8)

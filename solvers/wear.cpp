@@ -107,6 +107,26 @@ double bagging_height(const TriangleMesh& mesh, const std::vector<Eigen::Vector3
   return largest;
 }
 
+double permanent_dome_height(const TriangleMesh& mesh, const std::vector<ElementCreep>& states,
+                             const std::vector<int>& vertices, double* excess_area) {
+  std::vector<bool> in_region(mesh.positions.size(), vertices.empty());
+  for (int v : vertices)
+    in_region[std::size_t(v)] = true;
+  double excess = 0.0;
+  for (std::size_t t = 0; t < states.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    if (!(in_region[std::size_t(tri[0])] && in_region[std::size_t(tri[1])] &&
+          in_region[std::size_t(tri[2])]))
+      continue;
+    const auto& uv = mesh.material_uv[t];
+    const Eigen::Vector2d a = uv[1] - uv[0], b = uv[2] - uv[0];
+    const double area = 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+    excess += area * ((1.0 + states[t].warp.permanent) * (1.0 + states[t].weft.permanent) - 1.0);
+  }
+  *excess_area = excess;
+  return std::sqrt(std::max(0.0, excess) / M_PI);
+}
+
 namespace {
 
 PetscErrorCode broadcast(MPI_Comm comm, std::vector<double>* values) {
@@ -222,6 +242,8 @@ public:
     report->hem_drop = mean_height(fresh, garment_.hem) - report->hem_height;
     report->bagging_height =
         bagging_height(mesh_, fresh, recovered, garment_.bagging, &report->bagging_vertex);
+    report->dome_height =
+        permanent_dome_height(mesh_, report->creep, garment_.bagging, &report->excess_area);
     report->max_permanent = largest_permanent(report->creep);
     report->max_viscoelastic = largest_viscoelastic(report->creep);
     report->positions = std::move(recovered);

@@ -161,6 +161,8 @@ struct TakeOffReport {
   double hem_drop = 0.0;                  // m, fresh hem height minus recovered (> 0: dropped)
   double bagging_height = 0.0;            // m, largest displacement normal to the fresh surface
   long bagging_vertex = -1;               // where
+  double dome_height = 0.0;               // m, permanent_dome_height over the bagging region
+  double excess_area = 0.0;               // m^2, the permanent strains' added area there
   double max_permanent = 0.0;             // largest permanent strain of any triangle and direction
   double max_viscoelastic = 0.0;          // left after the recovery
   PetscInt newton_iterations = 0;         // of the hanging solve and the recovery
@@ -232,5 +234,16 @@ double mean_height(const std::vector<Eigen::Vector3d>& positions, const std::vec
 double bagging_height(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& fresh,
                       const std::vector<Eigen::Vector3d>& recovered,
                       const std::vector<int>& vertices, long* where);
+
+// The permanent stretch of a region as the dome it would bulge into: the
+// area the permanent strains add to the triangles whose corners are all in
+// `vertices` (all triangles when empty), sum of A (1 + ep_warp)(1 + ep_weft)
+// - A over their material areas A, returned through `excess_area` (m^2), and
+// the height sqrt(excess / pi) of the spherical cap that adds that area to
+// the flat disk under it (a cap of height h over a disk of radius a has area
+// pi (a^2 + h^2), whatever a). It depends on the creep state alone, not on
+// where a hung garment folds. m.
+double permanent_dome_height(const TriangleMesh& mesh, const std::vector<ElementCreep>& states,
+                             const std::vector<int>& vertices, double* excess_area);
 
 } // namespace sartor

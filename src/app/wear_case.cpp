@@ -385,6 +385,8 @@ void add_wear_summary(const WearRun& run, const ClothOutputLabels& labels,
                          {"hem_drop_m", taken.hem_drop},
                          {"bagging_height_m", taken.bagging_height},
                          {"bagging_vertex", taken.bagging_vertex},
+                         {"dome_height_m", taken.dome_height},
+                         {"excess_area_m2", taken.excess_area},
                          {"max_permanent_strain", taken.max_permanent},
                          {"max_viscoelastic_strain", taken.max_viscoelastic},
                          {"newton_iterations", taken.newton_iterations},
@@ -449,10 +451,11 @@ void print_wear(const WearRun& run) {
   for (const TakeOffReport& t : report.take_offs) {
     SartorPetscCall(PetscPrintf(
         PETSC_COMM_WORLD,
-        "  taken off at %g s, hung %s: hem drop %.3e m, bagging height %.3e m, permanent strain "
-        "up to %.3e (viscoelastic left %.1e); certificate: %s\n",
+        "  taken off at %g s, hung %s: hem drop %.3e m, bagging height %.3e m, permanent dome "
+        "height %.3e m, permanent strain up to %.3e (viscoelastic left %.1e); certificate: %s\n",
         t.wear_time, t.converged ? "and recovered" : ("(" + t.reason + ")").c_str(), t.hem_drop,
-        t.bagging_height, t.max_permanent, t.max_viscoelastic, t.certificate.verdict().c_str()));
+        t.bagging_height, t.dome_height, t.max_permanent, t.max_viscoelastic,
+        t.certificate.verdict().c_str()));
   }
 }
 
@@ -472,11 +475,12 @@ void write_wear_tables(const std::string& directory, const WearRun& run) {
   std::ostringstream takeoff;
   takeoff.precision(10);
   takeoff << "wear_time_s,hem_height_m,hem_drop_m,bagging_height_m,max_permanent_strain,"
-             "max_viscoelastic_strain,certified\n";
+             "max_viscoelastic_strain,certified,dome_height_m,excess_area_m2\n";
   for (const TakeOffReport& t : run.report.take_offs) {
     takeoff << t.wear_time << ',' << t.hem_height << ',' << t.hem_drop << ',' << t.bagging_height
             << ',' << t.max_permanent << ',' << t.max_viscoelastic << ','
-            << (t.certificate.certified() ? 1 : 0) << '\n';
+            << (t.certificate.certified() ? 1 : 0) << ',' << t.dome_height << ',' << t.excess_area
+            << '\n';
   }
   write_file_atomically(directory + "/takeoff.csv", takeoff.str());
 }

@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <limits>
+
 namespace sartor {
 
 namespace {
@@ -47,6 +49,8 @@ nlohmann::json take_off_json(const TakeOffReport& t) {
           {"hem_drop", t.hem_drop},
           {"bagging_height", t.bagging_height},
           {"bagging_vertex", t.bagging_vertex},
+          {"dome_height", t.dome_height},
+          {"excess_area", t.excess_area},
           {"max_permanent", t.max_permanent},
           {"max_viscoelastic", t.max_viscoelastic},
           {"newton_iterations", t.newton_iterations},
@@ -66,6 +70,9 @@ TakeOffReport take_off_from(const nlohmann::json& j) {
   t.hem_drop = j.at("hem_drop").get<double>();
   t.bagging_height = j.at("bagging_height").get<double>();
   t.bagging_vertex = j.at("bagging_vertex").get<long>();
+  // Checkpoints written before the dome height: not known (NaN, null in JSON).
+  t.dome_height = j.value("dome_height", std::numeric_limits<double>::quiet_NaN());
+  t.excess_area = j.value("excess_area", std::numeric_limits<double>::quiet_NaN());
   t.max_permanent = j.at("max_permanent").get<double>();
   t.max_viscoelastic = j.at("max_viscoelastic").get<double>();
   t.newton_iterations = j.at("newton_iterations").get<PetscInt>();
