@@ -444,6 +444,20 @@ garment::InteriorCoordinates interior_coordinates_option(const Options& options)
   throw InputError("option --edit-interior: unknown kind '" + kind + "' (positive or mean-value)");
 }
 
+void check_edit_kinds(const Options& options) {
+  const auto check = [&](const std::string& option, const std::vector<std::string>& kinds) {
+    const std::string kind = options.text(option);
+    if (std::find(kinds.begin(), kinds.end(), kind) != kinds.end()) return;
+    std::string listed;
+    for (const std::string& k : kinds)
+      listed += (listed.empty() ? "" : ", ") + k;
+    throw InputError("option --" + option + ": unknown kind '" + kind + "' (" + listed + ")");
+  };
+  check("edit-start", {"auto", "gmls", "linear", "unchanged", "geometric"});
+  check("edit-anchors", {"fresh", "kept"});
+  check("edit-friction", {"staged", "held"});
+}
+
 const std::vector<OptionSpec>& edit_option_specs() {
   static const std::vector<OptionSpec> specs{
       {"edit-start", "KIND", "auto",

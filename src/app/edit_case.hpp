@@ -86,6 +86,10 @@ std::vector<EditStep> read_edit_file(const std::string& path, const garment::Pat
 // by. Throws InputError naming the option for an unknown kind.
 garment::InteriorCoordinates interior_coordinates_option(const Options& options);
 
+// Checks the kinds --edit-start, --edit-anchors and --edit-friction name,
+// before anything is solved. Throws InputError naming the option.
+void check_edit_kinds(const Options& options);
+
 // The options of `sartor edit` beyond drape's.
 const std::vector<OptionSpec>& edit_option_specs();
 

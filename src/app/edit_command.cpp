@@ -299,6 +299,7 @@ int run_edit(const Invocation& invocation) {
   }
   // The edits are checked against the pattern before anything is solved.
   interior_coordinates_option(edit.options);
+  check_edit_kinds(edit.options);
   request.steps =
       read_edit_file(edit.command_line.positionals.at(1), garment::read_pattern(pattern));
   const int status = drape_pattern(edit, &request);

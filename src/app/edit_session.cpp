@@ -359,9 +359,7 @@ StaticOptions EditSession::static_options() const {
 // left the cloth, as the drape did. None for a drape not sewn in stages,
 // with --edit-anchors kept, or --edit-friction held.
 std::optional<double> EditSession::released_load() const {
-  const std::string kind = options_.text("edit-friction");
-  if (kind != "staged" && kind != "held")
-    throw InputError("option --edit-friction: unknown kind '" + kind + "' (staged, held)");
+  const std::string kind = options_.text("edit-friction"); // run_edit checked it
   const int stages = read_static_case(options_).sewing_stages;
   if (kind == "held" || stages < 2 || options_.text("edit-anchors") != "fresh") return std::nullopt;
   return double(stages - 2) / double(stages - 1);
