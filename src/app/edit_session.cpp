@@ -177,10 +177,9 @@ struct Attempt {
   CertifiedState certified;
   ClothProblem::PushOut pushed; // the start's vertices pushed out of the body
   double start_residual = 0.0;
-  // The solve without friction before the last stage (--edit-friction
-  // staged): its Newton iterations (counted in report's too), whether it ran.
-  PetscInt frictionless_newton = 0;
-  bool frictionless = false;
+  // The Newton iterations of the stage before the last, without friction
+  // (--edit-friction staged; counted in report's too).
+  std::optional<PetscInt> frictionless_newton;
   double cpu = 0.0;
   Vec x = nullptr;
   std::vector<AnchorRow> anchors;
@@ -198,7 +197,7 @@ nlohmann::json attempt_json(const Attempt& a) {
           {"reason", a.report.reason},
           {"newton_iterations", a.report.newton_iterations},
           {"frictionless_newton_iterations",
-           a.frictionless ? nlohmann::json(a.frictionless_newton) : nlohmann::json()},
+           a.frictionless_newton ? nlohmann::json(*a.frictionless_newton) : nlohmann::json()},
           {"certificate", a.certified.certificate.verdict()},
           {"certified", a.certified.certificate.certified()},
           {"cpu_s", a.cpu}};
@@ -232,9 +231,7 @@ private:
   std::unique_ptr<Design> next_design(Design& last, const Eigen::VectorXd& p,
                                       const EditDesign& design);
   StaticOptions static_options() const;
-  std::optional<double> released_load() const;
-  void solve_frictionless(ClothProblem& problem, IncrementalSystem& system, double load,
-                          Attempt* attempt) const;
+  std::optional<int> staged_friction() const;
   void reset_state(Design& last, ClothProblem& problem);
   std::unique_ptr<Attempt> resolve_from(Design& last, ClothProblem& problem,
                                         const std::string& start, Vec candidate);
@@ -352,40 +349,17 @@ StaticOptions EditSession::static_options() const {
   return solve;
 }
 
-// The fraction of the load at which the re-solve first solves without
-// friction (--edit-friction staged): that of the drape's stage before the
-// last (solvers/statics.cpp: stage k of n at k / (n - 1) of the load), so
-// that the last stage sets its anchors afresh where a frictionless solve
-// left the cloth, as the drape did. None for a drape not sewn in stages,
-// with --edit-anchors kept, or --edit-friction held.
-std::optional<double> EditSession::released_load() const {
+// The drape's sewing stages, where the re-solve repeats the last two of
+// them (--edit-friction staged): solve_static goes on after the first n - 2
+// (StaticOptions::resume), so the stage before the last sews without
+// friction (ClothProblem::sewing) and the last anchors the cloth afresh
+// where that one left it, as the drape did. None for a drape not sewn in
+// stages, with --edit-anchors kept, or --edit-friction held.
+std::optional<int> EditSession::staged_friction() const {
   const std::string kind = options_.text("edit-friction"); // run_edit checked it
   const int stages = read_static_case(options_).sewing_stages;
   if (kind == "held" || stages < 2 || options_.text("edit-anchors") != "fresh") return std::nullopt;
-  return double(stages - 2) / double(stages - 1);
-}
-
-// The drape's stage before the last again, at `load` of the re-solve's load
-// and without friction, from attempt->x; the iterate is kept, converged or
-// not, as the drape's stages keep theirs.
-void EditSession::solve_frictionless(ClothProblem& problem, IncrementalSystem& system, double load,
-                                     Attempt* attempt) const {
-  std::vector<contact::Friction> friction;
-  for (contact::Body& body : problem.bodies) {
-    friction.push_back(body.friction);
-    body.friction = contact::Friction{};
-  }
-  const double full = problem.load_factor;
-  problem.load_factor = load * full;
-  StaticOptions frictionless = static_options();
-  frictionless.start_load_factor = problem.load_factor;
-  StaticReport report;
-  SartorPetscCall(solve_static(system, attempt->x, frictionless, &report));
-  problem.load_factor = full;
-  for (std::size_t b = 0; b < friction.size(); ++b)
-    problem.bodies[b].friction = friction[b];
-  attempt->frictionless = true;
-  attempt->frictionless_newton = report.newton_iterations;
+  return stages;
 }
 
 // `problem` in the last design's state (loads, sewing, contact), with its
@@ -417,10 +391,17 @@ std::unique_ptr<Attempt> EditSession::resolve_from(Design& last, ClothProblem& p
     capped.max_iterations = PetscInt(cap);
     SartorPetscCall(capped.apply(system.snes()));
   }
-  if (const std::optional<double> load = released_load())
-    solve_frictionless(problem, system, *load, attempt.get());
-  SartorPetscCall(solve_static(system, attempt->x, solve, &attempt->report));
-  attempt->report.newton_iterations += attempt->frictionless_newton;
+  StaticOptions staged = solve; // the certificate's re-solves take `solve`
+  StaticReport sewn;            // the drape's stages before the last two
+  if (const std::optional<int> stages = staged_friction()) {
+    staged.sewing_stages = *stages;
+    staged.start_load_factor = 0.0; // the stages' loads grow from none, as the drape's
+    sewn.sewing_stages = *stages - 2;
+    staged.resume = &sewn;
+  }
+  SartorPetscCall(solve_static(system, attempt->x, staged, &attempt->report));
+  if (staged.resume && !attempt->report.steps.empty())
+    attempt->frictionless_newton = attempt->report.steps.front().newton_iterations;
   attempt->certified =
       certify_case(read_certificate_case(options_), problem, attempt->x, &solve, &attempt->report);
   attempt->cpu = process_cpu_seconds() - started;
@@ -440,7 +421,7 @@ void EditSession::write_state(const std::string& directory, const Design& design
 // turned inside out) makes the edited pattern fold over itself.
 constexpr double least_area_kept = 0.05;
 
-double material_area(const std::array<Eigen::Vector2d, 3>& uv) {
+double signed_material_area(const std::array<Eigen::Vector2d, 3>& uv) {
   const Eigen::Vector2d a = uv[1] - uv[0], b = uv[2] - uv[0];
   return 0.5 * (a.x() * b.y() - a.y() * b.x());
 }
@@ -453,8 +434,8 @@ void refuse_folded_rest(const TriangleMesh& before, const TriangleMesh& after,
                         const garment::Pattern& pattern) {
   std::map<std::string, int> folded;
   for (std::size_t t = 0; t < before.triangle_count(); ++t) {
-    const double area = material_area(before.material_uv[t]);
-    if (material_area(after.material_uv[t]) / area < least_area_kept)
+    const double area = signed_material_area(before.material_uv[t]);
+    if (signed_material_area(after.material_uv[t]) / area < least_area_kept)
       ++folded[pattern.panels[std::size_t(panel_of_triangle[t])].id];
   }
   if (folded.empty()) return;
