@@ -204,6 +204,13 @@ std::vector<int> boundary_vertices(const TriangleMesh& mesh) {
   return vertices;
 }
 
+double material_area(const TriangleMesh& mesh) {
+  double area = 0.0;
+  for (const auto& uv : mesh.material_uv)
+    area += material_area(uv);
+  return area;
+}
+
 std::vector<Eigen::Vector2d> vertex_material_uv(const TriangleMesh& mesh) {
   std::vector<Eigen::Vector2d> uv(mesh.vertex_count(), Eigen::Vector2d::Zero());
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t)

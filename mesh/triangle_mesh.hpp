@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,14 @@ std::vector<Hinge> interior_edges(const TriangleMesh& mesh);
 // Sorted indices of the vertices on edges that have one triangle. Throws as
 // interior_edges does for non-manifold edges.
 std::vector<int> boundary_vertices(const TriangleMesh& mesh);
+// The area of a triangle from its material (u, v) corners, m^2.
+inline double material_area(const std::array<Eigen::Vector2d, 3>& uv) {
+  const Eigen::Vector2d a = uv[1] - uv[0], b = uv[2] - uv[0];
+  return 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+}
+// The mesh's, summed over its triangles, m^2.
+double material_area(const TriangleMesh& mesh);
+
 // Each vertex's material (u, v): that of its corner in the last triangle
 // holding it (a vertex on a tube's seam has two; this is one of them).
 std::vector<Eigen::Vector2d> vertex_material_uv(const TriangleMesh& mesh);

@@ -15,15 +15,6 @@ namespace sartor {
 
 namespace {
 
-double material_area(const TriangleMesh& mesh) {
-  double area = 0.0;
-  for (const auto& uv : mesh.material_uv) {
-    const Eigen::Vector2d a = uv[1] - uv[0], b = uv[2] - uv[0];
-    area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
-  }
-  return area;
-}
-
 double mean_edge_length(const TriangleMesh& mesh) {
   double total = 0.0;
   for (const auto& uv : mesh.material_uv)

@@ -118,10 +118,8 @@ double permanent_dome_height(const TriangleMesh& mesh, const std::vector<Element
     if (!(in_region[std::size_t(tri[0])] && in_region[std::size_t(tri[1])] &&
           in_region[std::size_t(tri[2])]))
       continue;
-    const auto& uv = mesh.material_uv[t];
-    const Eigen::Vector2d a = uv[1] - uv[0], b = uv[2] - uv[0];
-    const double area = 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
-    excess += area * ((1.0 + states[t].warp.permanent) * (1.0 + states[t].weft.permanent) - 1.0);
+    excess += material_area(mesh.material_uv[t]) *
+              ((1.0 + states[t].warp.permanent) * (1.0 + states[t].weft.permanent) - 1.0);
   }
   *excess_area = excess;
   return std::sqrt(std::max(0.0, excess) / M_PI);

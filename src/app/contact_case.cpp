@@ -53,15 +53,6 @@ nlohmann::json vector_json(const Eigen::Vector3d& v) {
   return {v[0], v[1], v[2]};
 }
 
-double material_area(const TriangleMesh& mesh) {
-  double area = 0.0;
-  for (const auto& uv : mesh.material_uv) {
-    const Eigen::Vector2d a = uv[1] - uv[0], b = uv[2] - uv[0];
-    area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
-  }
-  return area;
-}
-
 } // namespace
 
 ContactCase read_contact_case(const Options& options) {

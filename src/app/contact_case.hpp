@@ -37,8 +37,9 @@ ContactCase read_contact_case(const Options& options);
 
 void set_up_contact(const ContactCase& contact, ClothProblem& problem);
 // The bone intervals (contact::body_bone_intervals, `interval` m) of each
-// body of the options that has them, set on the problem's body of that name
-// for push_out_of_bodies. Returns, per indexed body, its name, bones,
+// body of the options that has them, set on the problem's body made from
+// that option (set_up_contact put them last, in the options' order) for
+// push_out_of_bodies. Returns, per indexed body, its name, bones,
 // intervals, triangles, the most triangles in one interval, the intervals
 // not inside the mesh and the index's build time (CPU s).
 nlohmann::json attach_bone_intervals(const Options& options, double interval,

@@ -30,8 +30,7 @@ ContactForm::ContactForm(const ClothProblem& problem, const std::vector<PetscInt
   vertex_area_.assign(mesh_.vertex_count(), 0.0);
   for (std::size_t t = 0; t < mesh_.triangle_count(); ++t) {
     const auto& uv = mesh_.material_uv[t];
-    const Eigen::Vector2d a = uv[1] - uv[0], b = uv[2] - uv[0];
-    const double area = 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+    const double area = material_area(uv);
     for (std::size_t k = 0; k < 3; ++k) {
       vertex_area_[std::size_t(mesh_.triangles[t][k])] += area / 3.0;
       mesh_size_ = std::max(mesh_size_, (uv[(k + 1) % 3] - uv[k]).norm());
