@@ -191,6 +191,36 @@ TEST(SelfContact, TheStepBoundKeepsEveryVertexOnItsSide) {
   VecDestroy(&x);
 }
 
+TEST(SelfContact, TwoLayersMovingAsOneDoNotBoundTheStep) {
+  // The upper sheet lying on the lower one (1.9 mm over it, inside the
+  // offset), both moved 5 cm down together (a trouser leg falling as a
+  // whole), then the upper one alone 5 cm across: no pair comes closer, so
+  // nothing bounds either step. Bounded by the pair's motions alone,
+  // |dv| + max |dcorner| = 10 cm, fifty advances of (1.9 - 0.2) mm / 10 cm
+  // cut the first to 0.85, and the hung trousers of the wear crawled
+  // through 60,000 Newton iterations.
+  const double gap = 0.0019, shift = 0.05;
+  const TwoSheets sheets = two_sheets(gap);
+  ClothProblem problem(PETSC_COMM_WORLD, sheets.mesh, fabric(), {});
+  problem.set_self_contact({true, offset, 0.0, 2});
+  Vec x = nullptr, d = nullptr;
+  ASSERT_EQ(problem.create_solution(&x), 0);
+  VecDuplicate(x, &d);
+  const auto bound_of = [&](const Vector3d& lower, const Vector3d& upper) {
+    std::vector<Vector3d> motion(sheets.mesh.vertex_count(), lower);
+    for (std::size_t v = sheets.lower_vertices; v < motion.size(); ++v)
+      motion[v] = upper;
+    double bound = 0.0;
+    EXPECT_EQ(problem.set_solution(motion, d), 0);
+    EXPECT_EQ(problem.contact_step_bound(x, d, &bound), 0);
+    return bound;
+  };
+  EXPECT_EQ(bound_of(Vector3d(0, 0, -shift), Vector3d(0, 0, -shift)), 1.0);
+  EXPECT_EQ(bound_of(Vector3d::Zero(), Vector3d(shift, 0, 0)), 1.0);
+  VecDestroy(&d);
+  VecDestroy(&x);
+}
+
 // A system that outlives a refresh of the pairs made elsewhere (the
 // certificate's, between a wear's steps) creates its Jacobian anew: the
 // pairs now assembled are not in the one it had.

@@ -219,10 +219,14 @@ PetscErrorCode SelfContactForm::step_bound(Vec x, Vec direction, double* bound) 
   const auto& triangles = problem_.mesh().triangles;
   for (const auto& pair : pairs(all, reach)) {
     const auto& t = triangles[std::size_t(pair.triangle)];
-    const double motion =
-        motions[std::size_t(pair.vertex)].norm() +
-        std::max({motions[std::size_t(t[0])].norm(), motions[std::size_t(t[1])].norm(),
-                  motions[std::size_t(t[2])].norm()});
+    // The distance falls no faster than the vertex moves relative to the
+    // triangle's point nearest it, a convex combination of its corners: so
+    // by at most the largest motion relative to a corner. A pair that moves
+    // as one (a leg falling as a whole) does not bound the step.
+    const auto relative = [&](int corner) {
+      return (motions[std::size_t(pair.vertex)] - motions[std::size_t(corner)]).norm();
+    };
+    const double motion = std::max({relative(t[0]), relative(t[1]), relative(t[2])});
     const auto distance = [&](double s) {
       const auto at = [&](int v) {
         return Eigen::Vector3d(all[std::size_t(v)] + s * motions[std::size_t(v)]);
