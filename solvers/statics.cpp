@@ -291,7 +291,8 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
   const int stages = sews ? std::max(1, options.sewing_stages) : 1;
   // A resumed ramp goes on within its stage, with the anchors it had.
   const bool resumes_ramp = options.resume && options.resume->ramp.under_way;
-  const int first_stage = !options.resume ? 0 : options.resume->sewing_stages - resumes_ramp;
+  const int sewn = std::clamp(options.first_sewing_stage, 0, stages - 1);
+  const int first_stage = !options.resume ? sewn : options.resume->sewing_stages - resumes_ramp;
   for (int stage = first_stage; stage < stages; ++stage) {
     problem.sewing_stage = stages == 1 ? 1.0 : double(stage) / double(stages - 1);
     // The loads grow with the seams' stiffness: the first stage sews the
@@ -312,7 +313,7 @@ PetscErrorCode solve_static(IncrementalSystem& system, Vec x, const StaticOption
     if (!(resumes_ramp && stage == first_stage)) {
       // Friction anchors for what touches a body now (none while sewing).
       if (stage > 0 || options.update_anchors_at_start) PetscCall(problem.update_contact(x));
-      if (stage == 0) {
+      if (stage == sewn) {
         PetscCall(problem.residual(x, f));
         PetscCall(VecNorm(f, NORM_2, &report->initial_residual_norm));
       }

@@ -79,6 +79,9 @@ struct StaticOptions {
   double stage_rtol = 1e-3;      // of the stages before the last two
   int stage_max_iterations = 30; // of the stages before the last two
   bool converge_stages = false;  // all but the first to the full tolerance
+  // The sewing stages before this one are taken as done: the start is sewn
+  // already (a drape's finer level, prolonged from the coarser drape).
+  int first_sewing_stage = 0;
   int max_contact_rounds = 30;
   double max_offset_depth = 0.5; // fraction of the contact offset
   // N: the friction is consistent once the residual with the anchors

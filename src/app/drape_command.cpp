@@ -770,7 +770,7 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
   CaseCheckpointing checkpointing = case_checkpointing(options, directory);
   checkpointing.final_state = directory + "/" + drape_state_file;
   const ClothCase cloth_case = read_cloth_case(options, false);
-  const double refine_time = cloth_case.time.dynamic() ? options.positive_real("refine-time") : 0.0;
+  const FinerLevels finer_levels = read_finer_levels(options, cloth_case);
   std::vector<double> edge_lengths =
       drape_level_edge_lengths(options, constructed.construction, constructed.mesh_options);
   const std::optional<StartFromReport> started_from =
@@ -779,7 +779,7 @@ int drape_pattern(const Invocation& invocation, const EditRequest* edit) {
   // first when --edge-length allows them; one level is the drape above.
   const DrapeLevel finest{constructed.mesh_options.edge_length, cloth, sewable.mesh.material_ids,
                           sewable.seams, seams_file};
-  const CaseResult result = drape_progressively(cloth_case, refine_time, constructed.construction,
+  const CaseResult result = drape_progressively(cloth_case, finer_levels, constructed.construction,
                                                 constructed.mesh_options, finest, edge_lengths,
                                                 directory, labels, &levels, checkpointing);
 

@@ -309,8 +309,22 @@ const std::vector<OptionSpec>& level_option_specs() {
       {"refine-time", "S", "0.3",
        "progressive refinement: simulated time of the damped relaxation on each finer level, "
        "s, before its settle"},
+      {"level-sewing", "all|last-two", "all",
+       "progressive refinement, statics: a finer level is sewn again in every sewing stage, or "
+       "only in the last two (the one before the last without friction), from its prolonged "
+       "start"},
   };
   return specs;
+}
+
+FinerLevels read_finer_levels(const Options& options, const ClothCase& cloth_case) {
+  FinerLevels finer;
+  if (cloth_case.time.dynamic()) finer.refine_time = options.positive_real("refine-time");
+  const std::string sewing = options.text("level-sewing");
+  if (sewing != "all" && sewing != "last-two")
+    throw InputError("option --level-sewing: '" + sewing + "' is neither all nor last-two");
+  finer.sew_last_two = sewing == "last-two";
+  return finer;
 }
 
 std::vector<double> drape_level_edge_lengths(const Options& options,
@@ -330,7 +344,7 @@ std::vector<double> drape_level_edge_lengths(const Options& options,
   return lengths;
 }
 
-CaseResult drape_progressively(const ClothCase& cloth_case, double refine_time,
+CaseResult drape_progressively(const ClothCase& cloth_case, const FinerLevels& finer_levels,
                                const garment::Construction& construction,
                                const PanelMeshOptions& mesh_options, const DrapeLevel& finest,
                                const std::vector<double>& edge_lengths,
@@ -358,7 +372,7 @@ CaseResult drape_progressively(const ClothCase& cloth_case, double refine_time,
                                 resume.level + 1, count));
   }
   std::vector<Eigen::Vector3d> solved = resume.solved;
-  const ClothCase finer = finer_level_case(cloth_case, refine_time);
+  const ClothCase finer = finer_level_case(cloth_case, finer_levels.refine_time);
   // The checkpointing of level l's solve, whose start `run` records.
   const auto level_checkpointing = [&](std::size_t l, const LevelRun& run, bool resumed) {
     if (count == 1) return checkpointing;
@@ -384,6 +398,13 @@ CaseResult drape_progressively(const ClothCase& cloth_case, double refine_time,
     // 6 cm open through the sewing stages; with none, the finer level
     // started with chords deep in the body (|F| 1e6 N).
     ClothCase level_case = l == 0 ? cloth_case : finer;
+    // --level-sewing last-two: a finer level starts sewn and loaded (the
+    // coarser drape prolonged), so it repeats only the last two sewing
+    // stages, the one before the last without friction, and the last
+    // anchors the cloth afresh where the finer mesh settles
+    // (docs/drape.md#levels: faster on four of the six samples at 4 cm).
+    if (l > 0 && finer_levels.sew_last_two)
+      level_case.statics.first_sewing_stage = std::max(0, level_case.statics.sewing_stages - 2);
     level_case.seams.seams_file = level.seams_file;
     if (count > 1) {
       level_case.statics.progress_prefix =

@@ -24,6 +24,16 @@ namespace sartor {
 
 // --levels and --coarsest-edge.
 const std::vector<OptionSpec>& level_option_specs();
+
+// What the levels after the coarsest do differently.
+struct FinerLevels {
+  double refine_time = 0.0;  // s of damped relaxation (dynamic drapes)
+  bool sew_last_two = false; // static: only the last two sewing stages
+};
+
+// --refine-time (dynamic drapes only) and --level-sewing; InputError names
+// the option for a bad value.
+FinerLevels read_finer_levels(const Options& options, const ClothCase& cloth_case);
 // The levels' edge lengths, coarse to fine, the last --edge-length (one
 // entry: a single level). Throws InputError for bad --levels/--coarsest-edge.
 std::vector<double> drape_level_edge_lengths(const Options& options,
@@ -62,8 +72,9 @@ struct LevelRun {
 // edge lengths, keep finest's panels and fabrics, and write their seams
 // files beside finest.seams_file. The coarsest level solves `cloth_case`
 // (drape's dynamics with its sewing stage); every finer one relaxes for
-// `refine_time` s (--refine-time; no sewing stage) and settles, from the
-// prolonged drape. The coarsest level's time steps go to
+// `finer.refine_time` s (--refine-time; no sewing stage) and settles, from
+// the prolonged drape; in statics it is sewn in stages again, all of them or
+// the last two (finer.sew_last_two). The coarsest level's time steps go to
 // DIRECTORY/series.h5 (with `labels` for its panels). Returns the finest
 // level's result, its solve_seconds summed over the levels; `runs` gets one
 // entry per level. A single
@@ -72,7 +83,7 @@ struct LevelRun {
 // (its positions and the LevelRuns so far), and in a static drape the level
 // solve's own within each level (with the level's record and start); a
 // restart goes on with the level after the checkpoint's, or within its level.
-CaseResult drape_progressively(const ClothCase& cloth_case, double refine_time,
+CaseResult drape_progressively(const ClothCase& cloth_case, const FinerLevels& finer,
                                const garment::Construction& construction,
                                const PanelMeshOptions& mesh_options, const DrapeLevel& finest,
                                const std::vector<double>& edge_lengths,

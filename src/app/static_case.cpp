@@ -59,6 +59,7 @@ StaticOptions static_options(const StaticCase& statics, bool sews) {
   solve.minimise = statics.minimise;
   solve.sewing_stages = statics.sewing_stages;
   solve.converge_stages = statics.converge_stages;
+  solve.first_sewing_stage = statics.first_sewing_stage;
   solve.max_offset_depth = statics.max_offset_depth;
   solve.max_contact_rounds = statics.max_contact_rounds;
   // A static solve that runs long says where it is (docs/drape.md).

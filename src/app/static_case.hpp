@@ -21,6 +21,7 @@ struct StaticCase {
   int sewing_stages = 1;            // continuation stages of the seam stiffness
   double sewing_start_tension = 10; // N/m, the first stage's pull (with stages)
   bool converge_stages = false;     // every stage after the first to the full tolerance
+  int first_sewing_stage = 0;       // StaticOptions::first_sewing_stage (not an option)
   double max_offset_depth = 0.5;    // of the contact offset (0: never stiffen)
   int max_contact_rounds = 30;
   std::string progress_prefix; // StaticOptions::progress_prefix (not an option)
