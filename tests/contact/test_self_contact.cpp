@@ -163,32 +163,54 @@ TEST(SelfContact, JacobianMatchesResidualDifferences) {
   VecDestroy(&x);
 }
 
+// The two sheets `gap` apart with self-contact, and the step bound of a
+// step moving every lower vertex by `lower` and every upper one by `upper`.
+class SheetSteps {
+public:
+  explicit SheetSteps(double gap)
+      : sheets_(two_sheets(gap)), problem_(PETSC_COMM_WORLD, sheets_.mesh, fabric(), {}) {
+    problem_.set_self_contact({true, offset, 0.0, 2});
+    EXPECT_EQ(problem_.create_solution(&x_), 0);
+    VecDuplicate(x_, &d_);
+  }
+  ~SheetSteps() {
+    VecDestroy(&d_);
+    VecDestroy(&x_);
+  }
+  SheetSteps(const SheetSteps&) = delete;
+  SheetSteps& operator=(const SheetSteps&) = delete;
+
+  double bound(const Vector3d& lower, const Vector3d& upper) {
+    std::vector<Vector3d> motion(sheets_.mesh.vertex_count(), lower);
+    for (std::size_t v = sheets_.lower_vertices; v < motion.size(); ++v)
+      motion[v] = upper;
+    double bound = 0.0;
+    EXPECT_EQ(problem_.set_solution(motion, d_), 0);
+    EXPECT_EQ(problem_.contact_step_bound(x_, d_, &bound), 0);
+    return bound;
+  }
+  ClothProblem& problem() { return problem_; }
+
+private:
+  TwoSheets sheets_;
+  ClothProblem problem_;
+  Vec x_ = nullptr, d_ = nullptr;
+};
+
 TEST(SelfContact, TheStepBoundKeepsEveryVertexOnItsSide) {
   // The upper sheet 3 mm over the lower one, a step moving it 1 cm down.
   const double gap = 0.003, drop = 0.01;
-  const TwoSheets sheets = two_sheets(gap);
-  ClothProblem problem(PETSC_COMM_WORLD, sheets.mesh, fabric(), {});
-  problem.set_self_contact({true, offset, 0.0, 2});
-  Vec x = nullptr, d = nullptr;
-  ASSERT_EQ(problem.create_solution(&x), 0);
-  VecDuplicate(x, &d);
-  std::vector<Vector3d> motion(sheets.mesh.vertex_count(), Vector3d::Zero());
-  for (std::size_t v = sheets.lower_vertices; v < motion.size(); ++v)
-    motion[v] = Vector3d(0.0, 0.0, -drop);
-  ASSERT_EQ(problem.set_solution(motion, d), 0);
-  double bound = 0.0;
-  ASSERT_EQ(problem.contact_step_bound(x, d, &bound), 0);
+  SheetSteps steps(gap);
+  const Vector3d down(0.0, 0.0, -drop);
   // The pair may close to the smaller of half its distance and a tenth of
   // the offset: 0.2 mm of the 3 mm, at (3 - 0.2) / 10 of the step.
   const double allowed = (gap - 0.1 * offset) / drop;
+  const double bound = steps.bound(Vector3d::Zero(), down);
   EXPECT_LE(bound, allowed);
   EXPECT_GT(bound, 0.95 * allowed);
   // Without self-contact nothing bounds it.
-  problem.enable_form("self_contact", false);
-  ASSERT_EQ(problem.contact_step_bound(x, d, &bound), 0);
-  EXPECT_EQ(bound, 1.0);
-  VecDestroy(&d);
-  VecDestroy(&x);
+  steps.problem().enable_form("self_contact", false);
+  EXPECT_EQ(steps.bound(Vector3d::Zero(), down), 1.0);
 }
 
 TEST(SelfContact, TwoLayersMovingAsOneDoNotBoundTheStep) {
@@ -199,26 +221,10 @@ TEST(SelfContact, TwoLayersMovingAsOneDoNotBoundTheStep) {
   // |dv| + max |dcorner| = 10 cm, fifty advances of (1.9 - 0.2) mm / 10 cm
   // cut the first to 0.85, and the hung trousers of the wear crawled
   // through 60,000 Newton iterations.
-  const double gap = 0.0019, shift = 0.05;
-  const TwoSheets sheets = two_sheets(gap);
-  ClothProblem problem(PETSC_COMM_WORLD, sheets.mesh, fabric(), {});
-  problem.set_self_contact({true, offset, 0.0, 2});
-  Vec x = nullptr, d = nullptr;
-  ASSERT_EQ(problem.create_solution(&x), 0);
-  VecDuplicate(x, &d);
-  const auto bound_of = [&](const Vector3d& lower, const Vector3d& upper) {
-    std::vector<Vector3d> motion(sheets.mesh.vertex_count(), lower);
-    for (std::size_t v = sheets.lower_vertices; v < motion.size(); ++v)
-      motion[v] = upper;
-    double bound = 0.0;
-    EXPECT_EQ(problem.set_solution(motion, d), 0);
-    EXPECT_EQ(problem.contact_step_bound(x, d, &bound), 0);
-    return bound;
-  };
-  EXPECT_EQ(bound_of(Vector3d(0, 0, -shift), Vector3d(0, 0, -shift)), 1.0);
-  EXPECT_EQ(bound_of(Vector3d::Zero(), Vector3d(shift, 0, 0)), 1.0);
-  VecDestroy(&d);
-  VecDestroy(&x);
+  const double shift = 0.05;
+  SheetSteps steps(0.0019);
+  EXPECT_EQ(steps.bound(Vector3d(0, 0, -shift), Vector3d(0, 0, -shift)), 1.0);
+  EXPECT_EQ(steps.bound(Vector3d::Zero(), Vector3d(shift, 0, 0)), 1.0);
 }
 
 // A system that outlives a refresh of the pairs made elsewhere (the
