@@ -63,6 +63,8 @@ public:
   fem::InertiaForm& inertia() { return *inertia_; }
   const fem::InertiaForm& inertia() const { return *inertia_; }
 
+  // Solve::reason of a minimiser stalled by the bodies' step bound.
+  static constexpr const char* step_bound_stalled = "DIVERGED_STEP_BOUND_STALLED";
   struct Solve {
     bool converged = false;
     std::string reason;
@@ -92,6 +94,10 @@ public:
   bool minimise_failed_time_steps = false;
   double loose_rtol = 0.0;
   PetscInt loose_max_iterations = 0; // with loose_rtol: at most this many (0: max_it)
+  // End a solve the bodies' step bound stalls (reason step_bound_stalled):
+  // the sewing stages before the last, which solve_static then solves again
+  // on stiffer contact (solvers/statics.cpp).
+  bool end_stalled_solves = false;
   struct MinimiserStatistics {
     PetscInt step_bound_cuts = 0;      // Newton steps shortened by the contact step bound
     PetscInt regularised_steps = 0;    // steps with mu > 0

@@ -29,6 +29,15 @@ constexpr int max_halvings = 20;
 // after a full step, to zero once below its floor.
 constexpr double mu_growth = 10.0;
 constexpr double full_step_fraction = 0.25;
+// The bodies' step bound stalls a solve where the forces push a vertex
+// harder than the contact penalty can hold it: each step may take half of
+// its remaining distance, and the bound falls geometrically (to 1e-16 in
+// about a hundred iterations) while |F| stays. Ten iterations in a row with
+// the bound below this end the solve where the caller asks
+// (end_stalled_solves), so that it can stiffen the penalty
+// (solvers/statics.cpp) instead of spending -snes_max_it.
+constexpr double stalled_bound = 1e-6;
+constexpr int stalled_iterations = 10;
 
 double magnitude(const ClothEnergy& e) {
   return std::abs(e.membrane) + std::abs(e.bending) + std::abs(e.external) + std::abs(e.contact) +
@@ -263,7 +272,7 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
   PetscCall(jacobian(x, jacobian_));
   PetscCall(regularisation_scale(&regularisation.floor));
   int& mu_level = regularisation.level;
-  int failed_searches = 0;
+  int failed_searches = 0, stalled = 0;
   PetscInt iteration = 0;
   result->reason = SNESConvergedReasons[SNES_DIVERGED_MAX_IT];
   for (;; ++iteration) {
@@ -286,6 +295,11 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
     }
     PetscCall(problem_.contact_step_bound(x, direction_, &bound));
     if (bound < 1.0) ++minimiser_statistics.step_bound_cuts;
+    stalled = bound < stalled_bound ? stalled + 1 : 0;
+    if (end_stalled_solves && stalled >= stalled_iterations) {
+      result->reason = step_bound_stalled;
+      break;
+    }
     Trial next = current;
     PetscCall(line_search(x, residual_, direction_, bound, &next));
     if (exact && next.length < 0.5 * bound) regularisation.exact_pause = 5;

@@ -159,6 +159,7 @@ struct StaticReport {
   // after them started from a state that round-off moves.
   std::vector<int> unconverged_stages;
   int contact_rounds = 0;               // solves after the last stage
+  int stalled_stage_resolves = 0;       // stages solved again, stiffer, after the bound stalled
   double contact_stiffness_scale = 1.0; // of the adaptive penalty at the end
   long sliding_vertices = 0;            // anchors that slid at the last update
   // Friction consistent: the residual with the anchors updated at the end

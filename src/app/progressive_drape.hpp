@@ -27,8 +27,8 @@ const std::vector<OptionSpec>& level_option_specs();
 
 // What the levels after the coarsest do differently.
 struct FinerLevels {
-  double refine_time = 0.0;  // s of damped relaxation (dynamic drapes)
-  bool sew_last_two = false; // static: only the last two sewing stages
+  double refine_time = 0.0; // s of damped relaxation (dynamic drapes)
+  bool sew_last_two = true; // static: only the last two sewing stages
 };
 
 // --refine-time (dynamic drapes only) and --level-sewing; InputError names

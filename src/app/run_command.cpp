@@ -465,6 +465,7 @@ void add_statics_summary(const StaticReport& report, nlohmann::json& summary) {
         {"exact_steps", report.minimiser.exact_steps},
         {"sewing_stages", report.sewing_stages},
         {"unconverged_stages", report.unconverged_stages},
+        {"stalled_stage_resolves", report.stalled_stage_resolves},
         {"contact_rounds", report.contact_rounds},
         {"contact_round_failed", report.contact_round_failed},
         {"contact_stiffness_scale", report.contact_stiffness_scale},
