@@ -350,8 +350,8 @@ StaticOptions EditSession::static_options() const {
 }
 
 // The drape's sewing stages, where the re-solve repeats the last two of
-// them (--edit-friction staged): solve_static goes on after the first n - 2
-// (StaticOptions::resume), so the stage before the last sews without
+// them (--edit-friction staged): solve_static starts after the first n - 2
+// (StaticOptions::first_sewing_stage), so the stage before the last sews without
 // friction (ClothProblem::sewing) and the last anchors the cloth afresh
 // where that one left it, as the drape did. None for a drape not sewn in
 // stages, with --edit-anchors kept, or --edit-friction held.
@@ -392,15 +392,14 @@ std::unique_ptr<Attempt> EditSession::resolve_from(Design& last, ClothProblem& p
     SartorPetscCall(capped.apply(system.snes()));
   }
   StaticOptions staged = solve; // the certificate's re-solves take `solve`
-  StaticReport sewn;            // the drape's stages before the last two
-  if (const std::optional<int> stages = staged_friction()) {
+  const std::optional<int> stages = staged_friction();
+  if (stages) {
     staged.sewing_stages = *stages;
     staged.start_load_factor = 0.0; // the stages' loads grow from none, as the drape's
-    sewn.sewing_stages = *stages - 2;
-    staged.resume = &sewn;
+    staged.first_sewing_stage = *stages - 2;
   }
   SartorPetscCall(solve_static(system, attempt->x, staged, &attempt->report));
-  if (staged.resume && !attempt->report.steps.empty())
+  if (stages && !attempt->report.steps.empty())
     attempt->frictionless_newton = attempt->report.steps.front().newton_iterations;
   attempt->certified =
       certify_case(read_certificate_case(options_), problem, attempt->x, &solve, &attempt->report);
