@@ -24,6 +24,9 @@ const std::vector<OptionSpec>& contact_option_specs() {
           {"contact-stiffness", "N/M", "",
            "penalty stiffness per vertex, N/m [factor * E_max * vertex area / h^2]"},
           {"contact-stiffness-factor", "C", "1", "the factor of the automatic penalty stiffness"},
+          {"contact-penalty-onset", "F", "0",
+           "the penalty's force sets in smoothly over this fraction of the offset, 0 to 1 "
+           "(0: the plain quadratic penalty; docs/contact.md#normal-contact-penalty)"},
           {"contact-edge-spacing", "M", "0",
            "penalty samples along cloth edges at most this far apart, m (0: vertices only; "
            "static drapes: 0.015)"},
@@ -71,6 +74,10 @@ ContactCase read_contact_case(const Options& options) {
   }
   contact.settings.stiffness_factor = options.positive_real("contact-stiffness-factor");
   contact.settings.edge_sample_spacing = options.nonnegative_real("contact-edge-spacing");
+  contact.settings.penalty_onset = options.nonnegative_real("contact-penalty-onset");
+  if (contact.settings.penalty_onset > 1.0)
+    throw InputError("option --contact-penalty-onset: " + options.text("contact-penalty-onset") +
+                     " is more than 1 (the band would reach past the offset)");
   if (options.is_set("drape-support-radius"))
     contact.support_radius = options.positive_real("drape-support-radius");
   contact.self_contact.enabled = options.flag("self-contact");
@@ -121,6 +128,7 @@ void set_up_contact(const ContactCase& contact, ClothProblem& problem) {
   problem.contact.stiffness = contact.settings.stiffness;
   problem.contact.stiffness_factor = contact.settings.stiffness_factor;
   problem.contact.edge_sample_spacing = contact.settings.edge_sample_spacing;
+  problem.contact.penalty_onset = contact.settings.penalty_onset;
 }
 
 double projected_area(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& positions,
@@ -273,6 +281,7 @@ nlohmann::json contact_summary(const CaseContact& contact) {
                                                       : nlohmann::json("automatic")},
                             {"stiffness_factor", contact.settings.stiffness_factor},
                             {"edge_sample_spacing_m", contact.settings.edge_sample_spacing},
+                            {"penalty_onset", contact.settings.penalty_onset},
                             {"max_penetration_m", penetration},
                             {"contacting_vertices", contacting},
                             {"bodies", bodies}};

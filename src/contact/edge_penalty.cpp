@@ -5,9 +5,10 @@
 namespace sartor::contact {
 
 EdgeSampleResult edge_sample_penalty(double stiffness, double offset, double s,
-                                     const SurfaceQuery& query, element::Want want, bool project) {
+                                     const SurfaceQuery& query, element::Want want, bool project,
+                                     double band) {
   EdgeSampleResult result;
-  const PointResult point = penalty(stiffness, offset, query, want);
+  const PointResult point = penalty(stiffness, offset, query, want, band);
   result.energy = point.energy;
   if (want == element::Want::energy) return result;
   const double w[2] = {1.0 - s, s};

@@ -35,9 +35,11 @@ inline Eigen::Vector3d edge_point(const Eigen::Vector3d& a, const Eigen::Vector3
 }
 
 // The penalty of the sample at parameter s, from the body's query at the
-// sample point; `project` PSD-projects the point Hessian first.
+// sample point, with the vertices' onset band; `project` PSD-projects the
+// point Hessian first.
 EdgeSampleResult edge_sample_penalty(double stiffness, double offset, double s,
-                                     const SurfaceQuery& query, element::Want want, bool project);
+                                     const SurfaceQuery& query, element::Want want, bool project,
+                                     double band = 0.0);
 
 // The parameters of the samples on an edge of rest length `length`: equally
 // spaced, so that no two neighbouring points of the edge (vertices

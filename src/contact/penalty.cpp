@@ -4,16 +4,35 @@ namespace sartor::contact {
 
 using element::Want;
 
-PointResult penalty(double stiffness, double offset, const SurfaceQuery& query, Want want) {
+PenaltyLaw penalty_law(double stiffness, double band, double depth) {
+  PenaltyLaw law;
+  if (depth <= 0.0) return law;
+  if (depth >= band) {
+    // E(b) = 5 k b^2 / 12 from the onset's integral, k g^2 / 2 after.
+    law.energy = 0.5 * stiffness * depth * depth - stiffness * band * band / 12.0;
+    law.force = stiffness * depth;
+    law.stiffness = stiffness;
+    return law;
+  }
+  const double t = depth / band;
+  law.energy = stiffness * depth * depth * t * (2.0 / 3.0 - 0.25 * t);
+  law.force = stiffness * depth * t * (2.0 - t);
+  law.stiffness = stiffness * t * (4.0 - 3.0 * t);
+  return law;
+}
+
+PointResult penalty(double stiffness, double offset, const SurfaceQuery& query, Want want,
+                    double band) {
   PointResult result;
-  const double gap = offset - query.distance; // > 0: inside the contact layer
-  if (gap <= 0.0) return result;
-  result.energy = 0.5 * stiffness * gap * gap;
+  const double depth = offset - query.distance; // > 0: inside the contact layer
+  if (depth <= 0.0) return result;
+  const PenaltyLaw law = penalty_law(stiffness, band, depth);
+  result.energy = law.energy;
   if (want == Want::energy) return result;
-  result.gradient = -stiffness * gap * query.normal;
+  result.gradient = -law.force * query.normal;
   if (want == Want::gradient) return result;
   result.hessian =
-      stiffness * (query.normal * query.normal.transpose()) - stiffness * gap * query.hessian;
+      law.stiffness * (query.normal * query.normal.transpose()) - law.force * query.hessian;
   return result;
 }
 

@@ -1,13 +1,20 @@
 #pragma once
 // Contact kernels of one cloth vertex against one body: plain Eigen, no PETSc.
 //
-// Normal contact is a one-sided penalty on the signed distance d(x) to the
-// body, kept at least `offset` (half the cloth's thickness) away from it:
-//     E = k/2 max(0, offset - d)^2
-//     grad E = -k (offset - d) n
-//     hess E = k n n^T - k (offset - d) H_d        (n = grad d, H_d = hess d)
+// Normal contact is a one-sided penalty on the depth g = offset - d(x) into
+// the contact layer (d the signed distance to the body, kept at least
+// `offset`, half the cloth's thickness, away from it). Its normal force is
+//     f(g) = k g                          g >= b
+//     f(g) = k (g^2 / b) (2 - g / b)      0 < g < b
+// over an onset band b (ContactSettings::penalty_onset times the offset;
+// 0, the default: E = k/2 max(0, g)^2), so that f and its slope
+// f'(g) = k (4 - 3 g / b) g / b are continuous and E is C^2. The plain
+// quadratic's Hessian jumps from 0 to k where a vertex touches the layer.
+// Beyond the band the law is the plain one.
+//     grad E = -f(g) n
+//     hess E = f'(g) n n^T - f(g) H_d            (n = grad d, H_d = hess d)
 // The curvature term is what makes the Jacobian exact on curved bodies; it is
-// zero on flat faces. The force on the cloth is f_n = k (offset - d) n.
+// zero on flat faces. The force on the cloth is f(g) n.
 //
 // Coulomb friction uses moving anchors (Sensitive Couture §7, after Hasegawa
 // et al.): a vertex in contact is tied to an anchor a on the body surface by a
@@ -43,14 +50,25 @@ inline QueryNeeds query_needs(element::Want want) {
   }
 }
 
+// The penalty's energy E(g), normal force f(g) = E'(g) and stiffness f'(g)
+// at depth g into the contact layer (zero for g <= 0), with onset band b.
+struct PenaltyLaw {
+  double energy = 0.0;    // J
+  double force = 0.0;     // N
+  double stiffness = 0.0; // N/m
+};
+PenaltyLaw penalty_law(double stiffness, double band, double depth);
+
 struct PointResult {
   double energy = 0.0;                                // J
   Eigen::Vector3d gradient = Eigen::Vector3d::Zero(); // N
   Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();  // N/m
 };
 
-// The normal penalty, from the body's query at the vertex.
-PointResult penalty(double stiffness, double offset, const SurfaceQuery& query, element::Want want);
+// The normal penalty, from the body's query at the vertex, with onset band
+// `band` (m).
+PointResult penalty(double stiffness, double offset, const SurfaceQuery& query, element::Want want,
+                    double band = 0.0);
 
 // The tangential anchor spring with anchor `anchor`, tangent-plane normal
 // `normal` (unit) and force bound `bound` (N; infinite: a plain spring) frozen.

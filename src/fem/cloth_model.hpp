@@ -83,6 +83,9 @@ struct ContactSettings {
   // Multiplies the stiffness above: statics raise it where the cloth ends
   // too deep in the offset layer (solvers/statics.hpp, adaptive penalty).
   double stiffness_scale = 1.0;
+  // The band over which the normal force sets in smoothly, as a fraction of
+  // the offset (contact::penalty_law); 0: the plain quadratic penalty.
+  double penalty_onset = 0.0;
   // PSD-project each vertex's contact Hessian (its curvature term
   // -k (offset - d) H_d is negative on convex bodies).
   bool project_hessian = false;

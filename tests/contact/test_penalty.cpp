@@ -34,25 +34,28 @@ TEST(Penalty, DerivativesOnCurvedBodies) {
             Vector3d::Zero());
   std::mt19937 random(3);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  for (const Body* b : {&body, &edge}) {
-    for (int i = 0; i < 50; ++i) {
-      // Points in the contact layer: just outside, inside the offset, or slightly in.
-      const Vector3d direction =
-          Vector3d(uniform(random), uniform(random), uniform(random)).normalized();
-      const Vector3d surface = b->query(2.0 * direction, 0.7).closest;
-      const Vector3d x = surface + 0.012 * (uniform(random) + 0.2) * direction;
-      const auto energy = [&](const Vector3d& y) {
-        return penalty(k, offset, b->query(y, 0.7), Want::energy).energy;
-      };
-      const auto gradient = [&](const Vector3d& y) {
-        return penalty(k, offset, b->query(y, 0.7), Want::gradient).gradient;
-      };
-      const PointResult exact = penalty(k, offset, b->query(x, 0.7), Want::hessian);
-      if (exact.energy == 0.0) continue;
-      EXPECT_LT((numeric_gradient<3>(energy, x, 1e-8) - exact.gradient).norm(),
-                1e-6 * exact.gradient.norm());
-      EXPECT_LT((numeric_jacobian<3, 3>(gradient, x, 1e-8) - exact.hessian).norm(),
-                1e-6 * exact.hessian.norm());
+  // The plain quadratic, and the smooth onset over 3 mm.
+  for (double band : {0.0, 0.3 * offset}) {
+    for (const Body* b : {&body, &edge}) {
+      for (int i = 0; i < 50; ++i) {
+        // Points in the contact layer: just outside, inside the offset, or slightly in.
+        const Vector3d direction =
+            Vector3d(uniform(random), uniform(random), uniform(random)).normalized();
+        const Vector3d surface = b->query(2.0 * direction, 0.7).closest;
+        const Vector3d x = surface + 0.012 * (uniform(random) + 0.2) * direction;
+        const auto energy = [&](const Vector3d& y) {
+          return penalty(k, offset, b->query(y, 0.7), Want::energy, band).energy;
+        };
+        const auto gradient = [&](const Vector3d& y) {
+          return penalty(k, offset, b->query(y, 0.7), Want::gradient, band).gradient;
+        };
+        const PointResult exact = penalty(k, offset, b->query(x, 0.7), Want::hessian, band);
+        if (exact.energy == 0.0) continue;
+        EXPECT_LT((numeric_gradient<3>(energy, x, 1e-8) - exact.gradient).norm(),
+                  1e-6 * exact.gradient.norm());
+        EXPECT_LT((numeric_jacobian<3, 3>(gradient, x, 1e-8) - exact.hessian).norm(),
+                  1e-6 * exact.hessian.norm());
+      }
     }
   }
 }
@@ -65,6 +68,45 @@ TEST(Penalty, ZeroOutsideTheOffsetLayer) {
   const PointResult in = penalty(1e3, 0.01, floor.query(Vector3d(0, 0, 0.005)), Want::hessian);
   EXPECT_NEAR(in.energy, 0.5 * 1e3 * 0.005 * 0.005, 1e-15);
   EXPECT_NEAR(in.gradient.z(), -5.0, 1e-12); // the force on the vertex pushes it out: +5 N
+  // 5 mm deep, past a 3 mm onset band: the plain law's force k g and
+  // stiffness k, and its energy less the onset's saving, k b^2 / 12.
+  const PointResult banded =
+      penalty(1e3, 0.01, floor.query(Vector3d(0, 0, 0.005)), Want::hessian, 0.003);
+  EXPECT_NEAR(banded.energy, 0.5 * 1e3 * 0.005 * 0.005 - 1e3 * 0.003 * 0.003 / 12.0, 1e-15);
+  EXPECT_NEAR(banded.gradient.z(), -5.0, 1e-12);
+  EXPECT_NEAR(banded.hessian(2, 2), 1e3, 1e-9);
+}
+
+// The normal force's onset over the band b: zero force and stiffness at the
+// layer's edge, k g and k from the band on, continuous in value and slope
+// at b, never above k g, its energy the integral of the force (Simpson's
+// rule here) and its stiffness the force's slope (central differences).
+TEST(Penalty, SmoothOnsetMeetsThePlainLawAtTheBand) {
+  const double k = 2e4, offset = 1e-3, band = 0.3 * offset;
+  const auto force = [&](double g) { return penalty_law(k, band, g).force; };
+  EXPECT_EQ(penalty_law(k, band, 0.0).force, 0.0);
+  EXPECT_EQ(penalty_law(k, band, -1e-4).energy, 0.0);
+  EXPECT_LT(penalty_law(k, band, 1e-9 * band).stiffness, 1e-8 * k);
+  const double h = 1e-9 * band;
+  EXPECT_NEAR(force(band - h), force(band + h), 1e-6 * k * band);
+  EXPECT_NEAR(penalty_law(k, band, band - h).stiffness, penalty_law(k, band, band + h).stiffness,
+              1e-6 * k);
+  for (double g : {0.1 * band, 0.5 * band, 0.9 * band, band, 1.5 * band, 0.8 * offset}) {
+    const PenaltyLaw law = penalty_law(k, band, g);
+    EXPECT_LE(law.force, k * g * (1.0 + 1e-14));
+    if (g >= band) {
+      EXPECT_NEAR(law.force, k * g, 1e-12 * k * g);
+      EXPECT_EQ(law.stiffness, k);
+    }
+    const double slope = (force(g + 1e-7 * band) - force(g - 1e-7 * band)) / (2e-7 * band);
+    EXPECT_NEAR(law.stiffness, slope, 1e-5 * k);
+    const int n = 2000; // Simpson's rule on [0, g]: the force is piecewise cubic
+    double integral = force(0.0) + force(g);
+    for (int i = 1; i < n; ++i)
+      integral += (i % 2 ? 4.0 : 2.0) * force(g * i / n);
+    integral *= g / (3.0 * n);
+    EXPECT_NEAR(law.energy, integral, 1e-9 * k * g * g);
+  }
 }
 
 TEST(Penalty, AnchorSpringDerivatives) {

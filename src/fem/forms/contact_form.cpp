@@ -101,7 +101,7 @@ void ContactForm::add_rest_derivative(const FormPoint& at, const RestChange& cha
       const double k = stiffness(v), d_k = k * relative[std::size_t(v)];
       const contact::SurfaceQuery here = body.query(x, clock(), needs);
       Eigen::Vector3d d_force =
-          contact::penalty(d_k, settings().offset, here, element::Want::gradient).gradient;
+          contact::penalty(d_k, settings().offset, here, element::Want::gradient, band()).gradient;
       if (anchors_.size() == bodies().size() && anchors_[b][std::size_t(v)].active) {
         const FrictionAnchor& anchor = anchors_[b][std::size_t(v)];
         const Eigen::Vector3d held = body.anchor_to_world(anchor.point, clock());
@@ -127,7 +127,7 @@ void ContactForm::add_rest_derivative(const FormPoint& at, const RestChange& cha
                                 stiffness(sample.b) * relative[std::size_t(sample.b)]);
       const contact::EdgeSampleResult r = contact::edge_sample_penalty(
           d_k, settings().offset, sample.s, body.query(p, clock(), needs), element::Want::gradient,
-          false);
+          false, band());
       for (int k = 0; k < 2; ++k) {
         for (int d = 0; d < 3; ++d)
           changes[offsets[k] + d] += r.gradient[3 * k + d];
@@ -162,7 +162,7 @@ contact::PointResult ContactForm::vertex_contact(std::size_t body, int vertex,
     query = b.query(x, clock(),
                     plane_here ? contact::surface_anchor_needs(want) : contact::query_needs(want));
     queried_[body][std::size_t(vertex)] = {x, query.distance, clock()};
-    result = contact::penalty(k, settings().offset, query, want);
+    result = contact::penalty(k, settings().offset, query, want, band());
   }
   if (anchor) {
     const contact::PointResult spring =
@@ -279,8 +279,16 @@ Eigen::Vector3d ContactForm::unit_normal(const contact::SurfaceQuery& q) {
   return slope > 0.0 ? Eigen::Vector3d(q.normal / slope) : q.normal;
 }
 
+double ContactForm::band() const {
+  return settings().penalty_onset * settings().offset;
+}
+
+double ContactForm::normal_force(double stiffness, double depth) const {
+  return contact::penalty_law(stiffness, band(), depth).force;
+}
+
 double ContactForm::penalty_normal_force(int vertex, const contact::SurfaceQuery& q) const {
-  return stiffness(vertex) * std::max(0.0, settings().offset - q.distance) * q.normal.norm();
+  return normal_force(stiffness(vertex), settings().offset - q.distance) * q.normal.norm();
 }
 
 double ContactForm::anchor_normal_force(int vertex, const contact::SurfaceQuery& q,
@@ -387,8 +395,9 @@ PetscErrorCode ContactForm::report(const PetscScalar* values,
       const double gap = settings().offset - q.distance;
       extremes[1] = std::max(extremes[1], -q.distance);
       if (gap > 0.0) {
+        const double force = normal_force(k, gap);
         for (int d = 0; d < 3; ++d)
-          sums[d] += k * gap * q.normal[d];
+          sums[d] += force * q.normal[d];
         sums[6] += 1.0;
         extremes[0] = std::max(extremes[0], gap);
       }
@@ -475,7 +484,7 @@ contact::EdgeSampleResult ContactForm::edge_sample_contact(std::size_t body, std
   const contact::SurfaceQuery query = b.query(p, clock(), contact::query_needs(want));
   last = {p, query.distance, clock()};
   return contact::edge_sample_penalty(edge_sample_stiffness(sample), settings().offset, sample.s,
-                                      query, want, project);
+                                      query, want, project, band());
 }
 
 double ContactForm::edge_energy(const PetscScalar* x) const {
@@ -562,7 +571,7 @@ PetscErrorCode ContactForm::edge_sample_loads(std::size_t body, const PetscScala
     const contact::SurfaceQuery q = b.query(p, clock());
     const double gap = settings().offset - q.distance;
     if (gap <= 0.0) continue;
-    const Eigen::Vector3d force = edge_sample_stiffness(sample) * gap * q.normal;
+    const Eigen::Vector3d force = normal_force(edge_sample_stiffness(sample), gap) * q.normal;
     const double weights[2] = {1.0 - sample.s, sample.s};
     for (int k = 0; k < 2; ++k) {
       for (int d = 0; d < 3; ++d)
@@ -596,7 +605,7 @@ void ContactForm::vertex_contact_forces(std::size_t body, const PetscScalar* x,
   }
 }
 
-void ContactForm::add_edge_report(std::size_t body, const PetscScalar* x, double normal_force[3],
+void ContactForm::add_edge_report(std::size_t body, const PetscScalar* x, double force_sum[3],
                                   double* contacting, double* deepest) const {
   const contact::Body& b = bodies()[body];
   for (const EdgeSample& sample : edge_samples()) {
@@ -606,9 +615,9 @@ void ContactForm::add_edge_report(std::size_t body, const PetscScalar* x, double
     const contact::SurfaceQuery q = b.query(p, clock());
     const double gap = settings().offset - q.distance;
     if (gap <= 0.0) continue;
-    const double k = edge_sample_stiffness(sample);
+    const double force = normal_force(edge_sample_stiffness(sample), gap);
     for (int d = 0; d < 3; ++d)
-      normal_force[d] += k * gap * q.normal[d];
+      force_sum[d] += force * q.normal[d];
     *contacting += 1.0;
     *deepest = std::max(*deepest, gap);
   }

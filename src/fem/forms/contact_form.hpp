@@ -114,6 +114,10 @@ private:
   double clock() const;
   double stiffness(int vertex) const;
   static Eigen::Vector3d unit_normal(const contact::SurfaceQuery& q);
+  // The penalty's onset band, m (contact::penalty_law).
+  double band() const;
+  // The penalty law's normal force at `depth` into the offset layer.
+  double normal_force(double stiffness, double depth) const;
   // The penalty's normal force on `vertex` where the body was queried (q).
   double penalty_normal_force(int vertex, const contact::SurfaceQuery& q) const;
   // The normal force that bounds the vertex's friction anchor: the
@@ -164,7 +168,7 @@ private:
   void add_edge_forces(const PetscScalar* x, PetscScalar* f) const;
   PetscErrorCode add_edge_hessian(const PetscScalar* x, bool project, Mat J) const;
   double edge_step_bound(const PetscScalar* x, const PetscScalar* motions) const;
-  void add_edge_report(std::size_t body, const PetscScalar* x, double normal_force[3],
+  void add_edge_report(std::size_t body, const PetscScalar* x, double force_sum[3],
                        double* contacting, double* deepest) const;
 
   const ClothProblem& problem_;
