@@ -186,6 +186,29 @@ MannequinModel mannequin_model(Fields& fields) {
   return model;
 }
 
+// capsule a=X,Y,Z b=X,Y,Z radius=R: the shape and its bone read the same fields.
+struct CapsuleFields {
+  Vector3d a, b;
+  double radius;
+};
+CapsuleFields capsule_fields(Fields& fields) {
+  const Vector3d a = fields.vector("a"), b = fields.vector("b");
+  return {a, b, fields.positive("radius")};
+}
+
+// cylinder [center=X,Y,Z] [direction=X,Y,Z] radius=R height=H
+struct CylinderFields {
+  Vector3d center, direction;
+  double radius, height;
+};
+CylinderFields cylinder_fields(Fields& fields) {
+  const Vector3d center = fields.vector("center", Vector3d::Zero());
+  const Vector3d direction = fields.vector("direction", Vector3d::UnitZ());
+  if (!(direction.norm() > 0.0)) fields.fail("direction must be a non-zero vector");
+  const double radius = fields.positive("radius");
+  return {center, direction, radius, fields.positive("height")};
+}
+
 // The shape a spec names and its pivot (the point motions turn and scale about).
 std::pair<std::shared_ptr<const Shape>, Vector3d> make_shape(Fields& fields) {
   const std::string& kind = fields.kind();
@@ -200,15 +223,12 @@ std::pair<std::shared_ptr<const Shape>, Vector3d> make_shape(Fields& fields) {
     return {std::make_shared<Sphere>(center, fields.positive("radius")), center};
   }
   if (kind == "capsule") {
-    const Vector3d a = fields.vector("a"), b = fields.vector("b");
-    return {std::make_shared<Capsule>(a, b, fields.positive("radius")), 0.5 * (a + b)};
+    const CapsuleFields c = capsule_fields(fields);
+    return {std::make_shared<Capsule>(c.a, c.b, c.radius), 0.5 * (c.a + c.b)};
   }
   if (kind == "cylinder") {
-    const Vector3d center = fields.vector("center", origin);
-    const Vector3d direction = fields.vector("direction", up);
-    const double radius = fields.positive("radius");
-    return {std::make_shared<Cylinder>(center, direction, radius, fields.positive("height")),
-            center};
+    const CylinderFields c = cylinder_fields(fields);
+    return {std::make_shared<Cylinder>(c.center, c.direction, c.radius, c.height), c.center};
   }
   if (kind == "disk") {
     const Vector3d top = fields.vector("top", origin);
@@ -316,14 +336,14 @@ std::vector<Bone> body_bones(const std::string& spec, const std::string& where) 
   const auto axis = [](const Vector3d& start, const Vector3d& end, double radius) {
     return std::vector<Bone>{{"axis", "", start, end, radius, radius}};
   };
-  if (fields.kind() == "capsule")
-    return axis(fields.vector("a"), fields.vector("b"), fields.positive("radius"));
+  if (fields.kind() == "capsule") {
+    const CapsuleFields c = capsule_fields(fields);
+    return axis(c.a, c.b, c.radius);
+  }
   if (fields.kind() == "cylinder") {
-    const Vector3d center = fields.vector("center", Vector3d::Zero());
-    const Vector3d direction = fields.vector("direction", Vector3d::UnitZ());
-    if (!(direction.norm() > 0.0)) fields.fail("direction must be a non-zero vector");
-    const Vector3d half = 0.5 * fields.positive("height") * direction.normalized();
-    return axis(center - half, center + half, fields.positive("radius"));
+    const CylinderFields c = cylinder_fields(fields);
+    const Vector3d half = 0.5 * c.height * c.direction.normalized();
+    return axis(c.center - half, c.center + half, c.radius);
   }
   if (fields.kind() == "mesh" && fields.has("skeleton"))
     return read_skeleton_file(fields.text("skeleton"), read_body_obj(fields.text("file")));
