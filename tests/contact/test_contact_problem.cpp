@@ -234,6 +234,43 @@ TEST(ContactProblem, SheetOnAPlaneIsCarriedByTheContactReaction) {
   RecordProperty("max_penetration_m", std::to_string(out.contact[0].max_penetration));
 }
 
+// The same sheet with the penalty's smooth onset over 0.3 of the offset and
+// a fixed stiffness: each vertex rests where the onset's force f(g) =
+// k (g^2 / b) (2 - g / b) carries its share of the weight (a third of its
+// triangles' areas), g found here by bisection; the plain law would put it
+// at w / k, less than half as deep.
+TEST(ContactProblem, SheetOnAPlaneRestsWhereThePenaltyOnsetCarriesIt) {
+  const double offset = 1e-3, k = 1e3, band = 0.3 * offset;
+  const TriangleMesh flat = mesh::rectangle(0.5, 0.4, 5, 4);
+  const TriangleMesh mesh = placed(flat, Eigen::Matrix3d::Identity(), Vector3d(0, 0, 0.5 * offset));
+  ClothProblem problem(PETSC_COMM_WORLD, mesh, fabric(1e-5), {});
+  problem.contact.offset = offset;
+  problem.contact.stiffness = k;
+  problem.contact.penalty_onset = 0.3;
+  problem.bodies = {plane(Vector3d::UnitZ(), 0.3)};
+  problem.loads.gravity = Vector3d(0, 0, -gravity);
+  const Outcome out = solve(problem, 4);
+  ASSERT_TRUE(out.report.converged) << out.report.reason;
+  std::vector<double> load(mesh.vertex_count(), 0.0);
+  for (const auto& t : mesh.triangles) {
+    const double area =
+        0.5 * (flat.positions[std::size_t(t[1])] - flat.positions[std::size_t(t[0])])
+                  .cross(flat.positions[std::size_t(t[2])] - flat.positions[std::size_t(t[0])])
+                  .norm();
+    for (int v : t)
+      load[std::size_t(v)] += density * gravity * area / 3.0;
+  }
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    double low = 0.0, high = band; // every share is below k b: within the band
+    ASSERT_LT(load[v], k * band);
+    for (int i = 0; i < 60; ++i) {
+      const double g = 0.5 * (low + high);
+      (k * g * g / band * (2.0 - g / band) < load[v] ? low : high) = g;
+    }
+    EXPECT_NEAR(offset - out.positions[v].z(), low, 1e-3 * low) << "vertex " << v;
+  }
+}
+
 // A patch on a plane tilted by theta: it sticks while tan(theta) < mu and
 // slides (every anchor moves, friction at mu_k N) above.
 Outcome incline(double tan_theta, double mu, Vector3d* down_slope) {
