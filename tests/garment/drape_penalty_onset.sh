@@ -1,17 +1,17 @@
 #!/usr/bin/env bash
 # The static drape of drape_static.sh (certified, in equilibrium, on the
-# body) with a case that sets --contact-penalty-onset, which summary.json
-# must report; and the law must reach the contact: the same case without
-# the option ends elsewhere (the onset changes every contact force below
-# its band, so no drape lands on the plain law's equilibrium to round-off).
+# body) with --contact-penalty-onset ONSET, which summary.json must report;
+# and the law must reach the contact: the same case without the option ends
+# elsewhere (the onset changes every contact force below its band, so no
+# drape lands on the plain law's equilibrium to round-off).
 #
 #   drape_penalty_onset.sh SARTOR PATTERN CASE OUT_DIR SEAMS ONSET
 set -euo pipefail
 [ $# -eq 6 ] || { echo "usage: $0 SARTOR PATTERN CASE OUT_DIR SEAMS ONSET" >&2; exit 2; }
 sartor=$1 pattern=$2 case=$3 dir=$4 seams=$5 onset=$6
-"$(dirname "${BASH_SOURCE[0]}")/drape_static.sh" "$sartor" "$pattern" "$case" "$dir" "$seams"
-grep -v "^contact_penalty_onset:" "$case" > "$dir.plain.yaml"
-"$sartor" drape "$pattern" -options_file_yaml "$dir.plain.yaml" --no-plot --output "$dir.plain" \
+"$(dirname "${BASH_SOURCE[0]}")/drape_static.sh" "$sartor" "$pattern" "$case" "$dir" "$seams" \
+  --contact-penalty-onset "$onset"
+"$sartor" drape "$pattern" -options_file_yaml "$case" --no-plot --output "$dir.plain" \
   > "$dir.plain.log"
 /usr/bin/python3 - "$dir" "$onset" <<'PY'
 import json, sys

@@ -12,14 +12,15 @@
 # count has a generous bound (the dynamic relaxation took about 3,000 on
 # these garments; the minimiser about 100 to 400).
 #
-#   drape_static.sh SARTOR PATTERN CASE OUT_DIR SEAMS
+#   drape_static.sh SARTOR PATTERN CASE OUT_DIR SEAMS [DRAPE_OPTION ...]
 set -euo pipefail
-[ $# -eq 5 ] || { echo "usage: $0 SARTOR PATTERN CASE OUT_DIR SEAMS" >&2; exit 2; }
+[ $# -ge 5 ] || { echo "usage: $0 SARTOR PATTERN CASE OUT_DIR SEAMS [DRAPE_OPTION ...]" >&2; exit 2; }
 sartor=$1 pattern=$2 case=$3 dir=$4 seams=$5
+shift 5
 python=/usr/bin/python3
 [ -x "$python" ] || { echo "error: $python not found (./dev deps installs it)" >&2; exit 1; }
 rm -rf "$dir"
-"$sartor" drape "$pattern" -options_file_yaml "$case" --no-plot --output "$dir" | tee "$dir.log"
+"$sartor" drape "$pattern" -options_file_yaml "$case" "$@" --no-plot --output "$dir" | tee "$dir.log"
 grep -q "static minimiser, converged" "$dir.log"
 for f in final.obj result.h5 summary.json; do
   [ -s "$dir/$f" ] || { echo "drape_static: $dir/$f missing" >&2; exit 1; }
