@@ -306,15 +306,19 @@ double next_creep_step(const CreepOptions& options, double h, double dt, bool sh
   return std::max(dt, options.min_step);
 }
 
+// The estimate of the wall time left counts steps, which grow about
+// geometrically as the creep slows, not simulated time: from t alone it said
+// hours where minutes were left.
 PetscErrorCode print_creep_progress(const ClothProblem& problem, ProgressClock& progress,
-                                    const CreepStepReport& accepted, const StepController& clock) {
+                                    const CreepStepReport& accepted, const StepController& clock,
+                                    double first_step) {
   PetscFunctionBeginUser;
-  const double done = clock.fraction_done();
   PetscCall(PetscPrintf(problem.comm(),
                         "  creep t = %-10.4g s (%3.0f %%): step %ld, dt %.3g s, load %.3g, "
                         "creep increment %.2e; %s\n",
-                        clock.time(), 100.0 * done, accepted.step, accepted.dt, problem.load_factor,
-                        accepted.increment, progress.timing(done).c_str()));
+                        clock.time(), 100.0 * clock.fraction_done(), accepted.step, accepted.dt,
+                        problem.load_factor, accepted.increment,
+                        progress.timing(clock.geometric_fraction_done(first_step)).c_str()));
   PetscFunctionReturn(0);
 }
 
@@ -409,7 +413,7 @@ PetscErrorCode solve_creep(ClothProblem& problem, CreepCoupling& creep, Vec x,
       if (restart.write) PetscCall(restart.write(accepted, x, velocity, dt));
     }
     if (options.print_progress && progress.due(clock.finished()))
-      PetscCall(print_creep_progress(problem, progress, accepted, clock));
+      PetscCall(print_creep_progress(problem, progress, accepted, clock, options.time_step));
   }
   report->completed = clock.finished();
   if (report->completed) report->reason.clear();

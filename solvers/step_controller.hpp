@@ -78,6 +78,13 @@ public:
   bool finished() const { return time_ >= end_ - tiny_; }
   // Of the way from the start to the end (1 once finished), for progress.
   double fraction_done() const { return finished() ? 1.0 : (time_ - start_) / (end_ - start_); }
+  // Of the steps of a run whose steps grow about geometrically from
+  // `first_step` (creep, as it slows): log(1 + t / first_step) over
+  // log(1 + T / first_step), t and T from the start; for progress estimates.
+  double geometric_fraction_done(double first_step) const {
+    if (finished()) return 1.0;
+    return std::log1p((time_ - start_) / first_step) / std::log1p((end_ - start_) / first_step);
+  }
 
   // The next attempt for a step of `asked` length: it ends on the first of
   // the end, the next landing and the next landing periodic event when that

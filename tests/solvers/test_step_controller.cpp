@@ -67,6 +67,23 @@ TEST(StepController, TenTenthsMakeTheWhole) {
   EXPECT_EQ(steps.back().to, 1.0);
 }
 
+// Steps doubling from 1 s over 1023 s (1, 2, 4, ... 512 s: ten steps): after
+// k of them, t = 2^k - 1 and the geometric share is k/10 exactly, where the
+// share of the simulated time is (2^k - 1)/1023; done at the end.
+TEST(StepController, GeometricShareCountsDoublingSteps) {
+  StepController clock(0.0, 1023.0, 1e-9);
+  EXPECT_EQ(clock.geometric_fraction_done(1.0), 0.0);
+  double step = 1.0;
+  for (int k = 1; k <= 9; ++k, step *= 2.0) {
+    clock.accept(clock.plan(step));
+    EXPECT_NEAR(clock.geometric_fraction_done(1.0), k / 10.0, 1e-12) << "after step " << k;
+  }
+  EXPECT_NEAR(clock.fraction_done(), 511.0 / 1023.0, 1e-12);
+  clock.accept(clock.plan(step));
+  EXPECT_TRUE(clock.finished());
+  EXPECT_EQ(clock.geometric_fraction_done(1.0), 1.0);
+}
+
 TEST(StepController, CheckpointsThatDoNotLandAreTakenPastTheirTimes) {
   StepController clock(0.0, 1.0, 1e-9);
   clock.checkpoint_every(0.3, PeriodicEvent::Landing::first_step_past_it);
