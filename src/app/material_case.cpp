@@ -119,6 +119,9 @@ const std::vector<OptionSpec>& material_option_specs() {
           {"bending-weft", "N*M", "", "patch model: weft rigidity, N m [--bending-stiffness]"},
           {"bending-twist", "N*M", "", "patch model: twist rigidity, N m [half the warp's]"},
           {"bending-psd", "", "", "project bending Hessians to PSD"},
+          {"bending-psd-method", "eigenvalues|gauss-newton", "eigenvalues",
+           "patch model under --bending-psd: the exact Hessian with its negative eigenvalues "
+           "clamped, or the Gauss-Newton one (faster, less robust to round-off)"},
           {"density", "KG/M2", "0.2", "areal density, kg/m^2 [the fabric's if it has one]"},
       },
       {"material"});
@@ -147,6 +150,12 @@ MaterialCase read_material_case(const Options& options) {
   material.density = given_or(options, "density", nonnegative);
   material.project_membrane = options.flag("membrane-psd");
   material.project_bending = options.flag("bending-psd");
+  const std::string method = options.text("bending-psd-method");
+  if (method != "gauss-newton" && method != "eigenvalues") {
+    throw InputError("option --bending-psd-method: '" + method +
+                     "' is neither gauss-newton nor eigenvalues");
+  }
+  material.patch_gauss_newton = method == "gauss-newton";
   return material;
 }
 
@@ -173,6 +182,7 @@ ClothMaterial build_material(const MaterialCase& given, const std::string& fabri
       !given.density.given && fabric.areal_density ? *fabric.areal_density : given.density.value;
   material.project_membrane = given.project_membrane;
   material.project_bending = given.project_bending;
+  material.patch_gauss_newton = given.patch_gauss_newton;
   return material;
 }
 

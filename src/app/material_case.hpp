@@ -40,6 +40,7 @@ struct MaterialCase {
   GivenOr<double> density;                  // --density, kg/m^2; else the fabric's
   bool project_membrane = false;            // --membrane-psd
   bool project_bending = false;             // --bending-psd
+  bool patch_gauss_newton = false;          // --bending-psd-method gauss-newton
 };
 
 // Throws InputError naming the option for a malformed value.

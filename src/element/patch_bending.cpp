@@ -435,6 +435,32 @@ std::optional<PatchState> patch_state(const PatchRest& rest, const Vector36& x) 
   return state;
 }
 
+// dm/dx over the corners (x0, x1, x2), m = e1 x e2 the unnormalised normal.
+Jacobian9 normal_derivative(const PatchState& state) {
+  Jacobian9 dm;
+  dm.block<3, 3>(0, 0) = cross(state.e2) - cross(state.e1);
+  dm.block<3, 3>(0, 3) = -cross(state.e2);
+  dm.block<3, 3>(0, 6) = cross(state.e1);
+  return dm;
+}
+
+// dn/dx = P dm/dx / |m|, P the projector off the normal.
+Jacobian9 unit_normal_derivative(const PatchState& state, const Jacobian9& dm) {
+  const Matrix3d projector = Matrix3d::Identity() - state.n * state.n.transpose();
+  return projector * dm / state.length;
+}
+
+// The strain's derivative B (3 x 36) given dn/dx over the corners: node i
+// carries f_r w_ri n^T, the triangle's corners also f_r H_r^T dn.
+Eigen::Matrix<double, 3, 36> strain_derivative(const PatchRest& rest, const PatchState& state,
+                                               const Jacobian9& dn) {
+  Eigen::Matrix<double, 3, 36> b;
+  for (int i = 0; i < nodes; ++i)
+    b.block<3, 3>(0, 3 * i) = voigt_scale.cwiseProduct(rest.weights.col(i)) * state.n.transpose();
+  b.block<3, 9>(0, 0) += voigt_scale.asDiagonal() * state.h.transpose() * dn;
+  return b;
+}
+
 } // namespace
 
 Result<36> patch_bending(const PatchRest& rest, const Vector36& x, Want want) {
@@ -444,7 +470,7 @@ Result<36> patch_bending(const PatchRest& rest, const Vector36& x, Want want) {
   result.hessian.setZero();
   const std::optional<PatchState> state = patch_state(rest, x);
   if (!state) return result;
-  const Vector3d &e1 = state->e1, &e2 = state->e2, &n = state->n;
+  const Vector3d& n = state->n;
   const double length = state->length;
   const Matrix3d& h = state->h;
   const PatchResponse& response = state->response;
@@ -452,20 +478,10 @@ Result<36> patch_bending(const PatchRest& rest, const Vector36& x, Want want) {
   result.energy = rest.area * response.energy_density;
   if (want == Want::energy) return result;
 
-  // dm/dx over (x0, x1, x2); dn = P dm / |m|.
-  Jacobian9 dm;
-  dm.block<3, 3>(0, 0) = cross(e2) - cross(e1);
-  dm.block<3, 3>(0, 3) = -cross(e2);
-  dm.block<3, 3>(0, 6) = cross(e1);
+  const Jacobian9 dm = normal_derivative(*state);
+  const Jacobian9 dn = unit_normal_derivative(*state, dm);
   const Matrix3d projector = Matrix3d::Identity() - n * n.transpose();
-  const Jacobian9 dn = projector * dm / length;
-
-  // Strain rows' derivatives B (3 x 36): node i carries f_r w_ri n^T, the
-  // triangle's corners also f_r H_r^T dn.
-  Eigen::Matrix<double, 3, 36> b;
-  for (int i = 0; i < nodes; ++i)
-    b.block<3, 3>(0, 3 * i) = voigt_scale.cwiseProduct(rest.weights.col(i)) * n.transpose();
-  b.block<3, 9>(0, 0) += voigt_scale.asDiagonal() * h.transpose() * dn;
+  const Eigen::Matrix<double, 3, 36> b = strain_derivative(rest, *state, dn);
   result.gradient = rest.area * b.transpose() * moment;
   if (want == Want::gradient) return result;
 
@@ -581,6 +597,17 @@ OtherNodesBasis other_nodes_basis(const PatchRest& rest, const PatchState& state
 }
 
 } // namespace
+
+Matrix36 patch_gauss_newton_hessian(const PatchRest& rest, const Vector36& x) {
+  const std::optional<PatchState> state = patch_state(rest, x);
+  if (!state) return Matrix36::Zero();
+  const Jacobian9 dn = unit_normal_derivative(*state, normal_derivative(*state));
+  const Eigen::Matrix<double, 3, 36> b = strain_derivative(rest, *state, dn);
+  Eigen::Matrix<double, 3, 3> tangent = state->response.tangent;
+  project_to_psd<3>(tangent);
+  const Matrix36 hessian = rest.area * (b.transpose() * tangent).lazyProduct(b);
+  return 0.5 * (hessian + hessian.transpose());
+}
 
 void project_patch_hessian_to_psd(const PatchRest& rest, const Vector36& x, Matrix36& hessian) {
   const std::optional<PatchState> state = patch_state(rest, x);

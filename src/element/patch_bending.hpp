@@ -171,6 +171,13 @@ PatchResponse patch_response(const PatchRest& rest, const Eigen::Vector3d& strai
 // collapsed to zero area (no normal) contributes nothing.
 Result<36> patch_bending(const PatchRest& rest, const Vector36& x, Want want);
 
+// The Gauss-Newton Hessian at x: area B^T T+ B, B the strain's derivative
+// and T+ the response's tangent projected to PSD. Positive semi-definite by
+// construction, without an eigenproblem of the 36 x 36 Hessian: it leaves
+// out sum_r M_r d^2 s_r, the moments' share, which vanishes where the
+// moments do (--bending-psd-method gauss-newton; docs/finite-elements.md).
+Eigen::Matrix<double, 36, 36> patch_gauss_newton_hessian(const PatchRest& rest, const Vector36& x);
+
 // project_to_psd<36> of the patch's Hessian at x, by an eigenproblem of 14
 // rather than 36. The Hessian's range lies in the corners' nine dofs and in
 // five directions of the nine other nodes: the curvatures see those nodes

@@ -57,6 +57,13 @@ struct ClothMaterial {
   double areal_density = 0.0;    // kg/m^2
   bool project_membrane = false; // PSD-project element Hessians (compression stabilisation)
   bool project_bending = false;
+  // The patch model's PSD Hessian where project_bending asks: the exact
+  // Hessian with its negative eigenvalues clamped, or Gauss-Newton's (its
+  // strain's derivative through the projected tangent: no eigenproblem, a
+  // third less CPU over the sample garments' drapes, but the coarse dress
+  // then ends 5 mm apart under another CPU's BLAS kernels;
+  // docs/drape.md#the-patch-models-gauss-newton-hessian).
+  bool patch_gauss_newton = false;
 };
 
 struct ClothLoads {

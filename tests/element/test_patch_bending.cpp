@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include <cmath>
@@ -110,6 +111,55 @@ TEST(PatchBending, ProjectionInTheHessiansRangeIsTheFullProjection) {
     }
   }
   EXPECT_GE(projected, 4); // indefinite Hessians, not only the early return
+}
+
+// The Gauss-Newton Hessian leaves out only the moments' share: where the
+// patch carries no moment (its rest curvature set to the curvature it has,
+// found by the test as the minimiser of the energy over the rest curvature,
+// a quadratic, by central differences) it is the exact Hessian, that is,
+// the finite-difference Jacobian of the gradient; where it bends against
+// its rest curvature it stays symmetric and positive semi-definite, and
+// differs from the exact Hessian.
+TEST(PatchBending, GaussNewtonHessianIsExactWithoutMomentAndPsdWithOne) {
+  const auto uv = irregular_patch();
+  Vector36 x = lift(uv, [](const Vector2d& p) {
+    return Vector3d(1.2 * p.x() + 0.1 * p.y() * p.y(), p.y() - 0.05 * p.x() * p.y(),
+                    -1.5 * p.x() * p.x() - 0.3 * p.x() * p.y() + 0.2 * p.y() * p.y());
+  });
+  x(17) += 0.05;
+  x(9) -= 0.03;
+  const auto energy_at_rest = [&](const Vector3d& c) {
+    return patch_bending(rest_of(uv, orthotropic(), {true, true, true}, c), x, Want::energy).energy;
+  };
+  const double h = 1e-3;
+  Vector3d slope;
+  Eigen::Matrix3d curvature;
+  for (int i = 0; i < 3; ++i) {
+    const Vector3d ei = h * Vector3d::Unit(i);
+    slope(i) = (energy_at_rest(ei) - energy_at_rest(-ei)) / (2.0 * h);
+    for (int j = 0; j < 3; ++j) {
+      const Vector3d ej = h * Vector3d::Unit(j);
+      curvature(i, j) = (energy_at_rest(ei + ej) - energy_at_rest(ei - ej) -
+                         energy_at_rest(-ei + ej) + energy_at_rest(-ei - ej)) /
+                        (4.0 * h * h);
+    }
+  }
+  const Vector3d own_curvature = -curvature.ldlt().solve(slope);
+  const PatchRest unloaded = rest_of(uv, orthotropic(), {true, true, true}, own_curvature);
+  EXPECT_LT(patch_bending(unloaded, x, Want::gradient).gradient.norm(), 1e-9);
+  const auto gradient = [&](const Vector36& y) {
+    return Vector36(patch_bending(unloaded, y, Want::gradient).gradient);
+  };
+  const Eigen::Matrix<double, 36, 36> gauss_newton = patch_gauss_newton_hessian(unloaded, x);
+  EXPECT_LT(relative_error(numeric_jacobian<36, 36>(gradient, x, 1e-6), gauss_newton), 1e-6);
+
+  const PatchRest loaded = rest_of(uv, orthotropic(), {true, true, true}, Vector3d(1.5, 0.8, 0.5));
+  const Eigen::Matrix<double, 36, 36> bent = patch_gauss_newton_hessian(loaded, x);
+  const Eigen::Matrix<double, 36, 36> exact = patch_bending(loaded, x, Want::hessian).hessian;
+  EXPECT_LT((bent - bent.transpose()).norm(), 1e-14 * bent.norm());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 36, 36>> eigen(bent);
+  EXPECT_GT(eigen.eigenvalues().minCoeff(), -1e-12 * bent.norm());
+  EXPECT_GT((bent - exact).norm(), 1e-2 * exact.norm());
 }
 
 TEST(PatchBending, RigidMotionsStoreNothing) {

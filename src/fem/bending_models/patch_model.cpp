@@ -237,6 +237,7 @@ std::unique_ptr<Form> patch_form(const BendingSetUp& setup, element::BendingMode
     local.triangle = int(t);
     local.dofs = setup.dofs<36>(stencil.vertices);
     local.project = material.project_bending;
+    local.gauss_newton = material.patch_gauss_newton;
     const Eigen::Vector3d rest_curvature =
         material.rest_curvature.empty() ? Eigen::Vector3d::Zero() : material.rest_curvature[t];
     local.rest = element::patch_rest(mesh.material_uv[t], stencil.slopes, geometry->rigidity[t],

@@ -54,7 +54,8 @@ struct LocalPatch {
   int triangle = -1; // in the mesh
   std::array<PetscInt, 36> dofs;
   element::PatchRest rest;
-  bool project; // PSD-project its Hessian
+  bool project;      // a PSD Hessian where the solver asks for one
+  bool gauss_newton; // that Hessian: Gauss-Newton's, else the exact one projected
 };
 
 class PatchBendingForm final : public Form {
