@@ -281,6 +281,8 @@ PetscErrorCode measure_step(ClothProblem& worn, Vec x, const CreepCoupling& cree
   step->max_elastic = elastic;
   step->max_viscoelastic = largest_viscoelastic(states);
   step->max_permanent = largest_permanent(states);
+  double excess_area = 0.0;
+  step->dome_height = permanent_dome_height(worn.mesh(), states, garment.bagging, &excess_area);
   if (certify_step) {
     CertificateOptions options;
     options.stability = false;

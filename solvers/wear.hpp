@@ -179,6 +179,9 @@ struct WearStep {
   double max_elastic = 0.0; // largest elastic strain of any triangle and direction
   double max_viscoelastic = 0.0;
   double max_permanent = 0.0;
+  // m: the permanent dome height of the bagging region in the worn creep
+  // state (TakeOffReport::dome_height; it depends on the creep state alone).
+  double dome_height = 0.0;
   bool certified = false; // the step's certificate (without the inertia check)
   // Its verdict ("certified", or the first failed check); "" when steps are
   // not certified (--no-step-certificate).

@@ -464,12 +464,13 @@ void write_wear_tables(const std::string& directory, const WearRun& run) {
   std::ostringstream wear;
   wear.precision(10);
   wear << "time_s,dt_s,newton_iterations,rejected,creep_increment,hem_height_m,"
-          "max_elastic_strain,max_viscoelastic_strain,max_permanent_strain,certified,certificate\n";
+          "max_elastic_strain,max_viscoelastic_strain,max_permanent_strain,certified,certificate,"
+          "dome_height_m\n";
   for (const WearStep& s : run.report.steps) {
     wear << s.step.time << ',' << s.step.dt << ',' << s.step.newton_iterations << ','
          << s.step.rejected << ',' << s.step.increment << ',' << s.hem_height << ','
          << s.max_elastic << ',' << s.max_viscoelastic << ',' << s.max_permanent << ','
-         << (s.certified ? 1 : 0) << ',' << s.verdict << '\n';
+         << (s.certified ? 1 : 0) << ',' << s.verdict << ',' << s.dome_height << '\n';
   }
   write_file_atomically(directory + "/wear.csv", wear.str());
   std::ostringstream takeoff;

@@ -16,9 +16,9 @@ constexpr const char* wear_kind = "wear";
 
 nlohmann::json step_json(const WearStep& s) {
   const CreepStepReport& c = s.step;
-  return {c.step,      c.time,   c.dt,         c.load_factor, c.newton_iterations, c.rejected,
-          c.increment, c.output, s.hem_height, s.max_elastic, s.max_viscoelastic,  s.max_permanent,
-          s.certified, s.verdict};
+  return {c.step,      c.time,    c.dt,         c.load_factor, c.newton_iterations, c.rejected,
+          c.increment, c.output,  s.hem_height, s.max_elastic, s.max_viscoelastic,  s.max_permanent,
+          s.certified, s.verdict, s.dome_height};
 }
 
 WearStep step_from(const nlohmann::json& j) {
@@ -38,6 +38,7 @@ WearStep step_from(const nlohmann::json& j) {
   s.max_permanent = j.at(11).get<double>();
   s.certified = j.at(12).get<bool>();
   s.verdict = j.at(13).get<std::string>();
+  if (j.size() > 14) s.dome_height = j.at(14).get<double>(); // written since 2026-12-07
   return s;
 }
 

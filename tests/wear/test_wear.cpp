@@ -226,6 +226,21 @@ TEST(Wear, BaggingGrowsWithWearTime) {
   }
   EXPECT_GT(report.take_offs[2].bagging_height, 1.05 * report.take_offs[0].bagging_height);
   EXPECT_GT(report.take_offs[2].dome_height, 1.05 * report.take_offs[0].dome_height);
+  // Every worn state's dome height (wear.csv's): it never falls, and at a
+  // take-off time it is the worn state's, which the hanging tension can only
+  // add to while the garment recovers.
+  for (std::size_t k = 1; k < report.steps.size(); ++k)
+    EXPECT_GE(report.steps[k].dome_height, report.steps[k - 1].dome_height);
+  EXPECT_GT(report.steps.back().dome_height, 0.0);
+  for (const TakeOffReport& taken : report.take_offs) {
+    const auto worn =
+        std::find_if(report.steps.begin(), report.steps.end(), [&](const WearStep& s) {
+          return std::abs(s.step.time - taken.wear_time) < 1e-9;
+        });
+    ASSERT_NE(worn, report.steps.end()) << "no wear state at " << taken.wear_time << " s";
+    EXPECT_LE(worn->dome_height, taken.dome_height * (1.0 + 1e-12));
+    EXPECT_GT(worn->dome_height, 0.5 * taken.dome_height);
+  }
 }
 
 // The bagging height at fixed steps halved three times, and the observed
