@@ -8,7 +8,8 @@ Each DIR is a drape with wear: its takeoff.csv (one row per take-off),
 wear.csv (one row per wear state) and summary.json (the fabrics). Draws the
 hem drop and the bagging height of each take-off, and the permanent dome
 height (of every wear state as a line, of the take-offs as dots) against the
-wear time, one colour per DIR labelled by its fabric, into --output; with --pictures, for each DIR the garment after its last take-off
+wear time, one colour per DIR labelled by its fabric, into --output; with
+--pictures, for each DIR the garment after its last take-off
 (DIR/takeoff/series.h5) from the front and the side, coloured by the
 permanent strain (the larger of warp and weft, %), into PREFIX_FABRIC.png;
 with --state wear, the garment in its last worn state on the body
@@ -66,12 +67,13 @@ def plot_curves(directories, output, dpi):
             later = worn["time_s"] > 0.0
             line, = dome.plot(worn["time_s"][later] / scale, 1e3 * worn["dome_height_m"][later],
                               label=label)
-            dome.set_xscale("log")
             if "dome_height_m" in columns:
                 dome.plot(t, 1e3 * columns["dome_height_m"], marker="o", linestyle="none",
                           color=line.get_color())
         elif "dome_height_m" in columns:
             dome.plot(t, 1e3 * columns["dome_height_m"], marker="o", label=label)
+    if any(worn is not None for _, _, worn in tables):
+        dome.set_xscale("log")
     hem.set_ylabel("hem drop after recovery (mm)")
     bag.set_ylabel("bagging height after recovery (mm)")
     dome.set_ylabel("permanent dome height (mm)")

@@ -92,13 +92,13 @@ PetscErrorCode PatchBendingForm::add_element_hessians(const FormPoint& at,
   PetscFunctionBeginUser;
   for (const LocalPatch& p : patches_) {
     const element::Vector36 x = gather<36>(at.x, p.dofs);
-    if (p.project && !at.exact_hessian && p.gauss_newton) {
+    const bool psd = p.project && !at.exact_hessian;
+    if (psd && p.gauss_newton) {
       PetscCall(out.add<36>(p.dofs, element::patch_gauss_newton_hessian(p.rest, x)));
       continue;
     }
     auto result = element::patch_bending(p.rest, x, element::Want::hessian);
-    if (p.project && !at.exact_hessian)
-      element::project_patch_hessian_to_psd(p.rest, x, result.hessian);
+    if (psd) element::project_patch_hessian_to_psd(p.rest, x, result.hessian);
     PetscCall(out.add<36>(p.dofs, result.hessian));
   }
   PetscFunctionReturn(0);
