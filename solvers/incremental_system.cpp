@@ -66,7 +66,8 @@ IncrementalSystem::IncrementalSystem(ClothProblem& problem, Vec like) : problem_
   SartorPetscCall(problem.create_jacobian(&jacobian_));
   jacobian_version_ = problem.coupling_version();
   SartorPetscCall(attach_near_null_space(like, jacobian_));
-  for (Vec* v : {&residual_, &work_, &switch_point_, &direction_, &trial_x_, &trial_f_})
+  for (Vec* v : {&residual_, &work_, &switch_point_, &direction_, &trial_x_, &trial_f_,
+                 &extended_x_, &extended_f_})
     SartorPetscCall(VecDuplicate(like, v));
   SartorPetscCall(problem.lumped_mass(work_));
   inertia_ = std::make_unique<fem::InertiaForm>(work_);
@@ -111,7 +112,8 @@ IncrementalSystem::~IncrementalSystem() {
   SNESDestroy(&snes_);
   SNESDestroy(&snes_without_potential_);
   MatDestroy(&jacobian_);
-  for (Vec* v : {&residual_, &work_, &switch_point_, &direction_, &trial_x_, &trial_f_})
+  for (Vec* v : {&residual_, &work_, &switch_point_, &direction_, &trial_x_, &trial_f_,
+                 &extended_x_, &extended_f_})
     VecDestroy(v);
 }
 

@@ -103,7 +103,8 @@ public:
     PetscInt regularised_steps = 0;    // steps with mu > 0
     PetscInt residual_rule_trials = 0; // line-search trials decided on slopes (Phi in round-off)
     PetscInt failed_factorisations = 0;
-    PetscInt exact_steps = 0; // with the unprojected Hessian
+    PetscInt exact_steps = 0;    // with the unprojected Hessian
+    PetscInt extended_steps = 0; // whole steps the line search lengthened
   };
   MinimiserStatistics minimiser_statistics;
   // Progress lines of the minimiser on stdout (what is solved, iteration,
@@ -142,7 +143,13 @@ private:
   struct Trial;
   PetscErrorCode newton_direction(Vec x, Vec gradient, double mu, Vec direction, bool* solved,
                                   PetscInt* linear_iterations);
-  PetscErrorCode line_search(Vec x, Vec gradient, Vec direction, double first_length, Trial* trial);
+  PetscErrorCode line_search(Vec x, Vec gradient, Vec direction, double first_length,
+                             bool may_extend, Trial* trial);
+  struct LongerTrial;
+  PetscErrorCode longer_trial(Vec direction, double length, double end_slope, const Trial& accepted,
+                              LongerTrial* longer);
+  PetscErrorCode take_longer_trial(const LongerTrial& longer, Trial* trial);
+  PetscErrorCode extend_step(Vec direction, double slope, Trial* trial);
   PetscErrorCode regularisation_scale(double* scale);
   PetscErrorCode incremental_potential(Vec x, double* value, double* scale);
   struct Regularisation;
@@ -153,6 +160,8 @@ private:
   Vec direction_ = nullptr;
   Vec trial_x_ = nullptr;
   Vec trial_f_ = nullptr;
+  Vec extended_x_ = nullptr; // a longer trial than the accepted one (extend_step)
+  Vec extended_f_ = nullptr;
   PetscErrorCode run_snes(SNES snes, Vec x, Solve* result);
   PetscErrorCode finish_with_newton(SNES snes, Vec x, Solve* result);
   PetscErrorCode minimise_failed_time_step(SNES snes, Vec x, Solve* result);

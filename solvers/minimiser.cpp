@@ -24,6 +24,14 @@ constexpr double armijo_fraction = 1e-4;
 constexpr double energy_resolution = 1e-10;
 // The line search halves the step at most this many times (1e-6 of the first).
 constexpr int max_halvings = 20;
+// An accepted whole step along which Phi's slope at its end is still
+// steeper than crawl_slope of its first (a quadratic's is 0 there) is
+// doubled while it is steeper than extension_slope of it, at most
+// max_extensions times (1024 times the step).
+constexpr double crawl_slope = 0.9;
+constexpr double extension_slope = 0.5;
+constexpr int max_extensions = 10;
+constexpr double max_slope_growth = 2.0;
 // mu grows tenfold after a failed factorisation, a non-descent direction or a
 // line search that had to cut the step below a quarter; it shrinks tenfold
 // after a full step, to zero once below its floor.
@@ -125,10 +133,11 @@ PetscErrorCode IncrementalSystem::newton_direction(Vec x, Vec gradient, double m
 // a kink of the force (a contact switching on, a friction anchor reaching
 // its bound) is judged on Phi, not on |F| (which Newton's step need not lower
 // there). PETSc's critical-point line search (-snes_linesearch_type cp)
-// works on the same slope. Leaves F at the accepted point in trial_f_ and the
-// point in trial_x_.
+// works on the same slope. A whole step taken may be lengthened
+// (extend_step, where `may_extend`). Leaves F at the accepted point in
+// trial_f_ and the point in trial_x_.
 PetscErrorCode IncrementalSystem::line_search(Vec x, Vec gradient, Vec direction,
-                                              double first_length, Trial* trial) {
+                                              double first_length, bool may_extend, Trial* trial) {
   PetscReal slope = 0.0;
   PetscFunctionBeginUser;
   PetscCall(VecDot(gradient, direction, &slope));
@@ -158,9 +167,112 @@ PetscErrorCode IncrementalSystem::line_search(Vec x, Vec gradient, Vec direction
     trial->potential = value;
     trial->potential_scale = value_scale;
     PetscCall(VecNorm(trial_f_, NORM_2, &trial->residual_norm));
+    if (may_extend && length >= 1.0) PetscCall(extend_step(direction, slope, trial));
     PetscFunctionReturn(0);
   }
   trial->length = 0.0;
+  PetscFunctionReturn(0);
+}
+
+// A point farther along the accepted step (IncrementalSystem::extend_step):
+// its length, whether the bodies' bound cut it short, Phi's slope along the
+// step there, and whether Phi fell from the accepted point by Armijo's
+// fraction of what the accepted point's slope predicts (on the slopes where
+// that is within round-off, as in line_search). The point is in
+// extended_x_, F there in extended_f_.
+struct IncrementalSystem::LongerTrial {
+  double length = 0.0;
+  bool bounded = false;
+  double slope = 0.0;
+  bool decreased = false;
+  double potential = 0.0, potential_scale = 0.0;
+};
+
+PetscErrorCode IncrementalSystem::longer_trial(Vec direction, double length, double end_slope,
+                                               const Trial& accepted, LongerTrial* longer) {
+  PetscFunctionBeginUser;
+  // The extra step from the accepted point, bounded by the bodies.
+  const double extra = length - accepted.length;
+  PetscCall(VecCopy(direction, extended_f_));
+  PetscCall(VecScale(extended_f_, extra));
+  double bound = 1.0;
+  PetscCall(problem_.contact_step_bound(trial_x_, extended_f_, &bound));
+  longer->bounded = bound < 1.0;
+  longer->length = accepted.length + bound * extra;
+  PetscCall(VecWAXPY(extended_x_, bound * extra, direction, trial_x_));
+  PetscCall(incremental_potential(extended_x_, &longer->potential, &longer->potential_scale));
+  longer->decreased = false;
+  if (!std::isfinite(longer->potential)) PetscFunctionReturn(0);
+  PetscCall(residual(extended_x_, extended_f_));
+  PetscReal slope = 0.0;
+  PetscCall(VecDot(extended_f_, direction, &slope));
+  longer->slope = slope;
+  const double predicted = bound * extra * end_slope; // < 0
+  const bool resolved =
+      -predicted > energy_resolution * std::max(accepted.potential_scale, longer->potential_scale);
+  const double change = resolved ? longer->potential - accepted.potential
+                                 : 0.5 * bound * extra * (end_slope + longer->slope);
+  longer->decreased = std::isfinite(change) && change <= armijo_fraction * predicted;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode IncrementalSystem::take_longer_trial(const LongerTrial& longer, Trial* trial) {
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(extended_x_, trial_x_));
+  PetscCall(VecCopy(extended_f_, trial_f_));
+  trial->length = longer.length;
+  trial->potential = longer.potential;
+  trial->potential_scale = longer.potential_scale;
+  PetscCall(VecNorm(trial_f_, NORM_2, &trial->residual_norm));
+  ++minimiser_statistics.extended_steps;
+  PetscFunctionReturn(0);
+}
+
+// Lengthens an accepted whole step at whose end Phi still falls by more
+// than crawl_slope of the slope it started with (doubling it, at most
+// max_extensions times, while that is more than extension_slope): there
+// the Hessian (projected where cloth is
+// compressed, or unstable) overestimates Phi's curvature along the step
+// many times, and whole Newton steps crawl (a taken-off garment folding,
+// Phi falling 1e-9 J an iteration at a constant |F|). A doubling is taken
+// where Phi fell and still falls there, not past the minimum along the
+// step, nor where Phi falls ever faster (a snap through: buckling cloth,
+// whose equilibrium the path decides, is left to Newton's steps). Then one
+// trial where the slope, interpolated linearly between the last two lengths
+// tried, is zero (a quadratic's minimum along the step), taken where Phi
+// fell and its slope is smaller there.
+PetscErrorCode IncrementalSystem::extend_step(Vec direction, double slope, Trial* trial) {
+  PetscReal end_slope = 0.0;
+  PetscFunctionBeginUser;
+  PetscCall(VecDot(trial_f_, direction, &end_slope));
+  double other_length = 0.0, other_slope = slope; // the secant's other end
+  LongerTrial longer;
+  const bool crawling = end_slope < crawl_slope * slope;
+  if (!crawling) PetscFunctionReturn(0);
+  for (int k = 0; k < max_extensions && end_slope < extension_slope * slope; ++k) {
+    PetscCall(longer_trial(direction, 2.0 * trial->length, end_slope, *trial, &longer));
+    const bool falling = longer.slope <= 0.0 && longer.slope >= max_slope_growth * slope;
+    other_length = longer.length, other_slope = longer.slope;
+    if (!longer.decreased || !falling) break;
+    other_length = trial->length, other_slope = end_slope;
+    PetscCall(take_longer_trial(longer, trial));
+    end_slope = longer.slope;
+    if (longer.bounded) PetscFunctionReturn(0);
+  }
+  if (!(end_slope < 0.0)) PetscFunctionReturn(0);
+  // Where the slope's secant through the two ends is zero, past the accepted
+  // point: the slope grew from one end to the other.
+  const double rise = (other_slope - end_slope) / (other_length - trial->length);
+  if (!(rise > 0.0) || !std::isfinite(rise)) PetscFunctionReturn(0);
+  const double secant = std::min(trial->length - end_slope / rise, 2.0 * trial->length);
+  PetscCall(longer_trial(direction, secant, end_slope, *trial, &longer));
+  PetscCall(PetscInfo(snes_,
+                      "step lengthened to %g times Newton's, then tried at %g: Phi %s, end slope "
+                      "%g of the last\n",
+                      trial->length, longer.length, longer.decreased ? "fell" : "did not fall",
+                      longer.slope / end_slope));
+  if (longer.decreased && std::abs(longer.slope) < std::abs(end_slope))
+    PetscCall(take_longer_trial(longer, trial));
   PetscFunctionReturn(0);
 }
 
@@ -301,7 +413,9 @@ PetscErrorCode IncrementalSystem::minimise(Vec x, Solve* result) {
       break;
     }
     Trial next = current;
-    PetscCall(line_search(x, residual_, direction_, bound, &next));
+    // Steps regularised beyond mu's floor are short on purpose (the line
+    // search cut the steps before them): they are not lengthened.
+    PetscCall(line_search(x, residual_, direction_, bound, mu_level <= 0, &next));
     if (exact && next.length < 0.5 * bound) regularisation.exact_pause = 5;
     if (next.length == 0.0 && exact) continue; // the projected Hessian next
     if (next.length == 0.0) {

@@ -463,6 +463,7 @@ void add_statics_summary(const StaticReport& report, nlohmann::json& summary) {
         {"residual_rule_trials", report.minimiser.residual_rule_trials},
         {"failed_factorisations", report.minimiser.failed_factorisations},
         {"exact_steps", report.minimiser.exact_steps},
+        {"extended_steps", report.minimiser.extended_steps},
         {"sewing_stages", report.sewing_stages},
         {"unconverged_stages", report.unconverged_stages},
         {"stalled_stage_resolves", report.stalled_stage_resolves},

@@ -39,7 +39,7 @@ std::string state_text(const StaticReport& r, const std::string& drape_level) {
         {"minimised", r.minimised},
         {"minimiser",
          {m.step_bound_cuts, m.regularised_steps, m.residual_rule_trials, m.failed_factorisations,
-          m.exact_steps}},
+          m.exact_steps, m.extended_steps}},
         {"sewing_stages", r.sewing_stages},
         {"contact_rounds", r.contact_rounds},
         {"contact_stiffness_scale", r.contact_stiffness_scale},
@@ -73,7 +73,9 @@ StaticReport report_from(const nlohmann::json& state) {
   r.minimised = j.at("minimised").get<bool>();
   const nlohmann::json& m = j.at("minimiser");
   r.minimiser = {m.at(0).get<PetscInt>(), m.at(1).get<PetscInt>(), m.at(2).get<PetscInt>(),
-                 m.at(3).get<PetscInt>(), m.at(4).get<PetscInt>()};
+                 m.at(3).get<PetscInt>(), m.at(4).get<PetscInt>(),
+                 // absent from checkpoints written before 2026-12-07
+                 m.size() > 5 ? m.at(5).get<PetscInt>() : 0};
   r.sewing_stages = j.at("sewing_stages").get<int>();
   r.contact_rounds = j.at("contact_rounds").get<int>();
   r.contact_stiffness_scale = j.at("contact_stiffness_scale").get<double>();

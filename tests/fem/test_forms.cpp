@@ -556,5 +556,65 @@ TEST(Forms, SpringsToPointsHoldAFreeSheetWhereTheyPullIt) {
   VecDestroy(&x);
 }
 
+// Springs whose energy and force have stiffness k but whose Hessian claims
+// `factor` times k: a Hessian far stiffer than the potential along the
+// step, as the projected Hessian of unstable or compressed cloth is.
+class OverstiffSprings final : public fem::Form {
+public:
+  OverstiffSprings(const ClothProblem& problem,
+                   const std::vector<testing::SpringToPointForm::Spring>& springs, double k,
+                   double factor)
+      : true_(problem, springs, k), claimed_(problem, springs, factor * k) {}
+  const char* name() const override { return "overstiff springs"; }
+  fem::EnergyPart part() const override { return fem::EnergyPart::external; }
+  void add_energy(const fem::FormPoint& at, double* sum) const override {
+    true_.add_energy(at, sum);
+  }
+  void add_gradient(const fem::FormPoint& at, PetscScalar* f) const override {
+    true_.add_gradient(at, f);
+  }
+  PetscErrorCode add_hessian(const fem::FormPoint& at, Mat J) const override {
+    return claimed_.add_hessian(at, J);
+  }
+
+private:
+  testing::SpringToPointForm true_, claimed_;
+};
+
+TEST(Forms, WholeStepsLengthenWhereTheHessianIsTooStiff) {
+  // The sheet carried rigidly by a stiff spring at every vertex whose
+  // Hessian is 1000 times too stiff: each whole Newton step goes 1/1000 of
+  // the way and leaves |F| 0.999 of what it was, so without lengthening the
+  // steps 50 Newton iterations end 5 % of the way. Doubled nine times (to
+  // 0.512 of the way, where Phi's slope has fallen below half), then to the
+  // secant's zero of the slope (the whole way: Phi is quadratic along the
+  // step), the first step leaves 1e-7 of |F| (measured 4e-8).
+  TriangleMesh mesh = mesh::rectangle(0.4, 0.3, 4, 3, mesh::RectanglePattern::perturbed);
+  ClothProblem problem(PETSC_COMM_WORLD, mesh, cotton(element::BendingModel::patch), {});
+  const Eigen::Vector3d d(0.01, -0.02, 0.005);
+  std::vector<testing::SpringToPointForm::Spring> springs;
+  for (int v = 0; v < int(mesh.vertex_count()); ++v)
+    springs.push_back({v, mesh.positions[std::size_t(v)] + d});
+  problem.add_form(std::make_unique<OverstiffSprings>(problem, springs, 1e5, 1000.0));
+  Vec x = nullptr;
+  ASSERT_EQ(problem.create_solution(&x), 0);
+  StaticOptions options;
+  options.load_steps = 1;
+  options.minimise = true; // at SNES's default -snes_max_it, 50
+  StaticReport report;
+  ASSERT_EQ(solve_static(problem, x, options, &report), 0);
+  EXPECT_TRUE(report.minimised);
+  EXPECT_TRUE(report.converged) << report.reason;
+  EXPECT_GE(report.minimiser.extended_steps, 10);
+  EXPECT_LE(report.newton_iterations, 20);
+  std::printf("overstiff springs: %d Newton iterations, %d steps lengthened\n",
+              int(report.newton_iterations), int(report.minimiser.extended_steps));
+  std::vector<Eigen::Vector3d> positions;
+  ASSERT_EQ(problem.gather_positions(x, &positions), 0);
+  for (std::size_t v = 0; v < positions.size(); ++v)
+    EXPECT_LT((positions[v] - mesh.positions[v] - d).norm(), 1e-8) << "vertex " << v;
+  VecDestroy(&x);
+}
+
 } // namespace
 } // namespace sartor
