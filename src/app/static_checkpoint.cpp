@@ -18,7 +18,7 @@ std::string state_text(const StaticReport& r, const std::string& drape_level) {
   nlohmann::json steps = nlohmann::json::array();
   for (const LoadStepReport& s : r.steps) {
     steps.push_back({s.load_factor, s.converged, s.reason, s.newton_iterations, s.linear_iterations,
-                     s.pseudo_steps, s.residual_norm});
+                     s.pseudo_steps, s.residual_norm, s.tolerance});
   }
   nlohmann::json rounds = nlohmann::json::array();
   for (const ContactRound& c : r.rounds) {
@@ -62,9 +62,12 @@ StaticReport report_from(const nlohmann::json& state) {
   r.converged = j.at("converged").get<bool>();
   r.reason = j.at("reason").get<std::string>();
   for (const nlohmann::json& s : j.at("steps")) {
+    // The solve's tolerance decides whether the contact rounds after a
+    // resume find the friction consistent (absent before 2026-12-07: 0,
+    // and every round then ran).
     r.steps.push_back({s.at(0).get<double>(), s.at(1).get<bool>(), s.at(2).get<std::string>(),
                        s.at(3).get<PetscInt>(), s.at(4).get<PetscInt>(), s.at(5).get<PetscInt>(),
-                       s.at(6).get<double>()});
+                       s.at(6).get<double>(), s.size() > 7 ? s.at(7).get<double>() : 0.0});
   }
   r.newton_iterations = j.at("newton_iterations").get<PetscInt>();
   r.linear_iterations = j.at("linear_iterations").get<PetscInt>();

@@ -19,8 +19,8 @@
 # states of series.h5 and dynamics.csv, must equal the uninterrupted run's
 # within 1e-6 m (the drapes' solver tolerance is 1e-6 of the weight in
 # force; the displacements are 0.05 to 1 m), and the static run's load steps
-# (load factors, Newton iterations) and the wear's tables must be the
-# uninterrupted run's. The differences are printed.
+# (load factors, Newton iterations), the static drapes' contact rounds and
+# the wear's tables must be the uninterrupted run's. The differences are printed.
 #   kill_resume.sh SARTOR PROJECT_DIR WORKDIR MPIEXEC SCENARIO
 set -euo pipefail
 [ $# -eq 5 ] || { echo "usage: $0 SARTOR PROJECT_DIR WORKDIR MPIEXEC SCENARIO" >&2; exit 2; }
@@ -247,6 +247,18 @@ for name, whole in resumed:
           + (f" (largest displacement {moved:.3g} m)" if moved is not None else ""))
     if not diff <= tolerance:
         failures.append(f"{name}: final positions differ by {diff:.3g} m")
+
+# The static drapes' contact rounds: a resume after the last round must not
+# solve more of them (it did until 2026-12-07: the restored solves had no
+# tolerance, so the friction was never found consistent and every round of
+# --contact-rounds ran again).
+drapes = {"skirt": resumed, "wear": (("skirt_wear", "skirt_wear"),)}.get(scenario, ())
+for name, whole in drapes:
+    rounds = [json.load(open(f"{work}/{n}/summary.json"))["solver"]["minimiser"]["contact_rounds"]
+              for n in (f"{whole}_whole", name)]
+    print(f"{name}: {rounds[1]} contact rounds, uninterrupted {rounds[0]}")
+    if rounds[0] != rounds[1]:
+        failures.append(f"{name}: {rounds[1]} contact rounds, uninterrupted {rounds[0]}")
 
 if scenario == "plate_sheet":
     steps = [[(s["load_factor"], s["newton_iterations"])
