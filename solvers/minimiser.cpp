@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sartor {
 
@@ -202,6 +203,7 @@ PetscErrorCode IncrementalSystem::longer_trial(Vec direction, double length, dou
   PetscCall(VecWAXPY(extended_x_, bound * extra, direction, trial_x_));
   PetscCall(incremental_potential(extended_x_, &longer->potential, &longer->potential_scale));
   longer->decreased = false;
+  longer->slope = std::numeric_limits<double>::quiet_NaN(); // none where Phi is not finite
   if (!std::isfinite(longer->potential)) PetscFunctionReturn(0);
   PetscCall(residual(extended_x_, extended_f_));
   PetscReal slope = 0.0;
@@ -231,9 +233,9 @@ PetscErrorCode IncrementalSystem::take_longer_trial(const LongerTrial& longer, T
 // Lengthens an accepted whole step at whose end Phi still falls by more
 // than crawl_slope of the slope it started with (doubling it, at most
 // max_extensions times, while that is more than extension_slope): there
-// the Hessian (projected where cloth is
-// compressed, or unstable) overestimates Phi's curvature along the step
-// many times, and whole Newton steps crawl (a taken-off garment folding,
+// the Hessian (projected where cloth is compressed, or unstable)
+// overestimates Phi's curvature along the step many times, and whole
+// Newton steps crawl (a taken-off garment folding,
 // Phi falling 1e-9 J an iteration at a constant |F|). A doubling is taken
 // where Phi fell and still falls there, not past the minimum along the
 // step, nor where Phi falls ever faster (a snap through: buckling cloth,
@@ -246,9 +248,8 @@ PetscErrorCode IncrementalSystem::extend_step(Vec direction, double slope, Trial
   PetscFunctionBeginUser;
   PetscCall(VecDot(trial_f_, direction, &end_slope));
   double other_length = 0.0, other_slope = slope; // the secant's other end
+  if (!(end_slope < crawl_slope * slope)) PetscFunctionReturn(0);
   LongerTrial longer;
-  const bool crawling = end_slope < crawl_slope * slope;
-  if (!crawling) PetscFunctionReturn(0);
   for (int k = 0; k < max_extensions && end_slope < extension_slope * slope; ++k) {
     PetscCall(longer_trial(direction, 2.0 * trial->length, end_slope, *trial, &longer));
     const bool falling = longer.slope <= 0.0 && longer.slope >= max_slope_growth * slope;
