@@ -48,6 +48,17 @@ constexpr double full_step_fraction = 0.25;
 constexpr double stalled_bound = 1e-6;
 constexpr int stalled_iterations = 10;
 
+// Whether a predicted decrease of Phi (< 0) is above Phi's round-off at
+// both ends of a trial, whose magnitudes are these.
+bool resolved_decrease(double predicted, double scale, double other_scale) {
+  return -predicted > energy_resolution * std::max(scale, other_scale);
+}
+
+// Armijo's rule on Phi's change (measured, or from the slopes).
+bool sufficient_decrease(double change, double predicted) {
+  return std::isfinite(change) && change <= armijo_fraction * predicted;
+}
+
 double magnitude(const ClothEnergy& e) {
   return std::abs(e.membrane) + std::abs(e.bending) + std::abs(e.external) + std::abs(e.contact) +
          std::abs(e.seam);
@@ -151,16 +162,15 @@ PetscErrorCode IncrementalSystem::line_search(Vec x, Vec gradient, Vec direction
     if (!std::isfinite(value)) continue;
     const double predicted = length * slope; // < 0
     bool accept = false;
-    const bool resolved = -predicted > energy_resolution * std::max(scale, value_scale);
-    if (resolved) {
-      accept = value - potential <= armijo_fraction * predicted;
+    if (resolved_decrease(predicted, scale, value_scale)) {
+      accept = sufficient_decrease(value - potential, predicted);
       if (accept) PetscCall(residual(trial_x_, trial_f_));
     } else {
       PetscCall(residual(trial_x_, trial_f_));
       PetscReal end_slope = 0.0;
       PetscCall(VecDot(trial_f_, direction, &end_slope));
       const double change = 0.5 * length * (slope + end_slope);
-      accept = std::isfinite(change) && change <= armijo_fraction * predicted;
+      accept = sufficient_decrease(change, predicted);
       ++minimiser_statistics.residual_rule_trials;
     }
     if (!accept) continue;
@@ -210,11 +220,11 @@ PetscErrorCode IncrementalSystem::longer_trial(Vec direction, double length, dou
   PetscCall(VecDot(extended_f_, direction, &slope));
   longer->slope = slope;
   const double predicted = bound * extra * end_slope; // < 0
-  const bool resolved =
-      -predicted > energy_resolution * std::max(accepted.potential_scale, longer->potential_scale);
-  const double change = resolved ? longer->potential - accepted.potential
-                                 : 0.5 * bound * extra * (end_slope + longer->slope);
-  longer->decreased = std::isfinite(change) && change <= armijo_fraction * predicted;
+  const double change =
+      resolved_decrease(predicted, accepted.potential_scale, longer->potential_scale)
+          ? longer->potential - accepted.potential
+          : 0.5 * bound * extra * (end_slope + longer->slope);
+  longer->decreased = sufficient_decrease(change, predicted);
   PetscFunctionReturn(0);
 }
 
@@ -253,8 +263,10 @@ PetscErrorCode IncrementalSystem::extend_step(Vec direction, double slope, Trial
   for (int k = 0; k < max_extensions && end_slope < extension_slope * slope; ++k) {
     PetscCall(longer_trial(direction, 2.0 * trial->length, end_slope, *trial, &longer));
     const bool falling = longer.slope <= 0.0 && longer.slope >= max_slope_growth * slope;
-    other_length = longer.length, other_slope = longer.slope;
-    if (!longer.decreased || !falling) break;
+    if (!longer.decreased || !falling) { // the secant runs to the trial not taken
+      other_length = longer.length, other_slope = longer.slope;
+      break;
+    }
     other_length = trial->length, other_slope = end_slope;
     PetscCall(take_longer_trial(longer, trial));
     end_slope = longer.slope;
