@@ -637,6 +637,30 @@ PetscErrorCode descent_direction(ClothProblem& problem, Vec x, const Certificate
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode push_off_saddle(ClothProblem& problem, Vec x, const CertificateOptions& options,
+                               double push, bool* pushed) {
+  Vec mode = nullptr, plus = nullptr;
+  double curvature = 0.0, largest = 0.0;
+  ClothEnergy up, down;
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(x, &mode));
+  PetscCall(descent_direction(problem, x, options, mode, &curvature, pushed));
+  PetscCall(VecNorm(mode, NORM_INFINITY, &largest));
+  *pushed = *pushed && largest > 0.0;
+  if (*pushed) {
+    const double step = push / largest;
+    PetscCall(VecDuplicate(x, &plus));
+    PetscCall(VecWAXPY(plus, step, mode, x));
+    PetscCall(problem.energy(plus, &up));
+    PetscCall(VecAXPY(x, -step, mode));
+    PetscCall(problem.energy(x, &down));
+    if (up.total() <= down.total()) PetscCall(VecCopy(plus, x));
+    PetscCall(VecDestroy(&plus));
+  }
+  PetscCall(VecDestroy(&mode));
+  PetscFunctionReturn(0);
+}
+
 nlohmann::json certificate_json(const Certificate& c) {
   nlohmann::json json = {{"certified", c.certified()},
                          {"verdict", c.verdict()},

@@ -132,6 +132,13 @@ PetscErrorCode certify(ClothProblem& problem, Vec x, const CertificateOptions& o
 PetscErrorCode descent_direction(ClothProblem& problem, Vec x, const CertificateOptions& options,
                                  Vec v, double* curvature, bool* found);
 
+// Collective: x pushed along the true Hessian's lowest mode
+// (descent_direction) to whichever side Phi is lower, its largest vertex
+// displacement `push` (m); *pushed is false, x unchanged, where the
+// Hessian has no direction of descent (not a saddle).
+PetscErrorCode push_off_saddle(ClothProblem& problem, Vec x, const CertificateOptions& options,
+                               double push, bool* pushed);
+
 // The "certificate" block of summary.json.
 nlohmann::json certificate_json(const Certificate& certificate);
 // Its inverse (a checkpoint keeps certificates so): the measures and the

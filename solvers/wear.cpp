@@ -220,17 +220,24 @@ public:
     problem_.time = time;
     PetscCall(problem_.create_solution(&x));
     PetscCall(problem_.set_solution(worn, x));
-    CreepOptions recovery = options.wear;
-    recovery.time_end = time + options.recovery_time;
-    recovery.output_interval = 0.0;
-    recovery.print_progress = false;
-    CreepReport solved;
-    PetscCall(solve_creep(problem_, creep_, x, recovery, &solved));
-    report->converged = solved.completed;
-    report->reason = solved.reason;
-    report->newton_iterations = solved.newton_iterations;
-    report->recovery_steps = long(solved.steps.size()) - 1;
-    report->rejected_steps = solved.rejected_steps;
+    StaticReport hung;
+    PetscCall(hang_worn(x, options.wear.equilibrium, &hung, &report->saddle_escapes));
+    report->newton_iterations = hung.newton_iterations;
+    if (hung.converged) {
+      CreepOptions recovery = options.wear;
+      recovery.time_end = time + options.recovery_time;
+      recovery.output_interval = 0.0;
+      recovery.print_progress = false;
+      CreepReport solved;
+      PetscCall(solve_creep(problem_, creep_, x, recovery, &solved));
+      report->converged = solved.completed;
+      report->reason = solved.reason;
+      report->newton_iterations += solved.newton_iterations;
+      report->recovery_steps = long(solved.steps.size()) - 1;
+      report->rejected_steps = solved.rejected_steps;
+    } else {
+      report->reason = "the hanging did not converge (" + hung.reason + ")";
+    }
     CertificateOptions certify_options;
     PetscCall(certify(problem_, x, certify_options, &report->certificate));
     std::vector<Eigen::Vector3d> recovered;
@@ -250,6 +257,44 @@ public:
   }
 
 private:
+  // The worn garment hung from x (its creep state restored), the recovery's
+  // first state. A hanging that ends in a saddle, or stops without
+  // converging in one (a crumpled sleeve that could fold either way, where
+  // the projected Hessian's steps crawl), is pushed along the true
+  // Hessian's lowest mode by a hundredth of the garment's size and hung
+  // again, at most max_saddle_escapes times (as --escape-saddles does for
+  // a drape).
+  PetscErrorCode hang_worn(Vec x, const StaticOptions& solve, StaticReport* hung, long* escapes) {
+    PetscFunctionBeginUser;
+    *escapes = 0;
+    PetscCall(solve_static(problem_, x, solve, hung));
+    StaticOptions again = solve;
+    again.start_load_factor = problem_.load_factor;
+    again.load_steps = 1;
+    again.max_cutbacks = 0;
+    while (*escapes < max_saddle_escapes) {
+      bool pushed = false;
+      PetscCall(push_off_saddle(problem_, x, CertificateOptions{}, 0.01 * garment_size(), &pushed));
+      if (!pushed) break; // no direction of descent: not a saddle
+      ++*escapes;
+      StaticReport resolved;
+      PetscCall(solve_static(problem_, x, again, &resolved));
+      resolved.newton_iterations += hung->newton_iterations;
+      *hung = resolved;
+    }
+    PetscFunctionReturn(0);
+  }
+
+  // The diagonal of the draped garment's bounding box, m.
+  double garment_size() const {
+    Eigen::AlignedBox3d box;
+    for (const Eigen::Vector3d& p : mesh_.positions)
+      box.extend(p);
+    return box.isEmpty() ? 0.0 : box.diagonal().norm();
+  }
+
+  static constexpr long max_saddle_escapes = 3;
+
   static TriangleMesh with_positions(const TriangleMesh& mesh,
                                      const std::vector<Eigen::Vector3d>& positions) {
     TriangleMesh copy = mesh;

@@ -168,6 +168,7 @@ struct TakeOffReport {
   PetscInt newton_iterations = 0;         // of the hanging solve and the recovery
   long recovery_steps = 0;                // accepted
   long rejected_steps = 0;                // of the recovery
+  long saddle_escapes = 0;                // pushes off a saddle the hanging stopped in
   Certificate certificate;                // of the recovered state
   std::vector<Eigen::Vector3d> positions; // recovered (rank 0)
   std::vector<ElementCreep> creep;        // recovered state (rank 0)

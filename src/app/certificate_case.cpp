@@ -50,34 +50,6 @@ double cloth_size(const TriangleMesh& mesh) {
   return (high - low).norm();
 }
 
-// x + step v or x - step v, whichever has the lower energy.
-void push_downhill(ClothProblem& problem, Vec x, Vec v, double step) {
-  Vec trial = nullptr;
-  ClothEnergy plus, minus;
-  SartorPetscCall(VecDuplicate(x, &trial));
-  SartorPetscCall(VecWAXPY(trial, step, v, x));
-  SartorPetscCall(problem.energy(trial, &plus));
-  SartorPetscCall(VecWAXPY(trial, -step, v, x));
-  SartorPetscCall(problem.energy(trial, &minus));
-  SartorPetscCall(VecAXPY(x, plus.total() <= minus.total() ? step : -step, v));
-  SartorPetscCall(VecDestroy(&trial));
-}
-
-// Pushes x off the saddle along its lowest mode; false when no direction of
-// descent was found.
-bool push_off_saddle(ClothProblem& problem, Vec x, const CertificateOptions& settings,
-                     double push_size) {
-  Vec v = nullptr;
-  double curvature = 0.0, largest = 0.0;
-  bool found = false;
-  SartorPetscCall(VecDuplicate(x, &v));
-  SartorPetscCall(descent_direction(problem, x, settings, v, &curvature, &found));
-  SartorPetscCall(VecNorm(v, NORM_INFINITY, &largest));
-  if (found && largest > 0.0) push_downhill(problem, x, v, push_size / largest);
-  SartorPetscCall(VecDestroy(&v));
-  return found && largest > 0.0;
-}
-
 void add_solve(const StaticReport& solve, StaticReport* report) {
   report->converged = solve.converged;
   report->reason = solve.reason;
@@ -103,7 +75,9 @@ CertifiedState certify_case(const CertificateCase& certificate, ClothProblem& pr
   SartorPetscCall(VecDuplicate(x, &saddle));
   while (state.certificate.saddle() && state.escapes < escapes) {
     SartorPetscCall(VecCopy(x, saddle));
-    if (!push_off_saddle(problem, x, settings, state.push_size)) break;
+    bool pushed = false;
+    SartorPetscCall(push_off_saddle(problem, x, settings, state.push_size, &pushed));
+    if (!pushed) break;
     ++state.escapes;
     // Re-solve at the load reached: no ramp, and no cutbacks (the load stays),
     // with the seams as sewn (re-sewing from slack seams would undo the

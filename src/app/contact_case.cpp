@@ -38,6 +38,10 @@ const std::vector<OptionSpec>& contact_option_specs() {
           {"self-contact-offset", "M", "0.002", "the distance layers of cloth keep, m"},
           {"self-contact-stiffness", "N/M", "",
            "self-contact penalty stiffness per pair, N/m [the largest membrane modulus]"},
+          {"self-contact-onset", "F", "0",
+           "the self-contact penalty's force sets in smoothly over F times "
+           "--self-contact-offset (a C^2 energy, as --contact-penalty-onset for the bodies); 0: "
+           "the plain quadratic"},
           {"self-contact-rings", "N", "2",
            "pairs fewer edges apart in the cloth (or across a seam) have no self-contact"},
       },
@@ -46,6 +50,7 @@ const std::vector<OptionSpec>& contact_option_specs() {
        {"self-contact", "contact-self"},
        {"self-contact-offset", "contact-self-offset"},
        {"self-contact-stiffness", "contact-self-stiffness"},
+       {"self-contact-onset", "contact-self-onset"},
        {"self-contact-rings", "contact-self-rings"}});
   return specs;
 }
@@ -84,6 +89,10 @@ ContactCase read_contact_case(const Options& options) {
   contact.self_contact.offset = options.positive_real("self-contact-offset");
   if (options.is_set("self-contact-stiffness"))
     contact.self_contact.stiffness = options.positive_real("self-contact-stiffness");
+  contact.self_contact.onset = options.nonnegative_real("self-contact-onset");
+  if (contact.self_contact.onset > 1.0)
+    throw InputError("option --self-contact-onset: " + options.text("self-contact-onset") +
+                     " is more than 1 (the band would reach past the offset)");
   const long rings = options.integer("self-contact-rings");
   if (rings < 1 || rings > 10)
     throw InputError("option --self-contact-rings: " + std::to_string(rings) +

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <fstream>
 #include <map>
 #include <optional>
 #include <set>
@@ -159,11 +160,49 @@ std::vector<ClothTimeSeries::CellField> creep_fields(const std::vector<ElementCr
 
 // The wear states (every accepted step) into DIRECTORY/wear/series.*; a
 // resumed wear keeps the states up to `resumed_time` (s; negative: none).
+// wear.csv's header and one row per wear state.
+const char* const wear_table_header =
+    "time_s,dt_s,newton_iterations,rejected,creep_increment,hem_height_m,"
+    "max_elastic_strain,max_viscoelastic_strain,max_permanent_strain,certified,certificate,"
+    "dome_height_m\n";
+
+std::string wear_table_row(const WearStep& s) {
+  std::ostringstream row;
+  row.precision(10);
+  row << s.step.time << ',' << s.step.dt << ',' << s.step.newton_iterations << ','
+      << s.step.rejected << ',' << s.step.increment << ',' << s.hem_height << ',' << s.max_elastic
+      << ',' << s.max_viscoelastic << ',' << s.max_permanent << ',' << (s.certified ? 1 : 0) << ','
+      << s.verdict << ',' << s.dome_height << '\n';
+  return row.str();
+}
+
+// Rank 0: wear.csv grows by a row with every accepted wear state, so that a
+// wear stopped before its end leaves the states it reached; the first call
+// writes the header and the states a resumed wear had reached before.
+class GrowingWearTable {
+public:
+  explicit GrowingWearTable(std::string path) : path_(std::move(path)) {}
+
+  void add(const std::vector<WearStep>& steps) {
+    std::ofstream table(path_, written_ == 0 ? std::ios::trunc : std::ios::app);
+    if (written_ == 0) table << wear_table_header;
+    for (; written_ < steps.size(); ++written_)
+      table << wear_table_row(steps[written_]);
+    if (!table) throw std::runtime_error("cannot write " + path_);
+  }
+
+private:
+  std::string path_;
+  std::size_t written_ = 0;
+};
+
+// The wear's observer: its series (wear/) and wear.csv, row by row.
 WearObserver wear_series(const std::string& directory, const ClothOutputLabels& labels,
-                         double resumed_time) {
+                         const std::shared_ptr<WearRun>& run, double resumed_time) {
   auto series = std::make_shared<std::unique_ptr<ClothTimeSeries>>();
-  return [directory, series, labels, resumed_time](ClothProblem& problem, Vec x,
-                                                   const CreepCoupling& creep, double time) {
+  auto table = std::make_shared<GrowingWearTable>(directory + "/wear.csv");
+  return [directory, series, table, labels, run,
+          resumed_time](ClothProblem& problem, Vec x, const CreepCoupling& creep, double time) {
     std::vector<Eigen::Vector3d> positions;
     std::vector<element::MembraneStrain> strains;
     std::vector<ElementCreep> states;
@@ -179,6 +218,7 @@ WearObserver wear_series(const std::string& directory, const ClothOutputLabels& 
                                                         resumed_time);
     }
     (*series)->write(time, positions, strains, creep_fields(states));
+    table->add(run->report.steps);
   };
 }
 
@@ -325,7 +365,7 @@ void attach_wear(const Options& options, const std::string& directory,
     if (poses) follow_poses(options, poses, problem);
     const WearCheckpoints checkpoints(checkpointing, std::move(*resume), problem, drape, run.get());
     SartorPetscCall(solve_wear(problem, x, garment, settings, &run->report,
-                               wear_series(directory, labels, checkpoints.resumed_time()),
+                               wear_series(directory, labels, run, checkpoints.resumed_time()),
                                checkpoints.restart()));
     if (is_root()) {
       make_output_directory(directory + "/takeoff");
@@ -391,6 +431,7 @@ void add_wear_summary(const WearRun& run, const ClothOutputLabels& labels,
                          {"max_viscoelastic_strain", taken.max_viscoelastic},
                          {"newton_iterations", taken.newton_iterations},
                          {"recovery_steps", taken.recovery_steps},
+                         {"saddle_escapes", taken.saddle_escapes},
                          {"certificate", taken.certificate.verdict()},
                          {"certified", taken.certificate.certified()},
                          {"panels", per_panel_permanent(taken, labels)}});
@@ -462,16 +503,9 @@ void print_wear(const WearRun& run) {
 void write_wear_tables(const std::string& directory, const WearRun& run) {
   if (!is_root()) return;
   std::ostringstream wear;
-  wear.precision(10);
-  wear << "time_s,dt_s,newton_iterations,rejected,creep_increment,hem_height_m,"
-          "max_elastic_strain,max_viscoelastic_strain,max_permanent_strain,certified,certificate,"
-          "dome_height_m\n";
-  for (const WearStep& s : run.report.steps) {
-    wear << s.step.time << ',' << s.step.dt << ',' << s.step.newton_iterations << ','
-         << s.step.rejected << ',' << s.step.increment << ',' << s.hem_height << ','
-         << s.max_elastic << ',' << s.max_viscoelastic << ',' << s.max_permanent << ','
-         << (s.certified ? 1 : 0) << ',' << s.verdict << ',' << s.dome_height << '\n';
-  }
+  wear << wear_table_header;
+  for (const WearStep& s : run.report.steps)
+    wear << wear_table_row(s);
   write_file_atomically(directory + "/wear.csv", wear.str());
   std::ostringstream takeoff;
   takeoff.precision(10);

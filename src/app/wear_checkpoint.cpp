@@ -57,6 +57,7 @@ nlohmann::json take_off_json(const TakeOffReport& t) {
           {"newton_iterations", t.newton_iterations},
           {"recovery_steps", t.recovery_steps},
           {"rejected_steps", t.rejected_steps},
+          {"saddle_escapes", t.saddle_escapes},
           {"certificate", certificate_json(t.certificate)},
           {"positions", position_rows(t.positions)},
           {"creep", creep_rows(t.creep)}};
@@ -79,6 +80,7 @@ TakeOffReport take_off_from(const nlohmann::json& j) {
   t.newton_iterations = j.at("newton_iterations").get<PetscInt>();
   t.recovery_steps = j.at("recovery_steps").get<long>();
   t.rejected_steps = j.at("rejected_steps").get<long>();
+  t.saddle_escapes = j.value("saddle_escapes", 0L); // absent before 2026-12-08
   t.certificate = certificate_from_json(j.at("certificate"));
   t.positions = positions_from_rows(j.at("positions").get<std::vector<double>>());
   t.creep = creep_from_rows(j.at("creep").get<std::vector<double>>());

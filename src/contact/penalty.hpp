@@ -33,6 +33,7 @@
 
 #include "contact/shape.hpp"
 #include "element/element.hpp"
+#include "element/penalty_law.hpp"
 
 #include <Eigen/Core>
 
@@ -50,14 +51,9 @@ inline QueryNeeds query_needs(element::Want want) {
   }
 }
 
-// The penalty's energy E(g), normal force f(g) = E'(g) and stiffness f'(g)
-// at depth g into the contact layer (zero for g <= 0), with onset band b.
-struct PenaltyLaw {
-  double energy = 0.0;    // J
-  double force = 0.0;     // N
-  double stiffness = 0.0; // N/m
-};
-PenaltyLaw penalty_law(double stiffness, double band, double depth);
+// The penalty's law (element/penalty_law.hpp), shared with cloth self-contact.
+using element::penalty_law;
+using element::PenaltyLaw;
 
 struct PointResult {
   double energy = 0.0;                                // J

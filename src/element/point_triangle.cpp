@@ -1,5 +1,7 @@
 #include "element/point_triangle.hpp"
 
+#include "element/penalty_law.hpp"
+
 #include <Eigen/Geometry>
 #include <unsupported/Eigen/AutoDiff>
 
@@ -159,20 +161,22 @@ ClosestPoint closest_point_on_triangle(const Vector3d& p, const Vector3d& a, con
 }
 
 Result<12> point_triangle_penalty(double stiffness, double offset, const Vector12& x, Want want,
-                                  bool exact) {
+                                  bool exact, double band) {
   Result<12> result;
   result.gradient.setZero();
   result.hessian.setZero();
   const ClosestPoint q =
       closest_point_on_triangle(x.segment<3>(0), x.segment<3>(3), x.segment<3>(6), x.segment<3>(9));
-  const double gap = offset - q.distance; // > 0 inside the offset layer
-  if (gap <= 0.0 || q.distance == 0.0) return result;
-  result.energy = 0.5 * stiffness * gap * gap;
+  const double depth = offset - q.distance; // > 0 inside the offset layer
+  if (depth <= 0.0 || q.distance == 0.0) return result;
+  const PenaltyLaw law = penalty_law(stiffness, band, depth);
+  result.energy = law.energy;
   if (want == Want::energy) return result;
   const Vector12 slope = distance_gradient<double>(x, q.feature);
-  result.gradient = -stiffness * gap * slope;
+  result.gradient = -law.force * slope;
   if (want == Want::gradient) return result;
-  result.hessian = stiffness * (slope * slope.transpose() - gap * distance_hessian(x, q.feature));
+  result.hessian =
+      law.stiffness * slope * slope.transpose() - law.force * distance_hessian(x, q.feature);
   if (!exact) project_to_psd<12>(result.hessian);
   return result;
 }

@@ -1,8 +1,9 @@
 #pragma once
 // Cloth self-contact between a vertex and a triangle of the cloth: the
-// penalty E = k (delta - d)^2 / 2 for d < delta (zero beyond), d the
-// distance from the point p to the triangle (a, b, c), delta the contact
-// offset (twice the half-thickness a layer keeps from another), k in N/m.
+// penalty law of element/penalty_law.hpp on the depth g = delta - d (zero
+// for d >= delta), d the distance from the point p to the triangle
+// (a, b, c), delta the contact offset (twice the half-thickness a layer
+// keeps from another), k in N/m, over an onset band (0: E = k g^2 / 2).
 //
 // The distance is unsigned: which side of a layer a vertex is on is kept by
 // the solver's step bound (no step may carry a vertex through a triangle),
@@ -35,10 +36,10 @@ struct ClosestPoint {
 ClosestPoint closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                                        const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
-// The penalty over x = (p, a, b, c). Zero (and no Hessian) at d >= offset
-// and at d = 0, where the direction is undefined; projected to PSD unless
-// `exact`.
+// The penalty over x = (p, a, b, c) with onset band `band` (m). Zero (and
+// no Hessian) at d >= offset and at d = 0, where the direction is
+// undefined; projected to PSD unless `exact`.
 Result<12> point_triangle_penalty(double stiffness, double offset, const Vector12& x, Want want,
-                                  bool exact = false);
+                                  bool exact = false, double band = 0.0);
 
 } // namespace sartor::element

@@ -1,7 +1,9 @@
 // The vertex-triangle penalty of cloth self-contact: its distance against
 // an independent construction (the plane's foot when it falls inside, else
 // the nearest of the three segments), its derivatives against finite
-// differences on every feature, and its vanishing beyond the offset.
+// differences on every feature (with and without an onset band), its force
+// against the law's closed form, and its vanishing beyond the offset, with a
+// band smoothly (C^2: no jump of the Hessian where a point enters the layer).
 
 #include "element/point_triangle.hpp"
 #include "finite_difference.hpp"
@@ -89,22 +91,49 @@ std::vector<FeatureCase> feature_cases() {
 constexpr double stiffness = 250.0, offset = 0.001;
 
 TEST(PointTriangle, DerivativesMatchFiniteDifferencesOnEveryFeature) {
-  for (const FeatureCase& f : feature_cases()) {
-    const Vector12 x = stacked(f.point, a, b, c);
-    ASSERT_EQ(closest_point_on_triangle(f.point, a, b, c).feature, f.feature);
-    const Result<12> r = point_triangle_penalty(stiffness, offset, x, Want::hessian, true);
-    ASSERT_GT(r.energy, 0.0);
-    const auto energy = [](const Vector12& y) {
-      return point_triangle_penalty(stiffness, offset, y, Want::energy).energy;
-    };
-    const auto gradient = [](const Vector12& y) {
-      return point_triangle_penalty(stiffness, offset, y, Want::gradient).gradient;
-    };
-    EXPECT_LT(relative_error(numeric_gradient<12>(energy, x, 1e-9), r.gradient), 1e-6)
-        << "feature " << int(f.feature);
-    EXPECT_LT(relative_error(numeric_jacobian<12, 12>(gradient, x, 1e-9), r.hessian), 1e-5)
-        << "feature " << int(f.feature);
+  // The feature cases' depths (0.3 to 0.9 mm) lie inside and beyond 0.6 mm.
+  for (const double band : {0.0, 0.6 * offset}) {
+    for (const FeatureCase& f : feature_cases()) {
+      const Vector12 x = stacked(f.point, a, b, c);
+      ASSERT_EQ(closest_point_on_triangle(f.point, a, b, c).feature, f.feature);
+      const Result<12> r = point_triangle_penalty(stiffness, offset, x, Want::hessian, true, band);
+      ASSERT_GT(r.energy, 0.0);
+      const auto energy = [band](const Vector12& y) {
+        return point_triangle_penalty(stiffness, offset, y, Want::energy, false, band).energy;
+      };
+      const auto gradient = [band](const Vector12& y) {
+        return point_triangle_penalty(stiffness, offset, y, Want::gradient, false, band).gradient;
+      };
+      EXPECT_LT(relative_error(numeric_gradient<12>(energy, x, 1e-9), r.gradient), 1e-6)
+          << "feature " << int(f.feature) << ", band " << band;
+      EXPECT_LT(relative_error(numeric_jacobian<12, 12>(gradient, x, 1e-9), r.hessian), 1e-5)
+          << "feature " << int(f.feature) << ", band " << band;
+    }
   }
+}
+
+// The push on the point is f(g) = k g^2 / b (2 - g / b) inside the band b,
+// k g beyond it; at the layer's edge the Hessian vanishes (the plain
+// quadratic's jumps to k there).
+TEST(PointTriangle, OnsetBandSetsTheForceInSmoothly) {
+  const double band = 0.5 * offset;
+  const Vector3d n = (b - a).cross(c - a).normalized();
+  const Vector3d centre = (a + b + c) / 3.0;
+  for (const double depth : {0.1 * band, 0.5 * band, 0.99 * band, 1.5 * band}) {
+    const Vector12 x = stacked(centre + (offset - depth) * n, a, b, c);
+    const Result<12> r = point_triangle_penalty(stiffness, offset, x, Want::gradient, false, band);
+    const double s = depth / band;
+    const double expected = depth < band ? stiffness * depth * s * (2.0 - s) : stiffness * depth;
+    EXPECT_NEAR(r.gradient.head<3>().dot(n), -expected, 1e-12 * stiffness * offset)
+        << "depth " << depth;
+  }
+  const Vector12 entering = stacked(centre + (offset - 1e-7 * band) * n, a, b, c);
+  const double smooth =
+      point_triangle_penalty(stiffness, offset, entering, Want::hessian, true, band).hessian.norm();
+  const double plain =
+      point_triangle_penalty(stiffness, offset, entering, Want::hessian, true).hessian.norm();
+  EXPECT_GT(plain, stiffness);
+  EXPECT_LT(smooth, 1e-5 * stiffness);
 }
 
 TEST(PointTriangle, ForcesBalanceAndPushThePointAway) {

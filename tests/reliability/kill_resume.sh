@@ -203,6 +203,9 @@ run_wear() {
   pkill -9 -f -- "--output $out\$" || true # the ranks, as a node failure would
   kill -9 "$pid" 2> /dev/null || true
   wait "$pid" 2> /dev/null || true
+  # wear.csv grows row by row: the killed run leaves its states up to the take-off at 8 s.
+  awk -F, 'NR > 1 && $1 > 7.99 { found = 1 } END { exit !found }' "$out/wear.csv" ||
+    { cat "$out.log" >&2; echo "skirt_wear: the killed run left no wear.csv row at 8 s" >&2; exit 1; }
   "${on_two_ranks[@]}" "$sartor" drape "${skirt_wear[@]}" --checkpoint-interval 1 \
     --restart "$out/checkpoint.h5" --output "$out" >> "$out.log" 2>&1 ||
     { cat "$out.log" >&2; echo "skirt_wear: the resumed run failed" >&2; exit 1; }

@@ -151,6 +151,58 @@ TEST(Wear, PermanentDomeHeightIsTheCapOfTheAddedArea) {
   EXPECT_EQ(permanent_dome_height(mesh, states, {}, &excess), 0.0);
 }
 
+// The knee sheet with 5 % permanent elongation both ways, without weight,
+// started flat: longer than its frame, it is in equilibrium flat (squeezed
+// in its plane), but that is a saddle: bulging either way lowers Phi. A
+// take-off's hanging that ends in a saddle is pushed along the lowest mode
+// (push_off_saddle) and solved again: the sheet then bulges by about the
+// cap its added area would form, and there is no direction of descent left.
+TEST(Wear, ASheetLongerThanItsFrameIsPushedOffTheFlatSaddle) {
+  EXPECT_EQ(PetscOptionsSetValue(nullptr, "-snes_atol", "1e-6"), 0);
+  const TriangleMesh mesh = mesh::rectangle(side, side, 8, 8);
+  ClothProblem problem(PETSC_COMM_WORLD, mesh, knee_sheet_material(), frame_of(mesh));
+  const CreepParameters creep = KneeCase{}.creep;
+  CreepCoupling coupling(problem, {{creep, creep}});
+  std::vector<ElementCreep> states(mesh.triangle_count());
+  for (ElementCreep& s : states)
+    s.warp.permanent = s.weft.permanent = 0.05;
+  coupling.restore(states);
+  Vec x = nullptr;
+  ASSERT_EQ(problem.create_solution(&x), 0);
+  StaticOptions options;
+  options.minimise = true;
+  StaticReport flat;
+  ASSERT_EQ(solve_static(problem, x, options, &flat), 0);
+  EXPECT_TRUE(flat.converged) << flat.reason;
+  const auto highest_rise = [&] {
+    std::vector<Eigen::Vector3d> positions;
+    EXPECT_EQ(problem.positions_everywhere(x, &positions), 0);
+    double rise = 0.0;
+    for (const Eigen::Vector3d& p : positions)
+      rise = std::max(rise, std::abs(p.z()));
+    return rise;
+  };
+  EXPECT_LT(highest_rise(), 1e-9);
+  ClothEnergy saddle, bulge;
+  ASSERT_EQ(problem.energy(x, &saddle), 0);
+  bool pushed = false;
+  ASSERT_EQ(push_off_saddle(problem, x, CertificateOptions{}, 0.01 * side, &pushed), 0);
+  ASSERT_TRUE(pushed);
+  options.start_load_factor = problem.load_factor;
+  StaticReport bulged;
+  ASSERT_EQ(solve_static(problem, x, options, &bulged), 0);
+  EXPECT_TRUE(bulged.converged) << bulged.reason;
+  ASSERT_EQ(problem.energy(x, &bulge), 0);
+  EXPECT_LT(bulge.total(), saddle.total());
+  const double cap = std::sqrt(side * side * (1.05 * 1.05 - 1.0) / M_PI); // 3.6 cm
+  std::printf("bulge %.4e m, cap of the added area %.4e m\n", highest_rise(), cap);
+  EXPECT_GT(highest_rise(), 0.5 * cap);
+  EXPECT_LT(highest_rise(), 1.5 * cap);
+  ASSERT_EQ(push_off_saddle(problem, x, CertificateOptions{}, 0.01 * side, &pushed), 0);
+  EXPECT_FALSE(pushed);
+  EXPECT_EQ(VecDestroy(&x), 0);
+}
+
 TEST(Wear, KneeBagsAndTheFreedSheetIsCertified) {
   const WearReport report = wear_knee(KneeCase{});
   const TakeOffReport& taken = report.take_offs.back();

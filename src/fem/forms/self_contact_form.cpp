@@ -1,5 +1,7 @@
 #include "fem/forms/self_contact_form.hpp"
 
+#include "element/penalty_law.hpp"
+
 #include "contact/conservative_advance.hpp"
 #include "fem/cloth_problem.hpp"
 #include "fem/petsc_call.hpp"
@@ -99,7 +101,7 @@ PetscErrorCode SelfContactForm::energy(Vec x, double* energy) {
   for (const auto& pair : pairs(all, settings_.offset)) {
     local += element::point_triangle_penalty(stiffness_, settings_.offset,
                                              stacked(all, pair.vertex, pair.triangle),
-                                             element::Want::energy)
+                                             element::Want::energy, false, band())
                  .energy;
   }
   PetscCallMPI(MPIU_Allreduce(&local, energy, 1, MPI_DOUBLE, MPI_SUM, problem_.comm()));
@@ -114,7 +116,7 @@ PetscErrorCode SelfContactForm::add_gradient(Vec x, Vec f) {
     const element::Vector12 gradient =
         element::point_triangle_penalty(stiffness_, settings_.offset,
                                         stacked(all, pair.vertex, pair.triangle),
-                                        element::Want::gradient)
+                                        element::Want::gradient, false, band())
             .gradient;
     // Vectors, unlike matrices, do not skip negative (pinned) rows.
     std::vector<PetscInt> free_rows;
@@ -145,7 +147,7 @@ PetscErrorCode SelfContactForm::add_hessian(Vec x, bool exact, Mat J) {
     const Eigen::Matrix<double, 12, 12, Eigen::RowMajor> hessian =
         element::point_triangle_penalty(stiffness_, settings_.offset,
                                         stacked(all, pair.vertex, pair.triangle),
-                                        element::Want::hessian, exact)
+                                        element::Want::hessian, exact, band())
             .hessian;
     const std::array<PetscInt, 12> all_rows = rows(pair.vertex, pair.triangle);
     PetscCall(
@@ -250,7 +252,7 @@ PetscErrorCode SelfContactForm::report(Vec x, SelfContactReport* report) {
   double local[2] = {0.0, 0.0}, local_min = INFINITY;
   for (const auto& pair : pairs(all, settings_.offset)) {
     local[0] += 1.0;
-    local[1] += stiffness_ * (settings_.offset - pair.distance);
+    local[1] += element::penalty_law(stiffness_, band(), settings_.offset - pair.distance).force;
     local_min = std::min(local_min, pair.distance);
   }
   double total[2], candidates = double(candidates_.size()), all_candidates = 0.0;

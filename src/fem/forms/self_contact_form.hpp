@@ -42,6 +42,9 @@ struct SelfContactSettings {
   // cloth's own shape, not two layers meeting.
   int rings = 2;
   static constexpr double near_radius = 3.0;
+  // The penalty sets in smoothly over this fraction of the offset
+  // (element/penalty_law.hpp); 0: the plain quadratic penalty.
+  double onset = 0.0;
 };
 
 // What self-contact does at a state (every rank).
@@ -102,6 +105,8 @@ private:
                             int triangle) const;
   std::array<PetscInt, 12> rows(int vertex, int triangle) const;
   bool is_candidate(int vertex, int triangle) const;
+  // The penalty's onset band, m.
+  double band() const { return settings_.onset * settings_.offset; }
 
   const ClothProblem& problem_;
   SelfContactSettings settings_;
